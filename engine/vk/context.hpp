@@ -1,0 +1,149 @@
+// context.hpp: the Vulkan device layer's centre. Owns the instance, the debug messenger (which counts
+// validation messages so tests can fail on any error), the physical device chosen by required and optional
+// features, one graphics+compute queue, the memory allocator, the bindless table, the global pipeline layout,
+// one timeline semaphore that orders every submission, and a deferred-destruction queue keyed on it.
+#pragma once
+#include <volk.h>
+
+#include <atomic>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "vk/features.hpp"
+#include "vk/memory.hpp"
+#include "vk/resources.hpp"
+
+namespace idk::vk {
+
+class BindlessTable;
+
+struct ContextDesc {
+    bool validation = IDK_DEFAULT_VALIDATION;          // messenger counts errors; GPU tests assert zero
+    bool syncValidation = IDK_DEFAULT_SYNC_VALIDATION;  // VkValidationFeaturesEXT synchronization checks
+    bool forceStaging = IDK_DEFAULT_FORCE_STAGING;      // never map GPU-only memory, even on UMA (lavapipe)
+    bool forceFallbackRungs = false;                    // choose the portable rung on every ladder
+    std::vector<const char*> instanceExtensions;        // window-system extensions; empty = headless
+    bool presentation = false;                          // require VK_KHR_swapchain
+    std::string deviceNameFilter;                       // substring; also env IDK_DEVICE
+};
+
+// Counts and keeps the validation layer's messages.
+struct ValidationLog {
+    std::atomic<uint32_t> errors{0};
+    std::atomic<uint32_t> warnings{0};
+    std::mutex mutex;
+    std::vector<std::string> messages;  // errors and warnings, first 256
+};
+
+struct DeviceInfo {
+    std::string name;
+    std::string driverName;
+    std::string driverInfo;
+    uint32_t apiVersion = 0;
+    uint32_t driverVersion = 0;
+    VkPhysicalDeviceType type = VK_PHYSICAL_DEVICE_TYPE_OTHER;
+    VkPhysicalDeviceLimits limits{};
+    uint32_t maxSampledImagesUpdateAfterBind = 0;
+    uint32_t maxStorageImagesUpdateAfterBind = 0;
+    uint32_t maxStorageBuffersUpdateAfterBind = 0;
+    uint32_t maxSamplersUpdateAfterBind = 0;
+    float timestampPeriodNs = 1.0f;
+    bool timestampsSupported = false;
+    bool uma = false;
+};
+
+class Context {
+public:
+    explicit Context(const ContextDesc& desc = {});  // throws vk::Error / std::runtime_error naming what is missing
+    ~Context();
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
+
+    VkInstance instance() const noexcept { return instance_; }
+    VkPhysicalDevice physicalDevice() const noexcept { return physical_; }
+    VkDevice device() const noexcept { return device_; }
+    VkQueue queue() const noexcept { return queue_; }
+    uint32_t queueFamily() const noexcept { return queueFamily_; }
+    const DeviceInfo& info() const noexcept { return info_; }
+    const DeviceCapabilities& capabilities() const noexcept { return caps_; }
+    const std::vector<Ladder>& ladders() const noexcept { return ladders_; }
+    const Ladder& ladder(const std::string& feature) const;  // throws if unknown
+    const ContextDesc& desc() const noexcept { return desc_; }
+    MemoryAllocator& allocator() noexcept { return *allocator_; }
+    BindlessTable& bindless() noexcept { return *bindless_; }
+    VkPipelineLayout pipelineLayout() const noexcept { return pipelineLayout_; }
+
+    // Validation messages seen so far (errors fail tests).
+    uint32_t validationErrors() const noexcept { return validation_->errors.load(); }
+    uint32_t validationWarnings() const noexcept { return validation_->warnings.load(); }
+    std::vector<std::string> validationMessages() const;
+
+    // Resources. Names become debug names. destroy() is immediate (caller guarantees the GPU is done);
+    // destroyDeferred() waits until every submission made so far has completed.
+    Buffer createBuffer(const BufferDesc& desc);
+    Image createImage(const ImageDesc& desc);
+    void destroy(Buffer& buffer);
+    void destroy(Image& image);
+    void destroyDeferred(Buffer& buffer);
+    void destroyDeferred(Image& image);
+    void destroyDeferred(std::function<void()> release);  // any other object
+    void collectGarbage();                                // runs deferred releases whose submissions completed
+
+    // Submission. All submissions signal the one timeline semaphore with increasing values.
+    uint64_t submit(VkCommandBuffer cmd, std::span<const VkSemaphoreSubmitInfo> waits = {},
+                    std::span<const VkSemaphoreSubmitInfo> signals = {});
+    void waitFor(uint64_t timelineValue);
+    uint64_t completedValue() const;
+    uint64_t lastSubmittedValue() const noexcept { return lastSubmitted_; }
+    VkSemaphore timeline() const noexcept { return timeline_; }
+    // Records with fn into a one-time command buffer, submits and waits (uploads, readbacks, tests).
+    void runImmediate(const std::function<void(VkCommandBuffer)>& fn);
+    void waitIdle();
+
+    void setName(VkObjectType type, uint64_t handle, const std::string& name) const;
+    template <class T>
+    void setName(T handle, VkObjectType type, const std::string& name) const {
+        setName(type, reinterpret_cast<uint64_t>(handle), name);
+    }
+
+private:
+    void createInstance();
+    void pickPhysicalDevice();
+    void createDevice();
+
+    ContextDesc desc_;
+    VkInstance instance_ = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+    VkPhysicalDevice physical_ = VK_NULL_HANDLE;
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkQueue queue_ = VK_NULL_HANDLE;
+    uint32_t queueFamily_ = 0;
+    DeviceInfo info_;
+    DeviceCapabilities caps_;
+    std::vector<Ladder> ladders_;
+    std::vector<const char*> enabledDeviceExtensions_;
+    std::unique_ptr<ValidationLog> validation_;
+    std::unique_ptr<MemoryAllocator> allocator_;
+    std::unique_ptr<BindlessTable> bindless_;
+    VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
+
+    VkSemaphore timeline_ = VK_NULL_HANDLE;
+    uint64_t lastSubmitted_ = 0;
+    std::mutex submitMutex_;
+    std::mutex immediateMutex_;  // command pools are externally synchronized
+    VkCommandPool immediatePool_ = VK_NULL_HANDLE;
+
+    struct Deferred {
+        uint64_t afterValue;
+        std::function<void()> release;
+    };
+    std::mutex deferredMutex_;
+    std::deque<Deferred> deferred_;
+};
+
+}  // namespace idk::vk

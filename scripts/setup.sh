@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# Installs every Debian package idk-vk needs on a fresh Debian 12 (bookworm) machine.
+# Idempotent and quiet when everything is present. Mesa's lavapipe comes from bookworm-backports
+# because bookworm's Mesa 22.3 lacks the descriptor-indexing features the engine requires.
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake ninja-build pkg-config
+  libvulkan-dev libvulkan-volk-dev vulkan-validationlayers vulkan-tools
+  glslang-tools glslang-dev spirv-tools
+  libglm-dev libglfw3-dev libtinygltf-dev nlohmann-json3-dev
+  libopenimageio-dev openimageio-tools libmeshoptimizer-dev libimgui-dev libembree-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  ffmpeg xvfb xauth
+)
+BACKPORT_PACKAGES=(mesa-vulkan-drivers libgl1-mesa-dri libegl-mesa0 libglx-mesa0 libglapi-mesa libgbm1)
+
+missing=()
+for p in "${PACKAGES[@]}" "${BACKPORT_PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+mesa_version() { dpkg-query -W -f='${Version}' mesa-vulkan-drivers 2>/dev/null || true; }
+mesa_is_new_enough() {
+  local v; v=$(mesa_version)
+  [ -n "$v" ] && dpkg --compare-versions "$v" ge 24
+}
+
+if [ ${#missing[@]} -eq 0 ] && mesa_is_new_enough; then
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || { echo "setup.sh: must run as root (or have sudo) to install: ${missing[*]}" >&2; exit 1; }
+  SUDO="sudo"
+fi
+export DEBIAN_FRONTEND=noninteractive
+
+backports_list=/etc/apt/sources.list.d/bookworm-backports.list
+if ! grep -rqs "bookworm-backports" /etc/apt/sources.list /etc/apt/sources.list.d/; then
+  echo "deb http://deb.debian.org/debian bookworm-backports main" | $SUDO tee "$backports_list" >/dev/null
+fi
+
+echo "setup.sh: installing ${missing[*]:-(mesa upgrade)}" >&2
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${PACKAGES[@]}" >/dev/null
+$SUDO apt-get install -y -qq --no-install-recommends -t bookworm-backports "${BACKPORT_PACKAGES[@]}" >/dev/null
+
+if ! mesa_is_new_enough; then
+  echo "setup.sh: mesa-vulkan-drivers $(mesa_version) is older than 24; lavapipe lacks descriptor indexing" >&2
+  exit 1
+fi
+echo "setup.sh: done (mesa-vulkan-drivers $(mesa_version))" >&2

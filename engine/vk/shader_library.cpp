@@ -158,7 +158,7 @@ ReloadResult ShaderLibrary::reload(ShaderId id, const std::optional<std::string>
     shader::CompileRequest request;
     request.path = sourceDir_ / entry.sourcePath;
     request.source = sourceText;
-    request.stage = static_cast<shader::ShaderStage>(entry.stage);
+    request.stage = entry.stage;
     request.includeDirs = {sourceDir_ / "include", sourceDir_ / "shared"};
     shader::CompileResult compiled = shader::compileGlsl(request);
     if (!compiled.ok()) return {false, compiled.error, 0};

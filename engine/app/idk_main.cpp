@@ -1,1 +1,45 @@
-int main() { return 0; }
+// idk_main.cpp: the `idk` command line (DESIGN.md "Programs"): dispatches to a subcommand and turns every
+// error into one line on stderr and exit code 1.
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "app/commands.hpp"
+#include "core/cli.hpp"
+
+namespace {
+
+const char* const kHelp =
+    "idk - the idk-vk renderer (a Vulkan port of IDKEngine)\n"
+    "\n"
+    "usage: idk <command> [options]\n"
+    "\n"
+    "commands:\n"
+    "  info     the Vulkan device, its limits and the capability ladders (--json for machines)\n"
+    "  render   render a glTF scene (or the embedded Cornell box) to a PNG or EXR image\n"
+    "  help     this text; `idk <command> --help` describes one command\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::vector<std::string> args(argv + 1, argv + argc);
+    if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
+        std::fputs(kHelp, stdout);
+        return args.empty() ? 2 : 0;
+    }
+    std::string command = args[0];
+    std::vector<std::string> rest(args.begin() + 1, args.end());
+    try {
+        if (command == "info") return idk::app::runInfo(rest);
+        if (command == "render") return idk::app::runRender(rest);
+        std::fprintf(stderr, "idk: unknown command '%s' (see `idk help`)\n", command.c_str());
+        return 2;
+    } catch (const idk::core::CliError& e) {
+        std::fprintf(stderr, "idk %s: %s (see `idk %s --help`)\n", command.c_str(), e.what(), command.c_str());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "idk %s: error: %s\n", command.c_str(), e.what());
+        return 1;
+    }
+}

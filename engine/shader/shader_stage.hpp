@@ -1,6 +1,5 @@
 // shader_stage.hpp: the pipeline stage a shader module is written for, shared by reflection and the runtime
-// compiler. Same enumerators, order and underlying type as idk::shaders::ShaderStage in the generated
-// shader manifest, so the two convert with a static_cast.
+// compiler and the generated shader manifest (which aliases it as idk::shaders::ShaderStage).
 #pragma once
 
 #include <cstdint>

@@ -26,8 +26,12 @@ mesa_is_new_enough() {
   [ -n "$v" ] && dpkg --compare-versions "$v" ge 24
 }
 
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+# The Khronos glTF validator (npm) runs on the machine's Node.js; Debian's nodejs if there is none.
+command -v node >/dev/null 2>&1 || missing+=(nodejs npm)
+
 if [ ${#missing[@]} -eq 0 ] && mesa_is_new_enough; then
-  exit 0
+  exec bash "$here/setup_node.sh"
 fi
 
 SUDO=""
@@ -51,4 +55,8 @@ if ! mesa_is_new_enough; then
   echo "setup.sh: mesa-vulkan-drivers $(mesa_version) is older than 24; lavapipe lacks descriptor indexing" >&2
   exit 1
 fi
+if ! command -v node >/dev/null 2>&1; then
+  $SUDO apt-get install -y -qq --no-install-recommends nodejs npm >/dev/null
+fi
+bash "$here/setup_node.sh"
 echo "setup.sh: done (mesa-vulkan-drivers $(mesa_version))" >&2

@@ -1,0 +1,36 @@
+# The two entry commands (README): `make run` renders the default scene, `make test` runs the whole suite.
+# Both install what they need first (scripts/setup.sh, Debian packages only).
+BUILD ?= build
+CONFIG ?= Release
+JOBS ?= $(shell nproc)
+CMAKE_FLAGS ?=
+SIZE ?= 256x256
+
+.PHONY: setup configure build run test test-asan bench clean
+
+setup:
+	@bash scripts/setup.sh
+
+configure: setup
+	@cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=$(CONFIG) $(CMAKE_FLAGS) >/dev/null
+
+build: configure
+	@cmake --build $(BUILD) -j $(JOBS)
+
+run: build
+	@mkdir -p out
+	@$(BUILD)/bin/idk render --size $(SIZE) --out out/default.png
+	@echo "out/default.png"
+
+test: build
+	@ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) --timeout 900
+
+# AddressSanitizer + UndefinedBehaviorSanitizer build of the whole suite, in its own build folder.
+test-asan:
+	@$(MAKE) --no-print-directory test BUILD=build-asan CONFIG=RelWithDebInfo CMAKE_FLAGS="-DIDK_SANITIZE=ON $(CMAKE_FLAGS)"
+
+bench: build
+	@bash scripts/bench.sh $(BUILD)
+
+clean:
+	@rm -rf $(BUILD) build-asan out

@@ -1,0 +1,254 @@
+// graph_plan.cpp: the planning half of RenderGraph::compile(), pure: resolved descriptions and usage,
+// history validity, transient lifetimes and the aliasing plan, and every barrier of the frame.
+#include "graph/render_graph.hpp"
+#include "graph/text_format.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+namespace idk::graph {
+
+using detail::Origin;
+using detail::PassUse;
+using detail::ResourcePlan;
+
+namespace {
+
+uint32_t fullMipCount(VkExtent3D e) {
+    const uint32_t largest = std::max({e.width, e.height, e.depth, 1u});
+    return static_cast<uint32_t>(std::bit_width(largest));
+}
+
+}  // namespace
+
+// Resolved descriptions (absolute extents, mips, usage from executed accesses), lifetimes, history validity.
+void RenderGraph::resolveResources(std::vector<std::string>& errors) {
+    detail::CompiledGraph& c = *compiled_;
+    for (uint32_t pos = 0; pos < c.order.size(); ++pos) {
+        for (const PassUse& use : passes_[c.order[pos]].uses) {
+            ResourcePlan& plan = c.resources[use.resource];
+            if (!plan.used) plan.firstPos = pos;
+            plan.used = true;
+            plan.lastPos = pos;
+            plan.writtenThisFrame = plan.writtenThisFrame || use.write;
+            if (resources_[use.resource].kind == ResourceKind::Image) {
+                plan.texture.usage |= imageUsageFor(use.access);
+            } else {
+                plan.buffer.usage |= bufferUsageFor(use.access);
+                if (use.access == Access::HostRead) plan.buffer.hostVisible = true;
+            }
+        }
+    }
+    for (uint32_t r = 0; r < resources_.size(); ++r) {
+        const detail::ResourceNode& node = resources_[r];
+        ResourcePlan& plan = c.resources[r];
+        if (node.origin == Origin::History) continue;   // takes its pair's description below
+        if (node.origin == Origin::Imported) {
+            if (node.kind == ResourceKind::Image) {
+                const PhysicalTexture& t = node.importedTexture;
+                plan.texture = TextureInfo{t.format, t.extent.depth > 1 ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D,
+                                           t.extent, t.mips, t.layers, false, plan.texture.usage};
+            } else {
+                plan.buffer.size = node.importedBuffer.size;
+            }
+            continue;
+        }
+        if (node.kind == ResourceKind::Buffer) {
+            plan.buffer.size = node.bufferDesc.size;
+            plan.buffer.usage |= node.bufferDesc.extraUsage;
+            if (node.bufferDesc.size == 0) errors.push_back(strformat("render graph: buffer '{}' has size 0", node.name));
+            continue;
+        }
+        const TextureDesc& d = node.textureDesc;
+        TextureInfo& info = plan.texture;
+        info.format = d.format;
+        if (d.sizeMode == SizeMode::OutputRelative) {
+            const auto scaled = [](uint32_t size, float scale) {
+                return std::max<uint32_t>(1, static_cast<uint32_t>(std::lround(static_cast<double>(size) * scale)));
+            };
+            info.extent = {scaled(outputExtent_.width, d.scaleX), scaled(outputExtent_.height, d.scaleY), 1};
+        } else {
+            info.extent = d.extent;
+        }
+        info.type = info.extent.depth > 1 ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
+        info.mips = d.mips == 0 ? fullMipCount(info.extent) : d.mips;
+        info.layers = d.layers;
+        info.cube = d.cube;
+        info.usage |= d.extraUsage;
+        if (d.format == VK_FORMAT_UNDEFINED) {
+            errors.push_back(strformat("render graph: texture '{}' has no format", node.name));
+        }
+        if (info.extent.width == 0 || info.extent.height == 0 || info.extent.depth == 0 || info.layers == 0) {
+            errors.push_back(strformat("render graph: texture '{}' has a zero extent or layer count", node.name));
+        }
+        if (info.mips > fullMipCount(info.extent)) {
+            errors.push_back(strformat("render graph: texture '{}' asks for {} mips, more than its {}x{}x{} extent "
+                                         "allows", node.name, info.mips, info.extent.width, info.extent.height,
+                                         info.extent.depth));
+        }
+        if (d.cube && (d.layers % 6 != 0 || info.extent.width != info.extent.height || info.type != VK_IMAGE_TYPE_2D)) {
+            errors.push_back(strformat("render graph: cube texture '{}' needs square 2D faces and layers % 6 == 0",
+                                         node.name));
+        }
+    }
+
+    // Persistent pairs share one description: usage of both nodes, TRANSFER_DST for the first-frame clear,
+    // and the pool's usage when everything else matches (so a smaller usage does not recreate the copies).
+    const uint64_t frame = pool_.frameIndex();
+    const uint32_t historyCopy = 1 - pool_.currentCopy();
+    for (uint32_t r = 0; r < resources_.size(); ++r) {
+        const detail::ResourceNode& node = resources_[r];
+        if (node.origin != Origin::History && node.origin != Origin::Persistent) continue;
+        ResourcePlan& plan = c.resources[r];
+        const auto* entry = pool_.findPersistent(node.origin == Origin::History ? node.persistentName : node.name);
+        if (node.origin == Origin::Persistent && plan.pairedWith != kInvalidId) continue;   // done with its history
+        TextureInfo texture = plan.texture;
+        BufferInfo buffer = plan.buffer;
+        if (node.origin == Origin::History) {
+            if (plan.pairedWith != kInvalidId) {
+                const ResourcePlan& current = c.resources[plan.pairedWith];
+                texture.usage |= current.texture.usage;
+                const VkImageUsageFlags usage = texture.usage;
+                texture = current.texture;
+                texture.usage = usage;
+                const VkBufferUsageFlags bufferUsage = buffer.usage | current.buffer.usage;
+                const bool host = buffer.hostVisible || current.buffer.hostVisible;
+                buffer = current.buffer;
+                buffer.usage = bufferUsage;
+                buffer.hostVisible = host;
+            } else {   // kept from an earlier frame: its description is the pool's
+                const VkImageUsageFlags usage = texture.usage;
+                const VkBufferUsageFlags bufferUsage = buffer.usage;
+                texture = entry->texture;
+                texture.usage |= usage;
+                buffer = entry->buffer;
+                buffer.usage |= bufferUsage;
+            }
+        }
+        texture.usage |= VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+        buffer.usage |= VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+        const ResourceKind kind = node.kind;
+        bool reusable = false;
+        if (entry && entry->kind == kind) {
+            TextureInfo withUsage = texture;
+            withUsage.usage |= entry->texture.usage;
+            BufferInfo bufferWithUsage = buffer;
+            bufferWithUsage.usage |= entry->buffer.usage;
+            if (persistentCompatible(kind, entry->texture, entry->buffer, withUsage, bufferWithUsage)) {
+                texture = withUsage;
+                buffer = bufferWithUsage;
+                reusable = true;
+            }
+        }
+        plan.texture = texture;
+        plan.buffer = buffer;
+        if (node.origin == Origin::History) {
+            plan.historyValid = reusable && frame > 0 &&
+                                entry->writtenFrame[historyCopy] == static_cast<int64_t>(frame - 1);
+            if (plan.pairedWith != kInvalidId) {
+                c.resources[plan.pairedWith].texture = texture;
+                c.resources[plan.pairedWith].buffer = buffer;
+            }
+        }
+    }
+}
+
+// Transients used this frame go into shared heaps; host-read buffers live to the end of the frame (the
+// CPU reads them after the fence, so nothing may reuse their bytes later in the frame).
+void RenderGraph::planMemory() {
+    detail::CompiledGraph& c = *compiled_;
+    std::vector<AliasRequest> requests;
+    for (uint32_t r = 0; r < resources_.size(); ++r) {
+        const ResourcePlan& plan = c.resources[r];
+        if (resources_[r].origin != Origin::Transient || !plan.used) continue;
+        AliasRequest request;
+        request.resource = r;
+        const bool isImage = resources_[r].kind == ResourceKind::Image;
+        request.requirements = isImage ? pool_.backend().textureRequirements(plan.texture)
+                                       : pool_.backend().bufferRequirements(plan.buffer);
+        request.key = HeapKey{resources_[r].kind, !isImage && plan.buffer.hostVisible,
+                              request.requirements.memoryTypeBits};
+        request.firstPass = plan.firstPos;
+        request.lastPass = request.key.hostVisible ? static_cast<uint32_t>(c.order.size() - 1) : plan.lastPos;
+        requests.push_back(request);
+    }
+    c.aliasing = planAliasing(requests);
+    for (uint32_t i = 0; i < c.aliasing.slots.size(); ++i) c.resources[c.aliasing.slots[i].resource].slot = i;
+}
+
+// Simulates the frame in execution order, resource by resource, with the pure planner.
+void RenderGraph::planBarriers() {
+    detail::CompiledGraph& c = *compiled_;
+    const uint32_t currentCopy = pool_.currentCopy();
+    std::vector<ResourceState> states(resources_.size());
+    for (uint32_t r = 0; r < resources_.size(); ++r) {
+        const detail::ResourceNode& node = resources_[r];
+        ResourcePlan& plan = c.resources[r];
+        if (node.origin == Origin::Imported) {
+            states[r] = node.importedState;
+        } else if (node.origin == Origin::Persistent || node.origin == Origin::History) {
+            const auto* entry = pool_.findPersistent(node.origin == Origin::History ? node.persistentName : node.name);
+            const bool reusable = entry && entry->kind == node.kind &&
+                                  persistentCompatible(node.kind, entry->texture, entry->buffer, plan.texture, plan.buffer);
+            const uint32_t copy = node.origin == Origin::History ? 1 - currentCopy : currentCopy;
+            if (reusable) states[r] = entry->states[copy];
+            if (node.origin == Origin::History && !plan.historyValid && plan.used) {
+                // SYNC: never-written history is cleared before the first pass: discard (UNDEFINED), clear as a
+                // transfer write; the first reader then waits on that write like on any other.
+                Transition t = applyUse(states[r], Use{node.kind, Access::TransferDst, VK_PIPELINE_STAGE_2_NONE, true});
+                if (t.barrier) {
+                    t.barrier->resource = r;
+                    c.prologueBarriers.push_back(*t.barrier);
+                }
+                c.prologueClears.push_back(r);
+                states[r] = t.after;
+            }
+        }
+        plan.initial = states[r];
+    }
+
+    for (uint32_t pos = 0; pos < c.order.size(); ++pos) {
+        for (const PassUse& use : passes_[c.order[pos]].uses) {
+            const uint32_t r = use.resource;
+            const detail::ResourceNode& node = resources_[r];
+            ResourcePlan& plan = c.resources[r];
+            if (node.origin == Origin::Transient && pos == plan.firstPos && plan.slot != kInvalidId) {
+                // SYNC (aliasing): the first use of a transient starts from UNDEFINED and waits on the last
+                // accesses of every earlier occupant of its bytes: this frame's (lifetimes ended before pos)
+                // and earlier frames' (the heap's tail), because the same memory is reused in submission order.
+                const AliasSlot& slot = c.aliasing.slots[plan.slot];
+                ResourceState seed = mergeForAliasing(pool_.heapTail(c.aliasing.heaps[slot.heap].key), {});
+                for (const AliasSlot& other : c.aliasing.slots) {
+                    if (other.resource != r && bytesOverlap(slot, other) && other.lastPass < pos) {
+                        seed = mergeForAliasing(seed, states[other.resource]);
+                    }
+                }
+                states[r] = seed;
+                plan.initial = seed;
+            }
+            const bool discard = use.version == 0 && (node.origin == Origin::Transient || node.origin == Origin::Persistent);
+            Transition t = applyUse(states[r], Use{node.kind, use.access, use.stages, discard});
+            if (t.barrier) {
+                t.barrier->resource = r;
+                c.passes[pos].barriers.push_back(*t.barrier);
+            }
+            states[r] = t.after;
+        }
+    }
+
+    for (uint32_t r = 0; r < resources_.size(); ++r) {
+        const detail::ResourceNode& node = resources_[r];
+        if (node.origin == Origin::Imported && node.finalUse) {
+            Transition t = applyUse(states[r], Use{node.kind, node.finalUse->access, node.finalUse->stages, false});
+            if (t.barrier) {
+                t.barrier->resource = r;
+                c.finalBarriers.push_back(*t.barrier);
+            }
+            states[r] = t.after;
+        }
+        c.resources[r].final = states[r];
+    }
+}
+
+}  // namespace idk::graph

@@ -10,13 +10,15 @@ namespace {
 std::unique_ptr<vk::Context> gContext;
 std::unique_ptr<vk::ShaderLibrary> gShaders;
 
-// Destroy the library before the context, at exit, so leaked objects would be reported by validation.
-struct Teardown {
-    ~Teardown() {
+// Destroy the library before the context while the process is still whole: static destructors run after
+// Mesa's own exit handlers have torn lavapipe down, so the release happens in GoogleTest's environment teardown.
+class ReleaseBeforeExit : public ::testing::Environment {
+public:
+    void TearDown() override {
         gShaders.reset();
         gContext.reset();
     }
-} gTeardown;
+};
 }  // namespace
 
 vk::Context& sharedContext() {
@@ -28,6 +30,7 @@ vk::Context& sharedContext() {
         const char* sync = std::getenv("IDK_SYNC_VALIDATION");
         if (sync) desc.syncValidation = std::string(sync) == "1";
         gContext = std::make_unique<vk::Context>(desc);
+        ::testing::AddGlobalTestEnvironment(new ReleaseBeforeExit);  // GoogleTest owns and deletes it
     }
     return *gContext;
 }

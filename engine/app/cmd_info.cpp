@@ -1,0 +1,120 @@
+// cmd_info.cpp: `idk info [--json]`: device, driver, API version, the limits that matter to the engine and
+// the capability-ladder table (which rung each optional feature uses on this device, and why).
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <iostream>
+
+#include "app/commands.hpp"
+#include "core/cli.hpp"
+#include "vk/context.hpp"
+
+namespace idk::app {
+
+const char* const kInfoHelp =
+    "usage: idk info [--json] [--no-validation] [--fallback]\n"
+    "  --json           machine-readable output\n"
+    "  --no-validation  do not load the Vulkan validation layer\n"
+    "  --fallback       show the ladders as they are when every feature is forced to its portable rung\n";
+
+namespace {
+
+std::string versionString(uint32_t v) {
+    return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) + "." +
+           std::to_string(VK_API_VERSION_PATCH(v));
+}
+
+const char* typeName(VkPhysicalDeviceType t) {
+    switch (t) {
+        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
+        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
+        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
+        case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
+        default: return "other";
+    }
+}
+
+nlohmann::json describe(const vk::Context& ctx) {
+    const vk::DeviceInfo& d = ctx.info();
+    const vk::DeviceCapabilities& c = ctx.capabilities();
+    nlohmann::json j;
+    j["device"] = {{"name", d.name},
+                   {"type", typeName(d.type)},
+                   {"driver", d.driverName},
+                   {"driverInfo", d.driverInfo},
+                   {"apiVersion", versionString(d.apiVersion)},
+                   {"unifiedMemory", d.uma},
+                   {"forcedStaging", ctx.desc().forceStaging}};
+    j["limits"] = {{"maxImageDimension2D", d.limits.maxImageDimension2D},
+                   {"maxImageDimension3D", d.limits.maxImageDimension3D},
+                   {"maxStorageBufferRange", d.limits.maxStorageBufferRange},
+                   {"maxPushConstantsSize", d.limits.maxPushConstantsSize},
+                   {"maxComputeWorkGroupInvocations", d.limits.maxComputeWorkGroupInvocations},
+                   {"maxComputeSharedMemorySize", d.limits.maxComputeSharedMemorySize},
+                   {"subgroupSize", c.subgroupSize},
+                   {"subgroupSizeRange", {c.minSubgroupSize, c.maxSubgroupSize}},
+                   {"subgroupArithmetic", c.subgroupArithmetic},
+                   {"timestampPeriodNs", d.timestampPeriodNs},
+                   {"bindlessSampledImages", d.maxSampledImagesUpdateAfterBind},
+                   {"bindlessStorageBuffers", d.maxStorageBuffersUpdateAfterBind}};
+    nlohmann::json ladders = nlohmann::json::array();
+    for (const vk::Ladder& l : ctx.ladders()) {
+        nlohmann::json rungs = nlohmann::json::array();
+        for (const vk::RungOption& o : l.options) {
+            rungs.push_back({{"rung", vk::rungName(o.rung)},
+                             {"mechanism", o.mechanism},
+                             {"available", o.available},
+                             {"note", o.note}});
+        }
+        ladders.push_back({{"feature", l.feature},
+                           {"chosen", vk::rungName(l.chosen)},
+                           {"mechanism", l.chosenMechanism},
+                           {"rungs", rungs}});
+    }
+    j["ladders"] = ladders;
+    return j;
+}
+
+void printText(const nlohmann::json& j) {
+    const auto& d = j["device"];
+    std::printf("device:   %s (%s)\n", d["name"].get<std::string>().c_str(), d["type"].get<std::string>().c_str());
+    std::printf("driver:   %s %s\n", d["driver"].get<std::string>().c_str(), d["driverInfo"].get<std::string>().c_str());
+    std::printf("api:      Vulkan %s\n", d["apiVersion"].get<std::string>().c_str());
+    std::printf("memory:   %s%s\n", d["unifiedMemory"].get<bool>() ? "unified" : "discrete",
+                d["forcedStaging"].get<bool>() ? " (staging uploads forced)" : "");
+    std::printf("\nlimits:\n");
+    for (const auto& [key, value] : j["limits"].items()) std::printf("  %-32s %s\n", key.c_str(), value.dump().c_str());
+    std::printf("\ncapability ladders:\n  %-44s %-11s %s\n", "feature", "rung", "mechanism");
+    for (const auto& l : j["ladders"]) {
+        std::printf("  %-44s %-11s %s\n", l["feature"].get<std::string>().c_str(),
+                    l["chosen"].get<std::string>().c_str(), l["mechanism"].get<std::string>().c_str());
+        for (const auto& r : l["rungs"]) {
+            if (!r["available"].get<bool>())
+                std::printf("  %-44s   not %s: %s\n", "", r["rung"].get<std::string>().c_str(),
+                            r["note"].get<std::string>().c_str());
+        }
+    }
+}
+
+}  // namespace
+
+int runInfo(const std::vector<std::string>& argv) {
+    core::CliArgs args = core::parseCli(argv, {{"--json", "--no-validation", "--fallback", "--help"}, {}});
+    if (args.has("--help")) {
+        std::fputs(kInfoHelp, stdout);
+        return 0;
+    }
+    if (!args.positional.empty()) throw core::CliError("unexpected argument '" + args.positional[0] + "'");
+    vk::ContextDesc desc;
+    desc.validation = !args.has("--no-validation") && desc.validation;
+    desc.forceFallbackRungs = args.has("--fallback");
+    vk::Context ctx(desc);
+    nlohmann::json j = describe(ctx);
+    if (args.has("--json"))
+        std::cout << j.dump(2) << "\n";
+    else
+        printText(j);
+    return 0;
+}
+
+}  // namespace idk::app

@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# cli_checks.sh IDK CASE: end-to-end checks of the `idk` command line (exit codes, one-line errors, outputs).
+set -u
+idk="$1"
+case_name="$2"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+fail() { echo "FAIL ($case_name): $*"; exit 1; }
+
+case "$case_name" in
+  missing_scene)
+    "$idk" render /no/such/scene.gltf --out "$tmp/x.png" 2>"$tmp/err" && fail "exit code 0 for a missing scene"
+    code=$?
+    [ "$code" -eq 1 ] || fail "exit code $code, expected 1"
+    [ "$(wc -l <"$tmp/err")" -eq 1 ] || fail "expected one line on stderr, got: $(cat "$tmp/err")"
+    grep -q "/no/such/scene.gltf" "$tmp/err" || fail "error does not name the path: $(cat "$tmp/err")"
+    ;;
+  malformed_scene)
+    printf '{"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":{"POSITION":7}}]}]}' >"$tmp/bad.gltf"
+    "$idk" render "$tmp/bad.gltf" --out "$tmp/x.png" 2>"$tmp/err"
+    code=$?
+    [ "$code" -eq 1 ] || fail "exit code $code, expected 1"
+    [ "$(wc -l <"$tmp/err")" -eq 1 ] || fail "expected one line on stderr, got: $(cat "$tmp/err")"
+    grep -q "bad.gltf" "$tmp/err" || fail "error does not name the file: $(cat "$tmp/err")"
+    ;;
+  render_default)
+    "$idk" render --size 64x48 --out "$tmp/out.png" || fail "render failed"
+    [ -s "$tmp/out.png" ] || fail "no image written"
+    "$idk" render --size 32x32 --out "$tmp/out.exr" --json >"$tmp/stats.json" || fail "EXR render failed"
+    [ -s "$tmp/out.exr" ] || fail "no EXR written"
+    grep -q '"passes"' "$tmp/stats.json" || fail "--json has no passes: $(cat "$tmp/stats.json")"
+    grep -q '"lambert"' "$tmp/stats.json" || fail "--json does not list the lambert pass"
+    grep -q '"memoryBytes"' "$tmp/stats.json" || fail "--json has no memory by category"
+    ;;
+  info_json)
+    "$idk" info --json >"$tmp/info.json" || fail "idk info --json failed"
+    for key in '"device"' '"ladders"' '"subgroupSize"' '"chosen"' '"apiVersion"'; do
+      grep -q "$key" "$tmp/info.json" || fail "missing $key in: $(cat "$tmp/info.json")"
+    done
+    ;;
+  no_device)
+    VK_ICD_FILENAMES="$tmp/none.json" VK_DRIVER_FILES="$tmp/none.json" "$idk" info --no-validation 2>"$tmp/err"
+    code=$?
+    [ "$code" -eq 1 ] || fail "exit code $code, expected 1"
+    grep -q "mesa-vulkan-drivers" "$tmp/err" || fail "message does not name the driver package: $(cat "$tmp/err")"
+    ;;
+  usage_errors)
+    "$idk" render --out "$tmp/x.png" --size 12 2>/dev/null; [ $? -eq 2 ] || fail "bad --size should exit 2"
+    "$idk" bogus 2>/dev/null; [ $? -eq 2 ] || fail "unknown command should exit 2"
+    "$idk" render --size 8x8 2>/dev/null; [ $? -eq 2 ] || fail "missing --out should exit 2"
+    "$idk" render --out "$tmp/x.bmp" --size 8x8 2>/dev/null; [ $? -eq 2 ] || fail "unsupported format should exit 2"
+    "$idk" render --help | grep -q -- "--out" || fail "render --help does not describe --out"
+    ;;
+  *) fail "unknown case" ;;
+esac
+echo "ok ($case_name)"

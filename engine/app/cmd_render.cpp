@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 
 #include "app/commands.hpp"
@@ -22,6 +23,7 @@ const char* const kRenderHelp =
     "  --size WxH       image size in pixels (default 256x256)\n"
     "  --stats          print the passes that ran, their GPU times and GPU memory by category\n"
     "  --json           print the stats as JSON (implies --stats)\n"
+    "  --graph FILE     write the frame's render graph: .dot (graphviz) or any other name (text)\n"
     "  --no-validation  do not load the Vulkan validation layer\n";
 
 namespace {
@@ -43,7 +45,7 @@ nlohmann::json statsJson(const render::FrameResult& frame, const vk::Context& ct
 
 int runRender(const std::vector<std::string>& argv) {
     core::CliArgs args =
-        core::parseCli(argv, {{"--stats", "--json", "--no-validation", "--help"}, {"--out", "--size"}});
+        core::parseCli(argv, {{"--stats", "--json", "--no-validation", "--help"}, {"--out", "--size", "--graph"}});
     if (args.has("--help")) {
         std::fputs(kRenderHelp, stdout);
         return 0;
@@ -74,6 +76,11 @@ int runRender(const std::vector<std::string>& argv) {
         memory = ctx.allocator().stats();  // while the scene and the graph's resources are alive
     }
     core::writeImage(*out, frame.image);
+    if (std::optional<std::string> graphFile = args.get("--graph")) {
+        std::ofstream file(*graphFile);
+        file << (std::filesystem::path(*graphFile).extension() == ".dot" ? frame.graphDot : frame.graphText);
+        if (!file) throw std::runtime_error(*graphFile + ": cannot write the graph dump");
+    }
 
     if (args.has("--json")) {
         std::cout << statsJson(frame, ctx, memory).dump(2) << "\n";

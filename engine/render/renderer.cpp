@@ -56,6 +56,7 @@ FrameResult Renderer::renderOffscreen(const scene::CameraView& camera, uint32_t 
     FrameResult result;
     result.passesRun = graph.executionOrder();
     result.graphText = graph.toText();
+    result.graphDot = graph.toGraphviz();
     VkCommandBuffer cmd = frames_.begin();
     graph.execute(cmd);
     ctx_.waitFor(frames_.end());

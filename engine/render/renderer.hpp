@@ -21,6 +21,7 @@ struct FrameResult {
     std::vector<std::string> passesRun;     // execution order after culling
     std::vector<vk::ScopeTiming> passTimes;  // GPU time per pass
     std::string graphText;                   // RenderGraph::toText() of the frame
+    std::string graphDot;                    // RenderGraph::toGraphviz() of the frame
 };
 
 class Renderer {

@@ -32,6 +32,8 @@ case "$case_name" in
     grep -q '"passes"' "$tmp/stats.json" || fail "--json has no passes: $(cat "$tmp/stats.json")"
     grep -q '"lambert"' "$tmp/stats.json" || fail "--json does not list the lambert pass"
     grep -q '"memoryBytes"' "$tmp/stats.json" || fail "--json has no memory by category"
+    "$idk" render --size 16x16 --out "$tmp/g.png" --graph "$tmp/frame.dot" || fail "render with --graph failed"
+    grep -q "digraph" "$tmp/frame.dot" || fail "--graph .dot is not graphviz: $(head -3 "$tmp/frame.dot")"
     ;;
   info_json)
     "$idk" info --json >"$tmp/info.json" || fail "idk info --json failed"

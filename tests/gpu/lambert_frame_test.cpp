@@ -67,6 +67,11 @@ TEST_F(LambertFrameTest, OutputSizeFollowsTheRequest) {
     EXPECT_EQ(frame.image.width, 48u);
     EXPECT_EQ(frame.image.height, 32u);
     EXPECT_EQ(frame.image.pixels.size(), 48u * 32u * 4u);
+    // One timestamp pair per executed pass, named after it.
+    ASSERT_EQ(frame.passTimes.size(), 1u);
+    EXPECT_EQ(frame.passTimes[0].name, "lambert");
+    EXPECT_GT(frame.passTimes[0].milliseconds, 0.0);
+    EXPECT_NE(frame.graphText.find("lambert"), std::string::npos);
 }
 
 }  // namespace

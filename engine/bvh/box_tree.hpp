@@ -53,4 +53,8 @@ struct BoxTree {
 // An empty input gives an empty tree (no nodes).
 BoxTree buildBoxTree(std::span<const Box> boxes, const BoxTreeOptions& options);
 
+// Copies the nodes reachable from `nodes[0]` depth first (a pair is appended when its parent is visited, left
+// subtree first): drops unreachable slots and renumbers the child links. Leaf ranges are kept as they are.
+std::vector<Node> compactDepthFirst(std::span<const Node> nodes);
+
 }  // namespace idk::bvh

@@ -9,19 +9,16 @@
 namespace idk::render {
 namespace {
 
-VkImageCreateInfo imageInfo(const graph::TextureInfo& info) {
-    VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-    ci.flags = info.cube ? VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT : 0;
-    ci.imageType = info.type;
-    ci.format = info.format;
-    ci.extent = info.extent;
-    ci.mipLevels = info.mips;
-    ci.arrayLayers = info.layers;
-    ci.samples = VK_SAMPLE_COUNT_1_BIT;
-    ci.tiling = VK_IMAGE_TILING_OPTIMAL;
-    ci.usage = info.usage;
-    ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    return ci;
+vk::ImageDesc imageDesc(const graph::TextureInfo& info) {
+    vk::ImageDesc d;
+    d.type = info.type;
+    d.format = info.format;
+    d.extent = info.extent;
+    d.mipLevels = info.mips;
+    d.layers = info.layers;
+    d.cube = info.cube;
+    d.usage = info.usage;
+    return d;
 }
 
 VkBufferCreateInfo bufferInfo(const graph::BufferInfo& info) {
@@ -43,7 +40,7 @@ VkGraphBackend::~VkGraphBackend() {
 }
 
 graph::MemoryRequirements VkGraphBackend::textureRequirements(const graph::TextureInfo& info) {
-    VkImageCreateInfo ci = imageInfo(info);
+    VkImageCreateInfo ci = vk::imageCreateInfo(imageDesc(info));
     VkDeviceImageMemoryRequirements query{VK_STRUCTURE_TYPE_DEVICE_IMAGE_MEMORY_REQUIREMENTS};
     query.pCreateInfo = &ci;
     VkMemoryRequirements2 req{VK_STRUCTURE_TYPE_MEMORY_REQUIREMENTS_2};
@@ -71,7 +68,7 @@ graph::HeapHandle VkGraphBackend::allocateHeap(const graph::HeapDesc& desc) {
 
 graph::PhysicalTexture VkGraphBackend::createTexture(const graph::TextureInfo& info, std::string_view debugName,
                                                      const graph::MemoryPlacement* placement) {
-    VkImageCreateInfo ci = imageInfo(info);
+    VkImageCreateInfo ci = vk::imageCreateInfo(imageDesc(info));
     graph::PhysicalTexture t;
     vk::check(vkCreateImage(ctx_.device(), &ci, nullptr, &t.image));
     t.backendData = nextId_++;
@@ -86,13 +83,9 @@ graph::PhysicalTexture VkGraphBackend::createTexture(const graph::TextureInfo& i
         vk::check(vkBindImageMemory(ctx_.device(), t.image, a.memory, a.offset));
         dedicated_[t.backendData] = a;
     }
-    vk::ImageDesc viewDesc;
-    viewDesc.type = info.type;
-    viewDesc.layers = info.layers;
-    viewDesc.cube = info.cube;
     VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     view.image = t.image;
-    view.viewType = vk::viewTypeOf(viewDesc);
+    view.viewType = vk::viewTypeOf(imageDesc(info));
     view.format = info.format;
     view.subresourceRange = {vk::aspectOf(info.format), 0, info.mips, 0, info.layers};
     vk::check(vkCreateImageView(ctx_.device(), &view, nullptr, &t.view));
@@ -135,14 +128,18 @@ graph::PhysicalBuffer VkGraphBackend::createBuffer(const graph::BufferInfo& info
     return b;
 }
 
+std::optional<vk::MemoryAllocation> VkGraphBackend::takeDedicated(uint64_t backendData) {
+    auto it = dedicated_.find(backendData);
+    if (it == dedicated_.end()) return std::nullopt;  // placed in an aliasing heap
+    vk::MemoryAllocation a = it->second;
+    dedicated_.erase(it);
+    return a;
+}
+
 void VkGraphBackend::destroyTexture(const graph::PhysicalTexture& t) {
     if (t.sampledIndex != graph::kNoBindlessIndex) ctx_.bindless().release(vk::SampledIndex{t.sampledIndex});
     if (t.storageIndex != graph::kNoBindlessIndex) ctx_.bindless().release(vk::StorageImageIndex{t.storageIndex});
-    std::optional<vk::MemoryAllocation> memory;
-    if (auto it = dedicated_.find(t.backendData); it != dedicated_.end()) {
-        memory = it->second;
-        dedicated_.erase(it);
-    }
+    std::optional<vk::MemoryAllocation> memory = takeDedicated(t.backendData);
     VkDevice device = ctx_.device();
     vk::MemoryAllocator* allocator = &ctx_.allocator();
     ctx_.destroyDeferred([device, allocator, t, memory] {
@@ -154,11 +151,7 @@ void VkGraphBackend::destroyTexture(const graph::PhysicalTexture& t) {
 
 void VkGraphBackend::destroyBuffer(const graph::PhysicalBuffer& b) {
     if (b.storageIndex != graph::kNoBindlessIndex) ctx_.bindless().release(vk::StorageBufferIndex{b.storageIndex});
-    std::optional<vk::MemoryAllocation> memory;
-    if (auto it = dedicated_.find(b.backendData); it != dedicated_.end()) {
-        memory = it->second;
-        dedicated_.erase(it);
-    }
+    std::optional<vk::MemoryAllocation> memory = takeDedicated(b.backendData);
     VkDevice device = ctx_.device();
     vk::MemoryAllocator* allocator = &ctx_.allocator();
     ctx_.destroyDeferred([device, allocator, b, memory] {

@@ -5,6 +5,7 @@
 #pragma once
 #include <map>
 #include <memory>
+#include <optional>
 
 #include "graph/graph_backend.hpp"
 #include "vk/context.hpp"
@@ -36,6 +37,8 @@ public:
     std::vector<vk::ScopeTiming> passTimings() const { return timestamps_.read(); }
 
 private:
+    std::optional<vk::MemoryAllocation> takeDedicated(uint64_t backendData);
+
     vk::Context& ctx_;
     vk::TimestampQueries timestamps_;
     std::vector<uint32_t> scopes_;  // pass index -> timestamp scope

@@ -49,4 +49,19 @@ VkImageViewType viewTypeOf(const ImageDesc& d) {
     return d.layers > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
 }
 
+VkImageCreateInfo imageCreateInfo(const ImageDesc& d) {
+    VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    info.flags = d.cube ? VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT : 0;
+    info.imageType = d.type;
+    info.format = d.format;
+    info.extent = d.extent;
+    info.mipLevels = d.mipLevels;
+    info.arrayLayers = d.layers;
+    info.samples = VK_SAMPLE_COUNT_1_BIT;
+    info.tiling = VK_IMAGE_TILING_OPTIMAL;
+    info.usage = d.usage;
+    info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    return info;
+}
+
 }  // namespace idk::vk

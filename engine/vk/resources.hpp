@@ -58,5 +58,7 @@ bool isDepthFormat(VkFormat format);
 VkImageAspectFlags aspectOf(VkFormat format);
 uint32_t bytesPerTexel(VkFormat format);  // 0 for block-compressed or unknown formats
 VkImageViewType viewTypeOf(const ImageDesc& desc);
+// Optimal-tiling image, one sample, UNDEFINED initial layout; usage exactly as given.
+VkImageCreateInfo imageCreateInfo(const ImageDesc& desc);
 
 }  // namespace idk::vk

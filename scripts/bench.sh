@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Runs the benchmarks (bench/, DESIGN.md "Benchmarks and reports") and regenerates BENCHMARKS.md.
+# usage: scripts/bench.sh BUILD_DIR      (`make bench` builds first and passes $(BUILD))
+# Writes bench/results/latest.json (medians and spread of 5 repetitions per benchmark) and BENCHMARKS.md.
+# Extra arguments after BUILD_DIR go to idk_bench (e.g. --benchmark_filter=Gpu). Takes about a minute on
+# 2 cores with lavapipe.
+set -euo pipefail
+
+build="${1:?usage: scripts/bench.sh BUILD_DIR [idk_bench options]}"
+shift
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$root"
+bench="$build/bin/idk_bench"
+if [ ! -x "$bench" ]; then
+  echo "bench.sh: $bench not found; build it first (make bench, or ninja -C $build idk_bench)" >&2
+  exit 1
+fi
+
+# Software Vulkan (Mesa lavapipe) unless the caller picked a driver.
+lavapipe=/usr/share/vulkan/icd.d/lvp_icd.json
+if [ -z "${VK_ICD_FILENAMES:-}" ] && [ -z "${VK_DRIVER_FILES:-}" ] && [ -f "$lavapipe" ]; then
+  export VK_ICD_FILENAMES="$lavapipe"
+fi
+
+mkdir -p bench/results
+start=$(date +%s)
+"$bench" --benchmark_out=bench/results/latest.json --benchmark_out_format=json \
+  --benchmark_repetitions=5 --benchmark_report_aggregates_only=true "$@"
+echo "bench.sh: benchmarks took $(( $(date +%s) - start )) s"
+python3 scripts/bench_report.py --compact bench/results/latest.json BENCHMARKS.md

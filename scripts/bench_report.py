@@ -1,0 +1,318 @@
+#!/usr/bin/env python3
+"""bench_report.py: turns idk_bench's Google Benchmark JSON into BENCHMARKS.md (DESIGN.md "Benchmarks and
+reports").
+
+usage: scripts/bench_report.py [--compact] RESULTS.json OUT.md
+
+Each benchmark carries its row metadata in its label (bench/bench_support.hpp, setRow): group, input,
+settings, rung, role (ours|peer), time (cpu|real|manual: which time the median is read from) and peer (the
+names of the peer benchmarks, comma-separated). Rows are built from the "median" aggregates only; one row per
+(ours, peer) pair, with the ratio ours / peer. Counters named "mismatches" and "rel_error" fill the error
+column; "pass_ms.<pass>" counters become one row per GPU pass; other counters are listed with the settings.
+
+--compact rewrites RESULTS.json keeping only the median and cv aggregates (NaN written as null), so the
+committed file stays small. Plots (PNG, bench/results/) are drawn only when matplotlib can be imported;
+nothing is installed. Python 3 standard library otherwise.
+"""
+import datetime
+import json
+import math
+import os
+import re
+import sys
+
+GROUP_ORDER = ["compute", "render graph", "render", "scene loading"]
+ERROR_COUNTERS = {"mismatches", "rel_error"}
+HIDDEN_COUNTERS = {"items_per_second", "bytes_per_second", "gpu_ms"}
+SUFFIX = re.compile(r"/(iterations:\d+|min_time:[0-9.]+|manual_time|real_time|repeats:\d+|threads:\d+)")
+
+
+def base_name(run_name):
+    """The benchmark name without Google Benchmark's option suffixes: what labels use to name peers."""
+    return SUFFIX.sub("", run_name)
+
+
+def parse_label(label):
+    info = {}
+    for part in (label or "").split(";"):
+        if "=" in part:
+            key, value = part.split("=", 1)
+            info[key] = value
+    return info
+
+
+def load(path):
+    with open(path) as f:
+        return json.load(f)
+
+
+def compact(path, data):
+    def clean(value):
+        if isinstance(value, float) and not math.isfinite(value):
+            return None
+        return value
+
+    kept = [{k: clean(v) for k, v in b.items()} for b in data["benchmarks"]
+            if b.get("run_type") != "aggregate" or b.get("aggregate_name") in ("median", "cv")]
+    data = dict(data, benchmarks=kept)
+    with open(path, "w") as f:
+        json.dump(data, f, indent=1, allow_nan=False)
+        f.write("\n")
+
+
+def to_ms(value, unit):
+    return value * {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}[unit]
+
+
+def fmt_ms(ms):
+    if ms is None:
+        return "-"
+    if ms >= 1000:
+        return f"{ms / 1000:.2f} s"
+    if ms >= 1:
+        return f"{ms:.2f} ms"
+    if ms >= 0.001:
+        return f"{ms * 1000:.1f} µs"
+    return f"{ms * 1e6:.0f} ns"
+
+
+def fmt_number(value):
+    if value is None:
+        return "-"
+    if value == int(value) and abs(value) < 1e9:
+        return str(int(value))
+    return f"{value:.3g}"
+
+
+class Result:
+    def __init__(self, median, cv):
+        self.run_name = median["run_name"]
+        self.name = base_name(self.run_name)
+        self.info = parse_label(median.get("label"))
+        which = "cpu_time" if self.info.get("time") == "cpu" else "real_time"
+        self.ms = to_ms(median[which], median["time_unit"])
+        self.cv = cv.get(which) if cv else None
+        self.counters = {k: v for k, v in median.items()
+                         if isinstance(v, (int, float)) and not isinstance(v, bool) and k not in (
+                             "family_index", "per_family_instance_index", "repetitions", "repetition_index",
+                             "threads", "iterations", "real_time", "cpu_time")}
+        self.skipped = median.get("error_occurred", False)
+
+    def error_text(self):
+        parts = []
+        if "mismatches" in self.counters:
+            parts.append(f"{fmt_number(self.counters['mismatches'])} mismatches")
+        if "rel_error" in self.counters:
+            parts.append(f"{self.counters['rel_error']:.2g} relative")
+        return ", ".join(parts) or "-"
+
+    def facts(self):
+        return [f"{k}={fmt_number(v)}" for k, v in sorted(self.counters.items())
+                if k not in ERROR_COUNTERS and k not in HIDDEN_COUNTERS and not k.startswith("pass_ms.")
+                and v is not None]
+
+
+def collect(data):
+    medians, cvs, errors = {}, {}, []
+    for b in data["benchmarks"]:
+        if b.get("error_occurred"):
+            entry = (base_name(b.get("run_name", b["name"])), b.get("error_message", ""))
+            if entry not in errors:
+                errors.append(entry)
+            continue
+        if b.get("run_type") != "aggregate":
+            continue
+        if b.get("aggregate_name") == "median":
+            medians[b["run_name"]] = b
+        elif b.get("aggregate_name") == "cv":
+            cvs[b["run_name"]] = b
+    results = [Result(m, cvs.get(name)) for name, m in medians.items()]
+    return results, errors
+
+
+def md_escape(text):
+    return text.replace("|", "\\|")
+
+
+def command(exe, names):
+    pattern = names[0] if len(names) == 1 else "(" + "|".join(names) + ")"
+    return (f"`{exe} --benchmark_filter='^{pattern}(/|$)' --benchmark_repetitions=5 "
+            f"--benchmark_report_aggregates_only=true`")
+
+
+def build_rows(results, exe):
+    by_name = {r.name: r for r in results}
+    groups = {}
+    for r in results:
+        if r.info.get("role") == "peer":
+            continue
+        group = r.info.get("group", "other")
+        peers = [p for p in r.info.get("peer", "").split(",") if p]
+        settings = r.info.get("settings", "-")
+        facts = r.facts()
+        if facts:
+            settings += " (" + ", ".join(facts) + ")"
+        base = [r.name, r.info.get("input", "-"), settings, r.info.get("rung", "-")]
+        rows = groups.setdefault(group, [])
+        for peer_name in peers or [None]:
+            peer = by_name.get(peer_name) if peer_name else None
+            if peer_name and not peer:
+                peer_text, peer_ms, ratio = f"{peer_name} (not run)", "-", "-"
+            elif peer:
+                peer_text = peer.info.get("settings", peer.name)
+                peer_ms = fmt_ms(peer.ms)
+                ratio = f"{r.ms / peer.ms:.2f}" if peer.ms > 0 else "-"
+            else:
+                peer_text, peer_ms, ratio = "-", "-", "-"
+            names = [r.name] + ([peer.name] if peer else [])
+            rows.append(base + [fmt_ms(r.ms), r.error_text(), peer_text, peer_ms, ratio, command(exe, names)])
+        for key in sorted(k for k in r.counters if k.startswith("pass_ms.")):
+            rows.append([f"`{r.name}` GPU pass `{key[len('pass_ms.'):]}`", r.info.get("input", "-"),
+                         "GPU time of the pass from FrameResult::passTimes (timestamp queries), mean per frame",
+                         r.info.get("rung", "-"), fmt_ms(r.counters[key]), "-", "-", "-", "-", command(exe, [r.name])])
+    return groups
+
+
+def header(data, results, errors, plots_note):
+    ctx = data["context"]
+    lines = ["# Benchmarks", "",
+             "Generated by `scripts/bench_report.py` from `bench/results/latest.json` (written by `make bench`, "
+             "which runs `scripts/bench.sh`). Do not edit by hand.", "",
+             "Every time below is the **median of 5 repetitions** (the machines are noisy; means, minima and "
+             "single runs are not reported). GPU times are timestamp-query intervals around the dispatches only "
+             "(no upload or readback); CPU peers are timed around the algorithm only (no input copy). "
+             "Ratio = ours / peer: below 1 means ours is faster. Timings are never test assertions.", "",
+             "| | |", "|---|---|"]
+    date = ctx.get("date", "")
+    try:
+        date = datetime.datetime.fromisoformat(date).strftime("%Y-%m-%d %H:%M %Z").strip()
+    except ValueError:
+        pass
+    rows = [("date", date),
+            ("device", ctx.get("device", "?")),
+            ("driver", ctx.get("driver", "?")),
+            ("Vulkan API", ctx.get("vulkan_api", "?")),
+            ("subgroup size", ctx.get("subgroup_size", "?")),
+            ("uploads", ctx.get("uploads", "?")),
+            ("validation layer", ctx.get("validation", "?")),
+            ("machine", f"{ctx.get('num_cpus', '?')} cores at {ctx.get('mhz_per_cpu', '?')} MHz, host "
+                        f"`{ctx.get('host_name', '?')}`, load average at start "
+                        + " / ".join(f"{x:.2f}" for x in ctx.get("load_avg", []))),
+            ("build", f"idk {ctx.get('idk_build_type', '?')}; Google Benchmark library reports itself as "
+                      f"{ctx.get('library_build_type', '?')} (affects only the harness)")]
+    for key, value in rows:
+        lines.append(f"| {key} | {md_escape(str(value))} |")
+    spreads = [(r.cv, r.name) for r in results if r.cv is not None]
+    if spreads:
+        cv, name = max(spreads)
+        lines.append(f"| noise | largest coefficient of variation over the repetitions: {cv * 100:.1f} % "
+                     f"(`{name}`) |")
+    lines += ["", "## Capability ladder rungs on this device", "", "| feature | rung (mechanism) |", "|---|---|"]
+    for part in ctx.get("ladders", "").split("; "):
+        if ": " in part:
+            feature, rung = part.split(": ", 1)
+            lines.append(f"| {md_escape(feature)} | {md_escape(rung)} |")
+    lines += ["", f"Reproduce everything: `make bench`. Each row's last column reproduces that row and its peer "
+              "(in the Markdown source a `|` inside it is written `\\|`). "
+              "Set `VK_ICD_FILENAMES=/usr/share/vulkan/icd.d/lvp_icd.json` for lavapipe, as `scripts/bench.sh` "
+              f"does. {plots_note}", ""]
+    if errors:
+        lines += ["Benchmarks that did not run:", ""]
+        lines += [f"- `{name}`: {md_escape(message)}" for name, message in errors]
+        lines.append("")
+    return lines
+
+
+COLUMNS = ["benchmark", "scene / input", "settings", "capability rung", "median time", "error", "peer",
+           "peer median", "ratio (ours / peer)", "reproduce"]
+
+
+def table(rows):
+    lines = ["| " + " | ".join(COLUMNS) + " |", "|" + "---|" * len(COLUMNS)]
+    for row in rows:
+        cells = [md_escape(c) for c in row]
+        cells[0] = f"`{cells[0]}`" if "`" not in cells[0] else cells[0]
+        lines.append("| " + " | ".join(cells) + " |")
+    return lines
+
+
+def plot(results, out_dir):
+    """Bar charts ours vs peer per group, and speed vs error for rows with an error. Returns a note."""
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except Exception:  # noqa: BLE001 - any import failure means no plots
+        return "Plots skipped: matplotlib is not importable on this machine (nothing is installed for them)."
+    by_name = {r.name: r for r in results}
+    written = []
+    groups = {}
+    for r in results:
+        if r.info.get("role") != "peer":
+            groups.setdefault(r.info.get("group", "other"), []).append(r)
+    for group, ours in groups.items():
+        labels, values, colors = [], [], []
+        for r in ours:
+            labels.append(r.name)
+            values.append(r.ms)
+            colors.append("tab:blue")
+            for p in filter(None, r.info.get("peer", "").split(",")):
+                if p in by_name:
+                    labels.append(p)
+                    values.append(by_name[p].ms)
+                    colors.append("tab:gray")
+        fig, ax = plt.subplots(figsize=(8, 0.45 * len(labels) + 1.2))
+        ax.barh(labels[::-1], values[::-1], color=colors[::-1])
+        ax.set_xscale("log")
+        ax.set_xlabel("median time (ms, log scale); blue: ours, grey: peer")
+        ax.set_title(group)
+        fig.tight_layout()
+        path = os.path.join(out_dir, group.replace(" ", "_") + ".png")
+        fig.savefig(path, dpi=100)
+        plt.close(fig)
+        written.append(path)
+    points = [r for r in results if "rel_error" in r.counters and r.counters["rel_error"]]
+    if points:
+        fig, ax = plt.subplots(figsize=(6, 4))
+        for r in points:
+            ax.scatter(r.ms, r.counters["rel_error"])
+            ax.annotate(r.name, (r.ms, r.counters["rel_error"]), fontsize=8)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("median time (ms)")
+        ax.set_ylabel("relative error")
+        ax.set_title("speed vs error")
+        fig.tight_layout()
+        path = os.path.join(out_dir, "speed_vs_error.png")
+        fig.savefig(path, dpi=100)
+        plt.close(fig)
+        written.append(path)
+    return "Plots: " + ", ".join(f"`{os.path.relpath(p)}`" for p in written) + "." if written else ""
+
+
+def main(argv):
+    args = [a for a in argv[1:] if not a.startswith("--")]
+    if len(args) != 2:
+        print(__doc__.strip().splitlines()[3], file=sys.stderr)
+        return 2
+    results_path, out_path = args
+    data = load(results_path)
+    if "--compact" in argv:
+        compact(results_path, data)
+        data = load(results_path)
+    results, errors = collect(data)
+    exe = data["context"].get("executable", "build/bin/idk_bench")
+    plots_note = plot(results, os.path.dirname(os.path.abspath(results_path)))
+    groups = build_rows(results, exe)
+    lines = header(data, results, errors, plots_note)
+    for group in GROUP_ORDER + sorted(g for g in groups if g not in GROUP_ORDER):
+        if group in groups:
+            lines += [f"## {group[0].upper() + group[1:]}", ""] + table(groups[group]) + [""]
+    with open(out_path, "w") as f:
+        f.write("\n".join(lines).rstrip() + "\n")
+    print(f"bench_report.py: wrote {out_path} ({sum(len(r) for r in groups.values())} rows)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

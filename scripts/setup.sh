@@ -9,7 +9,7 @@ PACKAGES=(
   libvulkan-dev libvulkan-volk-dev vulkan-validationlayers vulkan-tools
   glslang-tools glslang-dev spirv-tools
   libglm-dev libglfw3-dev libtinygltf-dev nlohmann-json3-dev
-  libopenimageio-dev openimageio-tools libmeshoptimizer-dev libimgui-dev libembree-dev
+  libopenimageio-dev openimageio-tools libmeshoptimizer-dev libdraco-dev libimgui-dev libembree-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   ffmpeg xvfb xauth
 )

@@ -1,6 +1,7 @@
 // cmd_render.cpp: `idk render [SCENE] --out F.png|.exr`: loads a glTF scene (default: the embedded Cornell
-// box), renders one frame headless and writes the image. --stats lists the passes that ran, their GPU times
-// and GPU memory by category.
+// box), renders one frame headless (deferred PBR by default, --shading lambert for the foundation's pass) and
+// writes the image: .png gets the AgX-tonemapped sRGB frame, .exr the linear radiance before tonemapping.
+// --stats lists the passes that ran, their GPU times, their indirect draws and GPU memory by category.
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
@@ -19,8 +20,14 @@ namespace idk::app {
 const char* const kRenderHelp =
     "usage: idk render [SCENE.gltf|SCENE.glb] --out FILE.png|FILE.exr [options]\n"
     "  SCENE            glTF 2.0 file; without one, the embedded Cornell box is rendered\n"
-    "  --out FILE       output image: .png (8-bit sRGB) or .exr (linear float)\n"
+    "  --out FILE       output image: .png (AgX-tonemapped, 8-bit sRGB) or .exr (linear radiance before\n"
+    "                   tonemapping, alpha = geometry coverage; --shading lambert: linear in both)\n"
     "  --size WxH       image size in pixels (default 256x256)\n"
+    "  --shading MODE   pbr (deferred glTF PBR, default) or lambert (the foundation's forward pass)\n"
+    "  --exposure X     linear exposure before tonemapping (default 1)\n"
+    "  --environment F  equirectangular HDR environment (default ../shared/environments/snow_field_puresky_1k.hdr,\n"
+    "                   or $IDK_ENVIRONMENT); 'none' = constant grey\n"
+    "  --env-intensity X  scale of the sky and ambient light (default 1; 0 = black sky, no ambient)\n"
     "  --stats          print the passes that ran, their GPU times and GPU memory by category\n"
     "  --json           print the stats as JSON (implies --stats)\n"
     "  --graph FILE     write the frame's render graph: .dot (graphviz) or any other name (text)\n"
@@ -35,6 +42,10 @@ nlohmann::json statsJson(const render::FrameResult& frame, const vk::Context& ct
     nlohmann::json times = nlohmann::json::object();
     for (const vk::ScopeTiming& t : frame.passTimes) times[t.name] = t.milliseconds;
     j["gpuMilliseconds"] = times;
+    nlohmann::json draws = nlohmann::json::object();
+    for (const passes::IndirectDrawLog::Entry& e : frame.indirectDraws)
+        draws[e.pass] = {{"indirectCalls", e.calls}, {"draws", e.draws}};
+    j["indirectDraws"] = draws;
     j["memoryBytes"] = memory.bytesByCategory;
     j["deviceMemoryObjects"] = memory.deviceMemoryCount;
     j["reservedBlockBytes"] = memory.blockBytes;
@@ -45,7 +56,9 @@ nlohmann::json statsJson(const render::FrameResult& frame, const vk::Context& ct
 
 int runRender(const std::vector<std::string>& argv) {
     core::CliArgs args =
-        core::parseCli(argv, {{"--stats", "--json", "--no-validation", "--help"}, {"--out", "--size", "--graph"}});
+        core::parseCli(argv, {{"--stats", "--json", "--no-validation", "--help"},
+                                  {"--out", "--size", "--graph", "--shading", "--exposure", "--environment",
+                                   "--env-intensity"}});
     if (args.has("--help")) {
         std::fputs(kRenderHelp, stdout);
         return 0;
@@ -59,6 +72,17 @@ int runRender(const std::vector<std::string>& argv) {
         throw core::CliError("--out '" + *out + "': the file must end in .png or .exr");
     }
 
+    render::RenderSettings settings;
+    std::string shading = args.get("--shading", "pbr");
+    if (shading != "pbr" && shading != "lambert")
+        throw core::CliError("--shading '" + shading + "': use pbr or lambert");
+    settings.shading = shading == "pbr" ? render::Shading::Pbr : render::Shading::Lambert;
+    settings.output = extension == ".exr" ? render::OutputKind::Hdr : render::OutputKind::Display;
+    settings.exposure = float(core::parseNumber("--exposure", args.get("--exposure", "1")));
+    settings.environmentIntensity = float(core::parseNumber("--env-intensity", args.get("--env-intensity", "1")));
+    if (std::optional<std::string> env = args.get("--environment"))
+        settings.environment = *env == "none" ? std::filesystem::path() : std::filesystem::path(*env);
+
     // Load first: a bad scene path fails fast, before any Vulkan work.
     scene::Scene scene = args.positional.empty() ? loadDefaultScene() : scene::loadGltf(args.positional[0]);
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "idk render: warning: %s\n", w.c_str());
@@ -70,7 +94,7 @@ int runRender(const std::vector<std::string>& argv) {
     render::FrameResult frame;
     vk::MemoryStats memory;
     {
-        render::Renderer renderer(ctx, shaders);
+        render::Renderer renderer(ctx, shaders, settings);
         renderer.setScene(scene);
         frame = renderer.renderOffscreen(scene::defaultCamera(scene), width, height);
         memory = ctx.allocator().stats();  // while the scene and the graph's resources are alive
@@ -87,6 +111,8 @@ int runRender(const std::vector<std::string>& argv) {
     } else if (args.has("--stats")) {
         std::printf("passes:\n");
         for (const vk::ScopeTiming& t : frame.passTimes) std::printf("  %-24s %8.3f ms\n", t.name.c_str(), t.milliseconds);
+        for (const passes::IndirectDrawLog::Entry& e : frame.indirectDraws)
+            std::printf("  %-24s %u indirect call(s), %u draws\n", e.pass.c_str(), e.calls, e.draws);
         std::printf("GPU memory by category:\n");
         for (const auto& [category, bytes] : memory.bytesByCategory)
             std::printf("  %-24s %10.1f KiB\n", category.c_str(), double(bytes) / 1024.0);

@@ -3,8 +3,13 @@
 #pragma once
 #include <glm/glm.hpp>
 
+#include <string>
+#include <string_view>
+#include <vector>
+
 #include "graph/render_graph.hpp"
 #include "render/lambert_scene.hpp"
+#include "shared/scene_types.h"
 #include "vk/shader_library.hpp"
 
 namespace idk::passes {
@@ -23,5 +28,60 @@ struct LambertOutputs {
 LambertOutputs addLambertPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                               const render::GpuLambertScene& scene, graph::TextureHandle target,
                               const LambertSettings& settings);
+
+// ---- The deferred PBR frame: [scene_update] -> gbuffer -> deferred_lighting -> sky -> tonemap ----
+
+// Counts the indirect draw calls passes record (tests assert one multi-draw-indirect per pass and its draw
+// count; `idk render --stats` prints them). Filled while the graph executes.
+struct IndirectDrawLog {
+    struct Entry {
+        std::string pass;
+        uint32_t calls = 0;  // vkCmdDrawIndexedIndirect calls
+        uint32_t draws = 0;  // sum of their drawCount
+    };
+    std::vector<Entry> entries;
+    void record(std::string_view pass, uint32_t drawCount);
+};
+
+// The GPU scene's buffers as imported into this frame's graph (render::GpuScene); invalid handles for
+// buffers the scene does not have.
+struct SceneBuffers {
+    graph::BufferHandle vertices, indices, meshes, instances, drawCommands, materials, lights;
+    graph::BufferHandle colors, uv1;  // optional vertex streams
+    uint32_t drawCount = 0;
+};
+
+// scene_update.cpp: copies patched materials (GpuScene::setTexture) into the material buffer; returns the
+// buffer's new version. Added only on frames where something changed.
+graph::BufferHandle addSceneUpdatePass(graph::RenderGraph& graph, graph::BufferHandle materials,
+                                       std::vector<gpu::GpuMaterial> contents);
+
+// gbuffer.cpp: one vkCmdDrawIndexedIndirect over every (instance, primitive) of the scene.
+// Read with imageLoad (storage), not sampled: see shared/deferred_types.h.
+struct GBufferOutputs {
+    graph::TextureHandle albedo;    // RGBA8, sRGB-encoded base colour + alpha
+    graph::TextureHandle normal;    // R32UI, octahedral world normal (packSnorm2x16)
+    graph::TextureHandle material;  // RGBA8 metallic, roughness, occlusion, lit
+    graph::TextureHandle emissive;  // RGBA16F
+    graph::TextureHandle depth;     // R32F copy of the depth, 0 near .. 1 far (cleared to 1)
+    graph::TextureHandle depthAttachment;  // D32 (transient, not stored)
+};
+GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                              const SceneBuffers& scene, graph::BufferHandle frame, IndirectDrawLog* log);
+
+// deferred_lighting.cpp: shades the G-buffer's geometry pixels into `target` (RGBA16F); returns its new version.
+graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                             const GBufferOutputs& gbuffer, graph::BufferHandle frame,
+                                             graph::BufferHandle lights, graph::TextureHandle environment,
+                                             graph::TextureHandle target);
+
+// sky.cpp: writes the environment into the background pixels of `target` (depth == 1); returns its new version.
+graph::TextureHandle addSkyPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                graph::TextureHandle depth, graph::BufferHandle frame, graph::TextureHandle environment,
+                                graph::TextureHandle target);
+
+// tonemap.cpp: AgX of exposure * hdr into the RGBA8 `target` (sRGB-encoded values); returns its new version.
+graph::TextureHandle addTonemapPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                    graph::TextureHandle hdr, graph::TextureHandle target, float exposure);
 
 }  // namespace idk::passes

@@ -1,45 +1,97 @@
 // renderer.hpp: renders one frame of a scene into an offscreen image and reads it back (the headless path of
-// `idk render` and of the GPU tests). Builds the frame's render graph, executes it in a frame slot, waits,
-// and returns linear HDR pixels with the passes that ran and their GPU times.
+// `idk render` and of the GPU tests). Builds the frame's render graph from the settings and the scene's
+// features, executes it in a frame slot, waits, and returns the pixels with the passes that ran, their GPU
+// times and the indirect draws they recorded. Ports the role of IDKEngine's RasterPipeline.Render.
 #pragma once
+// Frames (RenderSettings::shading):
+//   Pbr (default): [scene_update] -> gbuffer -> deferred_lighting -> sky -> tonemap (tonemap only for Display)
+//   Lambert:       lambert (the foundation's forward pass; linear HDR output)
+#include <filesystem>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/image_file.hpp"
 #include "graph/resource_pool.hpp"
+#include "passes/passes.hpp"
+#include "render/environment.hpp"
+#include "render/gpu_scene.hpp"
 #include "render/lambert_scene.hpp"
 #include "render/vk_graph_backend.hpp"
+#include "shared/deferred_types.h"
 #include "scene/camera.hpp"
 #include "vk/frames.hpp"
 #include "vk/shader_library.hpp"
 
 namespace idk::render {
 
+enum class Shading : uint8_t { Pbr, Lambert };
+enum class OutputKind : uint8_t {
+    Display,  // AgX-tonemapped, sRGB-encoded 8-bit (what a PNG stores)
+    Hdr,      // linear radiance before tonemapping (what an EXR stores); no tonemap pass
+};
+
+struct RenderSettings {
+    Shading shading = Shading::Pbr;        // fixed once a scene is set
+    OutputKind output = OutputKind::Display;  // ignored by Lambert (always linear HDR)
+    float exposure = 1.0f;                 // linear scale before the tonemap curve
+    float environmentIntensity = 1.0f;     // scales the sky and the ambient light (0: black, no ambient)
+    // Equirectangular HDR environment: nullopt = defaultEnvironmentPath(); an empty path = constant grey 0.5.
+    // A file that cannot be read falls back to the constant with a warning.
+    std::optional<std::filesystem::path> environment;
+};
+
 struct FrameResult {
+    // Hdr: linear radiance, alpha = coverage (1 geometry, 0 sky). Lambert: linear radiance, alpha 1.
+    // Display: the displayed values decoded to linear, so core::writeImage(.png) re-encodes exactly `display`.
     core::ImageRgba32f image;
-    std::vector<std::string> passesRun;     // execution order after culling
+    std::vector<uint8_t> display;            // Display: RGBA8 sRGB-encoded, row-major, top row first
+    std::vector<std::string> passesRun;      // execution order after culling
     std::vector<vk::ScopeTiming> passTimes;  // GPU time per pass
+    std::vector<passes::IndirectDrawLog::Entry> indirectDraws;  // per pass: vkCmdDraw*Indirect calls and draws
     std::string graphText;                   // RenderGraph::toText() of the frame
     std::string graphDot;                    // RenderGraph::toGraphviz() of the frame
 };
 
 class Renderer {
 public:
-    Renderer(vk::Context& ctx, vk::ShaderLibrary& shaders);
+    Renderer(vk::Context& ctx, vk::ShaderLibrary& shaders, RenderSettings settings = {});
     ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
 
     void setScene(const scene::Scene& scene);  // packs and uploads; replaces the previous scene
     FrameResult renderOffscreen(const scene::CameraView& camera, uint32_t width, uint32_t height);
 
+    // Everything but `shading` may change between frames.
+    RenderSettings& settings() noexcept { return settings_; }
+    // The PBR path's GPU scene (nullptr for Lambert or before setScene): the texture streamer's setTexture.
+    GpuScene* gpuScene() noexcept { return gpuScene_.get(); }
+    // Runs inside each frame's command buffer before the frame's graph is built (TextureStreamer::pump goes
+    // here: textures it makes ready reach this frame's materials through the scene_update pass).
+    void setBeforeFrame(std::function<void(VkCommandBuffer)> hook) { beforeFrame_ = std::move(hook); }
+
 private:
+    void renderPbr(graph::RenderGraph& graph, const scene::CameraView& camera, uint32_t width, uint32_t height,
+                   const vk::Image& target, passes::IndirectDrawLog& log);
+    const GpuEnvironment& environment();
+
     vk::Context& ctx_;
     vk::ShaderLibrary& shaders_;
+    RenderSettings settings_;
     VkGraphBackend backend_;
     graph::ResourcePool pool_;
     vk::FrameRing frames_;
-    GpuLambertScene scene_;
-    bool hasScene_ = false;
+    GpuLambertScene lambertScene_;
+    bool hasLambertScene_ = false;
+    std::unique_ptr<GpuScene> gpuScene_;
+    std::optional<GpuEnvironment> environment_;
+    bool environmentLoaded_ = false;  // environment_ holds the configured map (not the intensity-0 stand-in)
+    std::vector<vk::Buffer> frameConstants_;  // one host-visible GpuFrame per frame slot
+    vk::StorageImageIndex outputStorage_;     // the frame's output image while it renders
+    std::function<void(VkCommandBuffer)> beforeFrame_;
 };
 
 }  // namespace idk::render

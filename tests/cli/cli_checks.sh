@@ -30,7 +30,7 @@ case "$case_name" in
     "$idk" render --size 32x32 --out "$tmp/out.exr" --json >"$tmp/stats.json" || fail "EXR render failed"
     [ -s "$tmp/out.exr" ] || fail "no EXR written"
     grep -q '"passes"' "$tmp/stats.json" || fail "--json has no passes: $(cat "$tmp/stats.json")"
-    grep -q '"lambert"' "$tmp/stats.json" || fail "--json does not list the lambert pass"
+    grep -q '"gbuffer"' "$tmp/stats.json" || fail "--json does not list the gbuffer pass"
     grep -q '"memoryBytes"' "$tmp/stats.json" || fail "--json has no memory by category"
     "$idk" render --size 16x16 --out "$tmp/g.png" --graph "$tmp/frame.dot" || fail "render with --graph failed"
     grep -q "digraph" "$tmp/frame.dot" || fail "--graph .dot is not graphviz: $(head -3 "$tmp/frame.dot")"

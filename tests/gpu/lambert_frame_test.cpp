@@ -14,10 +14,17 @@
 namespace idk::test {
 namespace {
 
+// The foundation's pass stays available behind RenderSettings::shading (the default is the deferred PBR frame).
+render::RenderSettings lambertSettings() {
+    render::RenderSettings s;
+    s.shading = render::Shading::Lambert;
+    return s;
+}
+
 class LambertFrameTest : public GpuTest {
 protected:
     void checkAgainstOracle(const scene::Scene& scene, const std::string& name, uint32_t size = 64) {
-        render::Renderer renderer(ctx(), shaders());
+        render::Renderer renderer(ctx(), shaders(), lambertSettings());
         renderer.setScene(scene);
         scene::CameraView camera = scene::defaultCamera(scene);
         render::FrameResult frame = renderer.renderOffscreen(camera, size, size);
@@ -42,7 +49,7 @@ TEST_F(LambertFrameTest, CornellBoxMatchesRayCastOracle) {
 
 TEST_F(LambertFrameTest, CornellBoxShowsRedLeftAndGreenRightWalls) {
     scene::Scene scene = app::loadDefaultScene();
-    render::Renderer renderer(ctx(), shaders());
+    render::Renderer renderer(ctx(), shaders(), lambertSettings());
     renderer.setScene(scene);
     render::FrameResult frame = renderer.renderOffscreen(scene::defaultCamera(scene), 64, 64);
     auto at = [&](uint32_t x, uint32_t y) { return &frame.image.pixels[(size_t(y) * 64 + x) * 4]; };
@@ -61,7 +68,7 @@ TEST_F(LambertFrameTest, SharedBoxAssetMatchesRayCastOracle) {
 
 TEST_F(LambertFrameTest, OutputSizeFollowsTheRequest) {
     scene::Scene scene = app::loadDefaultScene();
-    render::Renderer renderer(ctx(), shaders());
+    render::Renderer renderer(ctx(), shaders(), lambertSettings());
     renderer.setScene(scene);
     render::FrameResult frame = renderer.renderOffscreen(scene::defaultCamera(scene), 48, 32);
     EXPECT_EQ(frame.image.width, 48u);

@@ -1,0 +1,135 @@
+// gbuffer.cpp: rasterizes every (instance, primitive) of the GPU scene with ONE vkCmdDrawIndexedIndirect
+// (gl_DrawID selects instance and material) into albedo, normal, material and emissive targets plus depth.
+// Ports IDKEngine's RasterPipeline G-buffer step (GBuffer/VertexPath/vertex.glsl + GBuffer/fragment.glsl).
+// Deviation: IDKEngine draws twice (single-sided with culling, then double-sided); here one draw with culling
+// off and back faces of single-sided materials rejected in the fragment shader. No GPU culling yet.
+#include "passes/passes.hpp"
+
+#include <memory>
+
+#include "shared/deferred_types.h"
+
+namespace idk::passes {
+
+void IndirectDrawLog::record(std::string_view pass, uint32_t drawCount) {
+    for (Entry& e : entries) {
+        if (e.pass == pass) {
+            ++e.calls;
+            e.draws += drawCount;
+            return;
+        }
+    }
+    entries.push_back({std::string(pass), 1, drawCount});
+}
+
+namespace {
+
+// Storage-image formats of the core set (readers use imageLoad; see shared/deferred_types.h for why).
+constexpr VkFormat kAlbedoFormat = VK_FORMAT_R8G8B8A8_UNORM;  // sRGB-encoded by the shader
+constexpr VkFormat kNormalFormat = VK_FORMAT_R32_UINT;        // octahedral, packSnorm2x16
+constexpr VkFormat kMaterialFormat = VK_FORMAT_R8G8B8A8_UNORM;
+constexpr VkFormat kEmissiveFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+constexpr VkFormat kDepthCopyFormat = VK_FORMAT_R32_SFLOAT;  // gl_FragCoord.z of the kept fragment
+constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;      // attachment only, not stored
+
+VkRenderingAttachmentInfo colorAttachment(VkImageView view) {
+    VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    a.imageView = view;
+    a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;  // zero: background pixels are told apart by depth == 1
+    a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    return a;
+}
+
+graph::TextureHandle target(graph::PassBuilder& b, const char* name, VkFormat format, graph::Access access) {
+    graph::TextureDesc desc;
+    desc.format = format;
+    return b.write(b.create(name, desc), access);
+}
+
+}  // namespace
+
+GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                              const SceneBuffers& scene, graph::BufferHandle frame, IndirectDrawLog* log) {
+    auto out = std::make_shared<GBufferOutputs>();
+    const SceneBuffers s = scene;
+    graph.addPass(
+        "gbuffer",
+        [&](graph::PassBuilder& b) {
+            constexpr VkPipelineStageFlags2 kVs = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT;
+            constexpr VkPipelineStageFlags2 kFs = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+            out->albedo = target(b, "gbuffer albedo", kAlbedoFormat, graph::Access::ColorWrite);
+            out->normal = target(b, "gbuffer normal", kNormalFormat, graph::Access::ColorWrite);
+            out->material = target(b, "gbuffer material", kMaterialFormat, graph::Access::ColorWrite);
+            out->emissive = target(b, "gbuffer emissive", kEmissiveFormat, graph::Access::ColorWrite);
+            out->depth = target(b, "gbuffer depth", kDepthCopyFormat, graph::Access::ColorWrite);
+            out->depthAttachment = target(b, "gbuffer depth attachment", kDepthFormat, graph::Access::DepthWrite);
+            b.read(frame, graph::Access::StorageRead, kVs);
+            if (s.drawCount == 0) return;
+            b.read(s.vertices, graph::Access::StorageRead, kVs);
+            b.read(s.indices, graph::Access::VertexRead);
+            b.read(s.instances, graph::Access::StorageRead, kVs | kFs);
+            b.read(s.meshes, graph::Access::StorageRead, kFs);
+            b.read(s.materials, graph::Access::StorageRead, kFs);
+            b.read(s.drawCommands, graph::Access::IndirectRead);
+            if (s.colors.valid()) b.read(s.colors, graph::Access::StorageRead, kVs);
+            if (s.uv1.valid()) b.read(s.uv1, graph::Access::StorageRead, kVs);
+        },
+        [&ctx, &shaders, s, frame, out, log](graph::PassContext& pc) {
+            VkCommandBuffer cmd = pc.commandBuffer();
+            VkExtent2D extent = pc.outputExtent();
+
+            VkRenderingAttachmentInfo colors[5] = {
+                colorAttachment(pc.view(out->albedo)), colorAttachment(pc.view(out->normal)),
+                colorAttachment(pc.view(out->material)), colorAttachment(pc.view(out->emissive)),
+                colorAttachment(pc.view(out->depth))};
+            colors[4].clearValue.color = {{1.0f, 0.0f, 0.0f, 0.0f}};  // background depth
+            VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+            depth.imageView = pc.view(out->depthAttachment);
+            depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+            depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+            depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;  // readers use the R32F copy
+            depth.clearValue.depthStencil = {1.0f, 0};
+            VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+            rendering.renderArea = {{0, 0}, extent};
+            rendering.layerCount = 1;
+            rendering.colorAttachmentCount = 5;
+            rendering.pColorAttachments = colors;
+            rendering.pDepthAttachment = &depth;
+            vkCmdBeginRendering(cmd, &rendering);
+            if (s.drawCount > 0) {
+                vk::GraphicsPipelineDesc desc;
+                desc.vertex = vk::ShaderId::gbuffer_gbuffer_vert;
+                desc.fragment = vk::ShaderId::gbuffer_gbuffer_frag;
+                desc.colorFormats = {kAlbedoFormat, kNormalFormat, kMaterialFormat, kEmissiveFormat, kDepthCopyFormat};
+                desc.depthFormat = kDepthFormat;
+                desc.depthCompare = VK_COMPARE_OP_LESS;  // scene::camera convention: depth 0 near, 1 far
+                desc.cull = VK_CULL_MODE_NONE;           // facing is decided per material in the fragment shader
+                desc.pushBytes = sizeof(gpu::GBufferPush);
+                const vk::Pipeline& pipeline = shaders.graphics(desc);
+
+                VkViewport viewport{0, 0, float(extent.width), float(extent.height), 0, 1};
+                VkRect2D scissor{{0, 0}, extent};
+                vkCmdSetViewport(cmd, 0, 1, &viewport);
+                vkCmdSetScissor(cmd, 0, 1, &scissor);
+                vk::bindPipeline(cmd, pipeline);
+                ctx.bindless().bind(cmd);
+                gpu::GBufferPush push{pc.buffer(frame).address,
+                                      pc.buffer(s.vertices).address,
+                                      pc.buffer(s.instances).address,
+                                      pc.buffer(s.meshes).address,
+                                      pc.buffer(s.materials).address,
+                                      s.colors.valid() ? pc.buffer(s.colors).address : 0,
+                                      s.uv1.valid() ? pc.buffer(s.uv1).address : 0};
+                vk::pushConstants(cmd, ctx, push);
+                vkCmdBindIndexBuffer(cmd, pc.vkBuffer(s.indices), 0, VK_INDEX_TYPE_UINT32);
+                vkCmdDrawIndexedIndirect(cmd, pc.vkBuffer(s.drawCommands), 0, s.drawCount,
+                                         sizeof(VkDrawIndexedIndirectCommand));
+                if (log) log->record(pc.passName(), s.drawCount);
+            }
+            vkCmdEndRendering(cmd);
+        });
+    return *out;
+}
+
+}  // namespace idk::passes

@@ -1,0 +1,304 @@
+// gpu_scene.cpp: packing scene::Scene into the GPU scene's arrays (pure) and uploading them; placeholder
+// textures, deduplicated samplers, and setTexture's material patching. Ports IDKEngine's ModelManager /
+// ModelLoader GPU-side layout (one mesh per primitive, one draw command per mesh instance).
+#include "render/gpu_scene.hpp"
+
+#include <glm/gtc/packing.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+
+#include "core/log.hpp"
+#include "vk/context.hpp"
+#include "vk/transfer.hpp"
+
+namespace idk::render {
+namespace {
+
+// Columns of det(M) * inverse-transpose(M): finite for singular (zero-scale) matrices too.
+glm::mat3 cofactor(const glm::mat3& m) {
+    return glm::mat3(glm::cross(m[1], m[2]), glm::cross(m[2], m[0]), glm::cross(m[0], m[1]));
+}
+
+gpu::GpuTextureSlot slotFor(const std::optional<scene::TextureRef>& ref, uint32_t placeholder,
+                            const TextureBindings& b) {
+    gpu::GpuTextureSlot s{};
+    s.texture = placeholder;
+    s.samplerIndex = b.defaultSampler;
+    s.row0 = glm::vec3(1.0f, 0.0f, 0.0f);
+    s.row1 = glm::vec3(0.0f, 1.0f, 0.0f);
+    if (!ref) return s;
+    if (ref->texture < b.textureSamplers.size()) s.samplerIndex = b.textureSamplers[ref->texture];
+    s.texCoord = ref->texCoord;
+    // KHR_texture_transform: uv' = offset + R(rotation) * (scale * uv), R = [cos -sin; sin cos] as the
+    // extension's GLSL builds it (columns (cos, sin) and (-sin, cos)).
+    float c = std::cos(ref->rotation), sn = std::sin(ref->rotation);
+    s.row0 = glm::vec3(c * ref->scale.x, -sn * ref->scale.y, ref->offset.x);
+    s.row1 = glm::vec3(sn * ref->scale.x, c * ref->scale.y, ref->offset.y);
+    return s;
+}
+
+uint32_t alphaModeOf(scene::AlphaMode mode) {
+    switch (mode) {
+        case scene::AlphaMode::Mask:
+            return gpu::kAlphaMask;
+        case scene::AlphaMode::Blend:
+            return gpu::kAlphaBlend;
+        default:
+            return gpu::kAlphaOpaque;
+    }
+}
+
+gpu::GpuMaterial packMaterial(const scene::Material& m, const TextureBindings& b) {
+    gpu::GpuMaterial g{};
+    g.baseColorFactor = m.baseColorFactor;
+    g.emissiveFactor = m.emissive;
+    g.metallicFactor = m.metallic;
+    g.roughnessFactor = m.roughness;
+    g.normalScale = m.normalScale;
+    g.occlusionStrength = m.occlusionStrength;
+    g.alphaCutoff = m.alphaCutoff;
+    g.alphaMode = alphaModeOf(m.alphaMode);
+    g.flags = (m.doubleSided ? gpu::kMaterialDoubleSided : 0u) | (m.unlit ? gpu::kMaterialUnlit : 0u);
+    g.slots[gpu::kSlotBaseColor] = slotFor(m.baseColorTexture, b.white, b);
+    g.slots[gpu::kSlotMetallicRoughness] = slotFor(m.metallicRoughnessTexture, b.white, b);
+    g.slots[gpu::kSlotNormal] = slotFor(m.normalTexture, b.flatNormal, b);
+    g.slots[gpu::kSlotOcclusion] = slotFor(m.occlusionTexture, b.white, b);
+    g.slots[gpu::kSlotEmissive] = slotFor(m.emissiveTexture, b.white, b);
+    return g;
+}
+
+// The scene texture each slot of a material samples (UINT32_MAX: none), indexed by gpu::kSlot*.
+std::array<uint32_t, gpu::kSlotCount> slotTextures(const scene::Material& m) {
+    const std::optional<scene::TextureRef>* refs[gpu::kSlotCount] = {
+        &m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture, &m.occlusionTexture, &m.emissiveTexture};
+    std::array<uint32_t, gpu::kSlotCount> t;
+    for (uint32_t s = 0; s < gpu::kSlotCount; ++s) t[s] = *refs[s] ? (*refs[s])->texture : UINT32_MAX;
+    return t;
+}
+
+gpu::GpuLight packLight(const scene::Light& l) {
+    gpu::GpuLight g{};
+    g.position = l.position;
+    g.type = l.type == scene::LightType::Directional ? gpu::kLightDirectional
+             : l.type == scene::LightType::Spot      ? gpu::kLightSpot
+                                                     : gpu::kLightPoint;
+    float len = glm::length(l.direction);
+    g.direction = len > 0.0f ? l.direction / len : glm::vec3(0.0f, 0.0f, -1.0f);
+    g.range = l.range;
+    g.intensity = l.color * l.intensity;
+    float cosOuter = std::cos(l.outerConeAngle), cosInner = std::cos(l.innerConeAngle);
+    g.spotScale = 1.0f / std::max(0.001f, cosInner - cosOuter);
+    g.spotOffset = -cosOuter * g.spotScale;
+    return g;
+}
+
+}  // namespace
+
+vk::SamplerDesc samplerDesc(const scene::Sampler& s) {
+    vk::SamplerDesc d;
+    d.filter = s.magFilter == 9728 ? VK_FILTER_NEAREST : VK_FILTER_LINEAR;
+    // 9984 NEAREST_MIPMAP_NEAREST, 9985 LINEAR_MIPMAP_NEAREST: nearest mip; everything else: linear mip.
+    d.mipmap =
+        (s.minFilter == 9984 || s.minFilter == 9985) ? VK_SAMPLER_MIPMAP_MODE_NEAREST : VK_SAMPLER_MIPMAP_MODE_LINEAR;
+    // vk::SamplerDesc has one address mode for both axes: wrapS decides (glTF assets rarely differ).
+    d.address = s.wrapS == 33071   ? VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE
+                : s.wrapS == 33648 ? VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT
+                                   : VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    d.maxAnisotropy = (s.minFilter == 9728 || s.minFilter == 9729) ? 1.0f : 8.0f;  // IDKEngine: 8x when mipmapped
+    return d;
+}
+
+GpuSceneData packGpuScene(const scene::Scene& scene, const TextureBindings& b) {
+    GpuSceneData out;
+    out.features = scene.features();
+    for (const scene::Material& m : scene.materials) out.materials.push_back(packMaterial(m, b));
+    const auto defaultMaterial = uint32_t(out.materials.size());
+    out.materials.push_back(packMaterial(scene::Material{}, b));  // glTF default: white, metallic 1, roughness 1
+
+    out.textureUses.resize(scene.textures.size());
+    for (uint32_t mi = 0; mi < scene.materials.size(); ++mi) {
+        std::array<uint32_t, gpu::kSlotCount> used = slotTextures(scene.materials[mi]);
+        for (uint32_t s = 0; s < gpu::kSlotCount; ++s)
+            if (used[s] < out.textureUses.size()) out.textureUses[used[s]].push_back({mi, s});
+    }
+
+    // Optional vertex streams exist only when some primitive has the attribute (the others get the default).
+    bool anyColors = false, anyUv1 = false;
+    for (const scene::Mesh& mesh : scene.meshes)
+        for (const scene::Primitive& prim : mesh.primitives) {
+            anyColors |= !prim.colors.empty();
+            anyUv1 |= !prim.uv1.empty();
+        }
+
+    // Meshes: every primitive's vertices and indices appended to the merged buffers.
+    std::vector<uint32_t> firstMesh;
+    for (const scene::Mesh& mesh : scene.meshes) {
+        firstMesh.push_back(uint32_t(out.meshes.size()));
+        for (const scene::Primitive& prim : mesh.primitives) {
+            gpu::GpuMesh gm{};
+            gm.firstIndex = uint32_t(out.indices.size());
+            gm.indexCount = uint32_t(prim.indices.size());
+            gm.baseVertex = int32_t(out.vertices.size());
+            gm.material = prim.material && *prim.material < scene.materials.size() ? *prim.material : defaultMaterial;
+            out.meshes.push_back(gm);
+            for (size_t v = 0; v < prim.positions.size(); ++v) {
+                gpu::GpuVertex gv{};
+                gv.position = prim.positions[v];
+                gv.normal = v < prim.normals.size() ? prim.normals[v] : glm::vec3(0.0f, 0.0f, 1.0f);
+                gv.uv0 = v < prim.uv0.size() ? prim.uv0[v] : glm::vec2(0.0f);
+                gv.tangent = v < prim.tangents.size() ? prim.tangents[v] : glm::vec4(0.0f);  // w = 0: derive
+                out.vertices.push_back(gv);
+                if (anyColors) out.colors.push_back(v < prim.colors.size() ? prim.colors[v] : glm::vec4(1.0f));
+                if (anyUv1) out.uv1.push_back(v < prim.uv1.size() ? prim.uv1[v] : glm::vec2(0.0f));
+            }
+            out.indices.insert(out.indices.end(), prim.indices.begin(), prim.indices.end());
+        }
+    }
+
+    // Instances: one per (node instance, primitive) with indices; draw i draws instance i.
+    for (const scene::Instance& inst : scene.instances) {
+        if (inst.mesh >= scene.meshes.size()) continue;
+        glm::mat3 m3(inst.world);
+        float det = glm::determinant(m3);
+        glm::mat3 normalMatrix = cofactor(m3) * (det < 0.0f ? -1.0f : 1.0f);  // direction of inverse-transpose
+        const auto& prims = scene.meshes[inst.mesh].primitives;
+        for (uint32_t p = 0; p < prims.size(); ++p) {
+            const gpu::GpuMesh& gm = out.meshes[firstMesh[inst.mesh] + p];
+            if (gm.indexCount == 0) continue;
+            gpu::GpuInstance gi{};
+            gi.model = inst.world;
+            gi.normalMatrix = normalMatrix;
+            gi.mesh = firstMesh[inst.mesh] + p;
+            gi.flags = det < 0.0f ? gpu::kInstanceMirrored : 0u;
+            out.instances.push_back(gi);
+            out.draws.push_back(VkDrawIndexedIndirectCommand{gm.indexCount, 1, gm.firstIndex, gm.baseVertex, 0});
+        }
+    }
+    for (const scene::Light& l : scene.lights) out.lights.push_back(packLight(l));
+    return out;
+}
+
+namespace {
+
+template <class T>
+vk::Buffer uploadArray(vk::Context& ctx, const std::vector<T>& values, VkBufferUsageFlags usage, const char* name,
+                       const char* category) {
+    if (values.empty()) return {};
+    vk::BufferDesc desc;
+    desc.size = values.size() * sizeof(T);
+    desc.usage = usage;
+    desc.name = name;
+    desc.category = category;
+    return vk::createBufferWithData(ctx, desc, values.data(), desc.size);
+}
+
+vk::Image placeholder(vk::Context& ctx, VkFormat format, const void* texel, VkDeviceSize bytes, const char* name) {
+    vk::ImageDesc desc;
+    desc.format = format;
+    desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
+    desc.name = name;
+    desc.category = "textures";
+    vk::Image image = ctx.createImage(desc);
+    vk::uploadImage(ctx, image, texel, bytes, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    return image;
+}
+
+}  // namespace
+
+GpuScene::GpuScene(vk::Context& ctx, const scene::Scene& scene) : ctx_(ctx) {
+    TextureBindings b;
+    if (!scene.meshes.empty()) {
+        const uint8_t white[4] = {255, 255, 255, 255};
+        // Half floats so (0.5, 0.5) remaps to exactly 0 (8-bit 128/255 would tilt the normal by 0.2 degrees).
+        const uint16_t flat[4] = {glm::packHalf1x16(0.5f), glm::packHalf1x16(0.5f), glm::packHalf1x16(1.0f),
+                                  glm::packHalf1x16(1.0f)};
+        white_ = placeholder(ctx, VK_FORMAT_R8G8B8A8_UNORM, white, sizeof(white), "placeholder white");
+        flatNormal_ = placeholder(ctx, VK_FORMAT_R16G16B16A16_SFLOAT, flat, sizeof(flat), "placeholder normal");
+        whiteIndex_ = ctx.bindless().addSampled(white_.view);
+        flatNormalIndex_ = ctx.bindless().addSampled(flatNormal_.view);
+        b.white = whiteIndex_.value;
+        b.flatNormal = flatNormalIndex_.value;
+
+        // One bindless sampler per distinct sampler state (glTF samplers: 8x anisotropic when mipmapped).
+        std::map<std::tuple<int, int, int>, uint32_t> unique;
+        auto samplerFor = [&](const scene::Sampler& s) {
+            vk::SamplerDesc d = samplerDesc(s);
+            auto key = std::make_tuple(int(d.filter), int(d.mipmap) * 16 + int(d.maxAnisotropy), int(d.address));
+            auto it = unique.find(key);
+            if (it != unique.end()) return it->second;
+            samplers_.push_back(ctx.bindless().addSampler(d));
+            return unique[key] = samplers_.back().value;
+        };
+        // Slots without a texture sample a 1x1 placeholder: no anisotropy (lavapipe's anisotropic path returns
+        // 0 when the UV derivatives are zero, e.g. for primitives without TEXCOORD_0).
+        scene::Sampler plain;
+        plain.minFilter = 9729;
+        b.defaultSampler = samplerFor(plain);
+        for (const scene::Texture& t : scene.textures) b.textureSamplers.push_back(samplerFor(t.sampler));
+    }
+    data_ = packGpuScene(scene, b);
+    if (data_.features.hasBlend)
+        core::logWarning(scene.sourcePath.string(),
+                         ": BLEND materials are drawn opaque until the transparency pass exists");
+
+    constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    vertices_ = uploadArray(ctx, data_.vertices, kStorage, "scene vertices", "geometry");
+    indices_ = uploadArray(ctx, data_.indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "scene indices", "geometry");
+    meshes_ = uploadArray(ctx, data_.meshes, kStorage, "scene meshes", "geometry");
+    instances_ = uploadArray(ctx, data_.instances, kStorage, "scene instances", "instances");
+    draws_ = uploadArray(ctx, data_.draws, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, "scene draw commands", "instances");
+    materials_ = uploadArray(ctx, data_.materials, kStorage, "scene materials", "materials");
+    lights_ = uploadArray(ctx, data_.lights, kStorage, "scene lights", "lights");
+    colors_ = uploadArray(ctx, data_.colors, kStorage, "scene vertex colors", "geometry");
+    uv1_ = uploadArray(ctx, data_.uv1, kStorage, "scene uv1", "geometry");
+}
+
+GpuScene::~GpuScene() {
+    for (vk::Buffer* b :
+         {&vertices_, &indices_, &meshes_, &instances_, &draws_, &materials_, &lights_, &colors_, &uv1_}) {
+        if (*b) ctx_.destroyDeferred(*b);
+    }
+    if (white_) {
+        ctx_.bindless().release(whiteIndex_);
+        ctx_.bindless().release(flatNormalIndex_);
+        ctx_.destroyDeferred(white_);
+        ctx_.destroyDeferred(flatNormal_);
+    }
+    for (vk::SamplerIndex s : samplers_) ctx_.bindless().release(s);
+}
+
+void GpuScene::setTexture(uint32_t sceneTextureIndex, vk::SampledIndex texture,
+                          std::optional<vk::SamplerIndex> sampler) {
+    if (sceneTextureIndex >= data_.textureUses.size()) {
+        throw std::out_of_range("GpuScene::setTexture: texture " + std::to_string(sceneTextureIndex) +
+                                " out of range (scene has " + std::to_string(data_.textureUses.size()) + ")");
+    }
+    for (const TextureSlotRef& use : data_.textureUses[sceneTextureIndex]) {
+        gpu::GpuTextureSlot& slot = data_.materials[use.material].slots[use.slot];
+        slot.texture = texture.value;
+        if (sampler) slot.samplerIndex = sampler->value;
+        materialsDirty_ = true;
+    }
+}
+
+bool GpuScene::textureIsColor(uint32_t t) const {
+    if (t >= data_.textureUses.size()) return false;
+    return std::any_of(data_.textureUses[t].begin(), data_.textureUses[t].end(), [](const TextureSlotRef& u) {
+        return u.slot == gpu::kSlotBaseColor || u.slot == gpu::kSlotEmissive;
+    });
+}
+
+bool GpuScene::textureIsData(uint32_t t) const {
+    if (t >= data_.textureUses.size()) return false;
+    return std::any_of(data_.textureUses[t].begin(), data_.textureUses[t].end(), [](const TextureSlotRef& u) {
+        return u.slot != gpu::kSlotBaseColor && u.slot != gpu::kSlotEmissive;
+    });
+}
+
+}  // namespace idk::render

@@ -1,0 +1,99 @@
+// scene_types.h: the GPU scene as the deferred renderer reads it (engine/render/gpu_scene.cpp packs it): merged
+// vertices and indices, one GpuMesh per glTF primitive, one GpuInstance per drawn (node instance, primitive)
+// pair (= one indirect draw, selected by gl_DrawID), materials with bindless texture slots, punctual lights.
+// Ports IDKEngine's GpuTypes (GpuMesh, GpuMeshInstance, GpuMaterial, GpuLight); see DESIGN "one definition".
+#ifndef IDK_SCENE_TYPES_H
+#define IDK_SCENE_TYPES_H
+#include "interop.h"
+
+IDK_GPU_BEGIN
+
+// One vertex of the merged vertex buffer (pulled by gl_VertexIndex, no vertex input state).
+struct GpuVertex {
+    vec3 position;  // object space
+    vec3 normal;    // object space, unit
+    vec2 uv0;       // TEXCOORD_0 (0 when absent)
+    vec4 tangent;   // object space xyz + handedness w (+-1); w == 0: none, the fragment shader derives one
+};
+IDK_GPU_SIZE(GpuVertex, 48);
+
+// One glTF primitive: a range of the merged index buffer (indices relative to baseVertex) and its material.
+struct GpuMesh {
+    uint firstIndex;
+    uint indexCount;
+    int baseVertex;
+    uint material;  // index into the material buffer (the last entry is glTF's default material)
+};
+IDK_GPU_SIZE(GpuMesh, 16);
+
+IDK_CONST(uint, kInstanceMirrored, 1u);  // GpuInstance::flags: det(model) < 0, front faces wind clockwise
+
+// One indirect draw: a primitive placed by a node. Draw i of the MDI buffer draws instance i.
+struct GpuInstance {
+    mat4 model;         // object -> world
+    mat3 normalMatrix;  // inverse-transpose of mat3(model)
+    uint mesh;          // index into the mesh buffer
+    uint flags;         // kInstanceMirrored
+};
+IDK_GPU_SIZE(GpuInstance, 108);
+
+// A material texture slot: a bindless texture (always valid: a placeholder until the real texture is
+// streamed in), its sampler, and its KHR_texture_transform as an affine 2x3 matrix: uv' = (dot(row0, (uv, 1)),
+// dot(row1, (uv, 1))).
+struct GpuTextureSlot {
+    uint texture;   // bindless sampled-image index
+    uint samplerIndex;  // bindless sampler index
+    uint texCoord;  // 0: GpuVertex::uv0, 1: the optional TEXCOORD_1 stream
+    vec3 row0;
+    vec3 row1;
+};
+IDK_GPU_SIZE(GpuTextureSlot, 36);
+
+IDK_CONST(uint, kSlotBaseColor, 0);          // sRGB
+IDK_CONST(uint, kSlotMetallicRoughness, 1);  // linear: G = roughness, B = metallic
+IDK_CONST(uint, kSlotNormal, 2);             // linear: tangent-space normal, xy remapped to [-1, 1]
+IDK_CONST(uint, kSlotOcclusion, 3);          // linear: R
+IDK_CONST(uint, kSlotEmissive, 4);           // sRGB
+IDK_CONST(uint, kSlotCount, 5);
+
+IDK_CONST(uint, kAlphaOpaque, 0);
+IDK_CONST(uint, kAlphaMask, 1);
+IDK_CONST(uint, kAlphaBlend, 2);
+
+IDK_CONST(uint, kMaterialDoubleSided, 1u);  // GpuMaterial::flags
+IDK_CONST(uint, kMaterialUnlit, 2u);        // KHR_materials_unlit: output = base colour
+
+// glTF metallic-roughness material (core + KHR_materials_emissive_strength, KHR_texture_transform).
+struct GpuMaterial {
+    vec4 baseColorFactor;  // linear RGBA
+    vec3 emissiveFactor;   // linear, emissive strength applied
+    float metallicFactor;
+    float roughnessFactor;
+    float normalScale;
+    float occlusionStrength;
+    float alphaCutoff;
+    uint alphaMode;  // kAlpha*
+    uint flags;      // kMaterial*
+    GpuTextureSlot slots[kSlotCount];  // indexed by kSlot*
+};
+IDK_GPU_SIZE(GpuMaterial, 236);
+
+IDK_CONST(uint, kLightDirectional, 0);
+IDK_CONST(uint, kLightPoint, 1);
+IDK_CONST(uint, kLightSpot, 2);
+
+// A KHR_lights_punctual light in world space.
+struct GpuLight {
+    vec3 position;
+    uint type;        // kLight*
+    vec3 direction;   // unit, where the light points
+    float range;      // 0: infinite
+    vec3 intensity;   // colour * intensity: candela (point, spot) or lux (directional)
+    float spotScale;  // KHR_lights_punctual: 1 / max(0.001, cos(inner) - cos(outer))
+    float spotOffset; // -cos(outer) * spotScale
+    uint pad;
+};
+IDK_GPU_SIZE(GpuLight, 56);
+
+IDK_GPU_END
+#endif

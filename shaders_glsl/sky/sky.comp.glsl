@@ -1,0 +1,27 @@
+#version 460
+// sky.comp.glsl: writes the environment's radiance into every background pixel (depth == 1), looking up the
+// equirectangular map along the pixel's view ray; alpha 0 marks sky (lighting writes 1), so the HDR/EXR output's
+// alpha is the geometry coverage. Ports IDKEngine's SkyBox/{vertex,fragment}.glsl (a cube
+// drawn with depth LEQUAL there; a compute pass over the depth buffer here).
+#extension GL_GOOGLE_include_directive : require
+#include "scene_buffers.glsl"
+#include "bindless.glsl"
+#include "environment.glsl"
+
+layout(local_size_x = kLightingGroupSize, local_size_y = kLightingGroupSize) in;
+layout(push_constant, scalar) uniform Push { SkyPush p; };
+
+void main() {
+    GpuFrame f = FrameBuffer(p.frame).frame;
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(uvec2(pixel), f.extent))) return;
+    float depth = imageLoad(gImagesR32f[p.depth], pixel).r;
+    if (depth < 1.0) return;
+
+    // The ray through the pixel centre from two depths (works for finite and infinite far planes).
+    vec2 ndc = (vec2(pixel) + 0.5) / vec2(f.extent) * 2.0 - 1.0;
+    vec4 a = f.inverseViewProjection * vec4(ndc, 0.0, 1.0);
+    vec4 b = f.inverseViewProjection * vec4(ndc, 0.5, 1.0);
+    vec3 dir = normalize(b.xyz / b.w - a.xyz / a.w);
+    imageStore(gImagesRgba16f[p.target], pixel, vec4(environmentRadiance(f, dir, 0.0), 0.0));  // alpha 0: sky
+}

@@ -5,15 +5,15 @@
 //    only inside the projected scene bounds and filling at least a stated fraction of them, radiance below
 //    1.1 x the brightest environment texel + the brightest emission (no lights in these assets);
 //  * a white furnace: a constant environment L = 0.5 (no lights): no geometry pixel may exceed 1.02 L + emission;
-//  * golden images (display PNG, metric in support/golden.hpp) for the assets whose look is settled without
-//    textures: Box, MetalRoughSpheresNoTextures, Cornell box. BoxTextured and DamagedHelmet draw placeholder
-//    textures until the texture streamer lands: geometry and coverage only.
+//  * golden images (display PNG, metric in support/golden.hpp) of every asset, textures streamed in completely
+//    (render::SceneTextureStream::finishSynchronously) before the frame.
 //  * the sky: an empty scene is all environment, matching a CPU bilinear lookup of the equirectangular map.
 
 #include <cmath>
 
 #include "app/default_scene.hpp"
 #include "render/renderer.hpp"
+#include "render/scene_textures.hpp"
 #include "scene/gltf_loader.hpp"
 #include "support/frame_checks.hpp"
 #include "support/golden.hpp"
@@ -33,9 +33,9 @@ struct Asset {
 
 const Asset kAssets[] = {
     {"box", "Box/glTF-Binary/Box.glb", 0.95, true},
-    {"box_textured", "BoxTextured/glTF-Binary/BoxTextured.glb", 0.95, false},
+    {"box_textured", "BoxTextured/glTF-Binary/BoxTextured.glb", 0.95, true},
     {"metal_rough_spheres", "MetalRoughSpheresNoTextures/glTF-Binary/MetalRoughSpheresNoTextures.glb", 0.35, true},
-    {"damaged_helmet", "DamagedHelmet/glTF-Binary/DamagedHelmet.glb", 0.35, false},
+    {"damaged_helmet", "DamagedHelmet/glTF-Binary/DamagedHelmet.glb", 0.35, true},
     {"cornell_box", nullptr, 0.95, true},
 };
 
@@ -107,10 +107,12 @@ TEST_P(PbrFrameTest, WhiteFurnaceReflectsNoMoreThanTheEnvironment) {
 
 TEST_P(PbrFrameTest, DisplayFrameMatchesGolden) {
     const Asset& a = GetParam();
-    if (!a.golden) GTEST_SKIP() << a.name << ": look not settled until textures stream in";
+    if (!a.golden) GTEST_SKIP() << a.name << ": no golden";
     scene::Scene scene = loadAsset(a);
     render::Renderer renderer(ctx(), shaders());
     renderer.setScene(scene);
+    render::SceneTextureStream textures(ctx(), renderer, scene);
+    textures.finishSynchronously();
     render::FrameResult frame = renderer.renderOffscreen(scene::defaultCamera(scene), kSize, kSize);
     ASSERT_EQ(frame.display.size(), size_t(kSize) * kSize * 4);
     GoldenResult g = compareWithGolden(std::string("pbr_") + a.name, frame.display, kSize, kSize);

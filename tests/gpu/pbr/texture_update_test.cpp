@@ -10,6 +10,7 @@
 #include "scene/gltf_loader.hpp"
 #include "support/frame_checks.hpp"
 #include "support/gpu_fixture.hpp"
+#include "render/scene_textures.hpp"
 #include "support/texture_loader.hpp"
 
 namespace idk::test {
@@ -100,8 +101,10 @@ TEST_F(TextureUpdateTest, FullyTexturedDamagedHelmetIsFiniteAndCovered) {
     settings.output = render::OutputKind::Hdr;
     render::Renderer renderer(ctx(), shaders(), settings);
     renderer.setScene(scene);
-    SyncTextures textures(ctx(), scene, *renderer.gpuScene());
-    EXPECT_EQ(textures.loaded(), scene.textures.size());
+    render::SceneTextureStream textures(ctx(), renderer, scene);
+    textures.finishSynchronously();
+    ASSERT_NE(textures.streamer(), nullptr);
+    EXPECT_EQ(textures.streamer()->stats().placeholders, 0u);
     scene::CameraView camera = scene::defaultCamera(scene);
     render::FrameResult hdr = renderer.renderOffscreen(camera, 128, 128);
     FrameStats s =
@@ -130,8 +133,9 @@ TEST_F(TextureUpdateTest, DerivedTangentFrameShadesLikeVertexTangents) {
         render::Renderer renderer(ctx(), shaders());
         renderer.settings().environmentIntensity = 0.2f;
         renderer.setScene(s);
-        SyncTextures textures(ctx(), s, *renderer.gpuScene());
-        EXPECT_GT(textures.loaded(), 0u);
+        render::SceneTextureStream textures(ctx(), renderer, s);
+        textures.finishSynchronously();
+        EXPECT_TRUE(textures.allReady());
         return renderer.renderOffscreen(scene::defaultCamera(s), 192, 192).display;
     };
     std::vector<uint8_t> withTangents = render(scene);

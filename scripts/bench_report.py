@@ -21,7 +21,7 @@ import os
 import re
 import sys
 
-GROUP_ORDER = ["compute", "render graph", "render", "scene loading"]
+GROUP_ORDER = ["compute", "render graph", "render", "scene loading", "scenes", "bvh"]
 ERROR_COUNTERS = {"mismatches", "rel_error"}
 HIDDEN_COUNTERS = {"items_per_second", "bytes_per_second", "gpu_ms"}
 SUFFIX = re.compile(r"/(iterations:\d+|min_time:[0-9.]+|manual_time|real_time|repeats:\d+|threads:\d+)")
@@ -290,6 +290,201 @@ def plot(results, out_dir):
     return "Plots: " + ", ".join(f"`{os.path.relpath(p)}`" for p in written) + "." if written else ""
 
 
+# ---- BVH section (bench/bvh_bench.cpp) ------------------------------------------------------------------------
+
+BVH_COLUMNS = ["scene", "builder / traversal", "build", "SAH", "EPO", "Mrays/s", "peer", "ratio", "reproduce"]
+
+
+def bvh_section(results, exe):
+    """The BVH table: builds (ours at three split factors, Embree rtcBuildBVH at three qualities) with SAH and EPO by
+    our formulas, CPU single-ray traversal against Embree rtcIntersect1, GPU traversal; then the issue's targets."""
+    rows = [r for r in results if r.info.get("group") == "bvh"]
+    by_name = {r.name: r for r in rows}
+    scenes = []
+    for r in rows:
+        scene = r.name.split("/")[1]
+        if scene not in scenes:
+            scenes.append(scene)
+
+    def get(name):
+        return by_name.get(name)
+
+    def mrays(r):
+        rate = r.counters.get("items_per_second") if r else None
+        return rate / 1e6 if rate else None
+
+    def num(value, digits=2):
+        return "-" if value is None else f"{value:.{digits}f}"
+
+    def builder(r):
+        kind = r.name.split("/")[2]
+        if r.name.startswith("BM_BvhBuild/"):
+            return "ours, split factor " + kind.replace("split_", "")
+        if r.name.startswith("BM_EmbreeBuild/"):
+            return "Embree " + kind + (" (spatial splits)" if kind == "high" else "")
+        if r.name.startswith("BM_BvhTraceCpu/"):
+            return f"ours CPU, {kind} rays"
+        if r.name.startswith("BM_EmbreeTraceCpu/"):
+            return f"Embree rtcIntersect1, {kind} rays"
+        errors = r.counters.get("mismatches")
+        suffix = f" ({fmt_number(errors)} mismatches vs CPU)" if errors is not None else ""
+        device = r.info.get("rung", "?").replace(", shaderFloat64", "")
+        return f"ours GLSL on {device}, {kind} rays{suffix}"
+
+    table_lines = ["| " + " | ".join(BVH_COLUMNS) + " |", "|" + "---|" * len(BVH_COLUMNS)]
+    summary = {"sah": [], "build": [], "cpu": []}
+    for scene in scenes:
+        input_text = next((r.info.get("input", scene) for r in rows if r.name.split("/")[1] == scene), scene)
+        medium = get(f"BM_EmbreeBuild/{scene}/medium")
+        high = get(f"BM_EmbreeBuild/{scene}/high")
+        ordered = [r for r in rows if r.name.split("/")[1] == scene]
+        order = ["BM_BvhBuild", "BM_EmbreeBuild", "BM_BvhTraceCpu", "BM_EmbreeTraceCpu", "BM_BvhTraceGpu"]
+        ordered.sort(key=lambda r: (order.index(r.name.split("/")[0]) if r.name.split("/")[0] in order else 9,
+                                    "diffuse" in r.name))
+        first = True
+        for r in ordered:
+            kind = r.info.get("bvh")
+            build = sah = epo = rate = peer = ratio = "-"
+            names = [r.name]
+            if kind == "build":
+                build = fmt_ms(r.ms)
+                sah = num(r.counters.get("sah"))
+                epo = num(r.counters.get("epo"))
+                if r.info.get("role") != "peer":
+                    parts, ratios = [], []
+                    if medium:
+                        parts.append(f"Embree medium {fmt_ms(medium.ms)}")
+                        ratios.append(f"build {r.ms / medium.ms:.2f}x")
+                        names.append(medium.name)
+                    if high and high.counters.get("sah"):
+                        parts.append(f"Embree high SAH {high.counters['sah']:.2f}")
+                        ratios.append(f"SAH {r.counters.get('sah', 0) / high.counters['sah']:.3f}x")
+                        names.append(high.name)
+                    peer, ratio = "; ".join(parts) or "-", ", ".join(ratios) or "-"
+            else:
+                rate = num(mrays(r))
+                peer_name = r.info.get("peer", "")
+                peer_result = get(peer_name) if peer_name else None
+                if peer_result and mrays(peer_result) and mrays(r):
+                    what = "ours CPU" if kind == "gpu" else "Embree"
+                    peer = f"{what} {mrays(peer_result):.2f} Mrays/s"
+                    ratio = f"{mrays(r) / mrays(peer_result):.2f}x throughput"
+                    names.append(peer_result.name)
+            cells = [md_escape(input_text) if first else "", md_escape(builder(r)), build, sah, epo, rate,
+                     md_escape(peer), ratio, command(exe, names)]
+            first = False
+            table_lines.append("| " + " | ".join(cells) + " |")
+
+        ours_builds = [get(f"BM_BvhBuild/{scene}/split_{f}") for f in ("0", "0.3", "1")]
+        ours_builds = [b for b in ours_builds if b and b.counters.get("sah")]
+        if ours_builds and high and high.counters.get("sah"):
+            best = min(ours_builds, key=lambda b: b.counters["sah"])
+            met = best.counters["sah"] <= high.counters["sah"]
+            summary["sah"].append((scene, met, f"{scene}: best ours {best.counters['sah']:.2f} "
+                                   f"({builder(best)}) vs Embree high {high.counters['sah']:.2f}"))
+        split0 = get(f"BM_BvhBuild/{scene}/split_0")
+        if split0 and medium:
+            ratio = split0.ms / medium.ms
+            summary["build"].append((scene, ratio <= 1.5, f"{scene}: split 0 {fmt_ms(split0.ms)} vs Embree medium "
+                                     f"{fmt_ms(medium.ms)} = {ratio:.3f}x"))
+        for rays in ("primary", "diffuse"):
+            ours, theirs = get(f"BM_BvhTraceCpu/{scene}/{rays}"), get(f"BM_EmbreeTraceCpu/{scene}/{rays}")
+            if ours and theirs and mrays(ours) and mrays(theirs):
+                ratio = mrays(ours) / mrays(theirs)
+                summary["cpu"].append((scene, ratio >= 0.5, f"{scene} {rays}: {mrays(ours):.2f} vs "
+                                       f"{mrays(theirs):.2f} Mrays/s = {ratio:.3f}x"))
+
+    lines = ["## BVH", "",
+             "`bench/bvh_bench.cpp`: our SweepSAH builder (`engine/bvh`, leaves of at most 8 triangles, every hardware "
+             "thread) at split factors 0, 0.3 and 1.0 against Embree 3's `rtcBuildBVH` (low, medium, and high with "
+             "spatial splits; same leaf size and SAH costs, its nodes converted into our tree shape through the "
+             "create-node / set-bounds callbacks, so SAH and EPO are computed by our `computeSah` / `computeEpo` on "
+             "both). Build time is wall time around the build only. CPU traversal: closest hit, one ray at a time on "
+             "one thread (ours over the split-0.3 BLAS, Embree `rtcIntersect1` on an `RTC_SCENE_FLAG_ROBUST` "
+             "high-quality scene), 256x256 primary camera rays and 65536 cosine-weighted diffuse bounce rays from the "
+             "primary hits; its throughput is measured in thread CPU time (robust to other load on the machine). GPU "
+             "traversal: the GLSL include `shaders_glsl/include/bvh_traverse.glsl` in one dispatch, timestamp queries, "
+             "on the device named in its row (on lavapipe it runs on the same CPU cores); its mismatches are against "
+             "our CPU traversal (same triangle and t). The ~1M-triangle MetalRoughSpheres runs 3 repetitions instead "
+             "of 5. Ratios: build ours / Embree-medium time, SAH ours / Embree-high SAH, throughput ours / peer.", ""]
+    lines += table_lines + [""]
+    lines += ["### Issue 4 targets on this run", ""]
+    titles = {"sah": "SAH at or below Embree-high's on every scene (best of our three split factors)",
+              "build": "build time within 1.5x of Embree-medium's (split factor 0)",
+              "cpu": "CPU traversal at least 0.5x Embree's single-ray rate"}
+    for key, title in titles.items():
+        items = summary[key]
+        if not items:
+            continue
+        met = sum(1 for _, ok, _ in items if ok)
+        verdict = "met" if met == len(items) else f"missed on {len(items) - met} of {len(items)}"
+        lines.append(f"- **{title}: {verdict}.** " + "; ".join(
+            text + (" (met)" if ok else " (**missed**)") for _, ok, text in items) + ".")
+    lines += ["", "Reading the targets: build times are wall-clock medians on a 2-core machine that other processes "
+              "share (see the load average above); both builders use both cores, and the ratio moves by +-0.3 between "
+              "runs. Throughputs are thread CPU time, steadier. Our SAH misses come from Embree-high's spatial splits "
+              "(SBVH) on meshes with long thin or rotated triangles; pre-splitting (split factor 0.3 / 1.0) closes "
+              "most of the gap on BrainStem and ToyCar but not on the rotated atrium. The CPU traversal walks a "
+              "4-wide SSE copy of the binary BLAS (`engine/bvh/wide.hpp`), single ray, exact double-precision "
+              "watertight triangle test; Embree dispatches at run time to wider nodes and the widest SIMD kernels the CPU has.", ""]
+    return lines
+
+
+# ---- Scenes section (bench/scene_bench.cpp) ------------------------------------------------------------------------
+
+PASS_ORDER = ["scene_update", "pose_upload", "skinning", "point_shadows", "gbuffer", "deferred_lighting", "sky",
+              "transparency", "tonemap"]
+
+
+def scene_section(results, exe):
+    """One row per scene: synchronous load and first frame, asynchronous time to first frame, warm 1280x720 frame
+    with its GPU time per pass."""
+    rows = {r.name: r for r in results if r.info.get("group") == "scenes"}
+    scenes = []
+    for name in rows:
+        scene = name.split("/")[1]
+        if scene not in scenes:
+            scenes.append(scene)
+    columns = ["scene", "sync load (glTF + upload + textures)", "first frame, sync", "first frame, async",
+               "ratio async / sync", "warm frame (wall)", "GPU total", "GPU per pass", "reproduce"]
+    lines = ["## Scenes", "",
+             "`bench/scene_bench.cpp` on the shared glTF assets, 1280x720, deferred PBR, default HDR environment. "
+             "**sync load** = `loadGltf` + GPU scene upload (`Renderer::setScene`) + every texture decoded, "
+             "mipmapped and uploaded (`SceneTextureStream::finishSynchronously`), the three parts in brackets. "
+             "**first frame** = that load (sync) or the load with textures only started (async: "
+             "`render/texture_streamer.hpp` decodes on worker threads, placeholders until each arrives) plus the "
+             "first `renderOffscreen` of a fresh renderer, which also loads and prefilters the HDR environment; "
+             "pipelines are already built (process-wide cache). **warm frame** = one `renderOffscreen` of a warm "
+             "renderer: graph build and compile, record, submit, wait, 1280x720 readback; animated scenes (Fox, "
+             "BrainStem) advance animation 0 by 1/60 s per frame, so it includes `evaluateAnimations`, the pose upload "
+             "and the skinning pass. GPU per pass: timestamp queries (`FrameResult::passTimes`), mean per frame. "
+             "Medians of 5 repetitions (warm frame: 4 frames each), except MetalRoughSpheresNoTextures (~1 M "
+             "triangles): 3 repetitions of 2 frames. On lavapipe the \"GPU\" is the same 2 CPU cores.", "",
+             "| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
+    for scene in scenes:
+        sync, asyn, frame = (rows.get(f"BM_Scene{kind}/{scene}") for kind in ("FirstFrameSync", "FirstFrameAsync",
+                                                                              "Frame"))
+        any_row = sync or asyn or frame
+        load = "-"
+        if sync:
+            c = sync.counters
+            parts = [c.get("gltf_ms"), c.get("upload_ms"), c.get("textures_ms")]
+            if all(p is not None for p in parts):
+                load = f"{fmt_ms(sum(parts))} ({' + '.join(fmt_ms(p) for p in parts)})"
+        ratio = f"{asyn.ms / sync.ms:.2f}" if sync and asyn and sync.ms > 0 else "-"
+        passes = "-"
+        if frame:
+            timed = {k[len("pass_ms."):]: v for k, v in frame.counters.items() if k.startswith("pass_ms.")}
+            order = [p for p in PASS_ORDER if p in timed] + sorted(p for p in timed if p not in PASS_ORDER)
+            passes = ", ".join(f"{p} {fmt_ms(timed[p])}" for p in order)
+        names = [r.name for r in (asyn, sync, frame) if r]
+        cells = [md_escape(any_row.info.get("input", scene)), load, fmt_ms(sync.ms) if sync else "-",
+                 fmt_ms(asyn.ms) if asyn else "-", ratio, fmt_ms(frame.ms) if frame else "-",
+                 fmt_ms(frame.counters.get("gpu_ms")) if frame else "-", passes, command(exe, names)]
+        lines.append("| " + " | ".join(cells) + " |")
+    return lines + [""]
+
+
 def main(argv):
     args = [a for a in argv[1:] if not a.startswith("--")]
     if len(args) != 2:
@@ -306,7 +501,11 @@ def main(argv):
     groups = build_rows(results, exe)
     lines = header(data, results, errors, plots_note)
     for group in GROUP_ORDER + sorted(g for g in groups if g not in GROUP_ORDER):
-        if group in groups:
+        if group == "bvh" and any(r.info.get("group") == "bvh" for r in results):
+            lines += bvh_section(results, exe)
+        elif group == "scenes" and any(r.info.get("group") == "scenes" for r in results):
+            lines += scene_section(results, exe)
+        elif group in groups:
             lines += [f"## {group[0].upper() + group[1:]}", ""] + table(groups[group]) + [""]
     with open(out_path, "w") as f:
         f.write("\n".join(lines).rstrip() + "\n")

@@ -7,8 +7,10 @@ namespace idk::app {
 
 int runInfo(const std::vector<std::string>& args);
 int runRender(const std::vector<std::string>& args);
+int runBvh(const std::vector<std::string>& args);
 
 extern const char* const kInfoHelp;
 extern const char* const kRenderHelp;
+extern const char* const kBvhHelp;
 
 }  // namespace idk::app

@@ -82,6 +82,8 @@ uint32_t optimizeStackSize(BoxTree& tree, const BuildOptions& options) {
     return collapsed;
 }
 
+void updateWideNodes(Blas& blas) { blas.wideNodes = buildWideNodes(blas.nodes); }
+
 Blas buildBlas(std::span<const Triangle> triangles, const BuildOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     Blas blas;
@@ -135,6 +137,8 @@ Blas buildBlas(std::span<const Triangle> triangles, const BuildOptions& options)
     blas.triIds.shrink_to_fit();
     blas.leafTriangles.reserve(blas.triIds.size());
     for (uint32_t id : blas.triIds) blas.leafTriangles.push_back(triangles[id]);
+
+    updateWideNodes(blas);
 
     stats.referenceCount = uint32_t(blas.triIds.size());
     stats.nodeCount = uint32_t(blas.nodes.size());

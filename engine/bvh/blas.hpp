@@ -7,6 +7,7 @@
 
 #include "bvh/box_tree.hpp"
 #include "bvh/geometry.hpp"
+#include "bvh/wide.hpp"
 
 #include <cstdint>
 #include <span>
@@ -51,6 +52,9 @@ struct Blas {
     std::vector<uint32_t> triIds;          // original triangle id of each leaf reference
     std::vector<Triangle> leafTriangles;   // the triangle of each reference (leaf order: traversal reads them
                                            // contiguously instead of gathering from the mesh)
+    std::vector<WideNode> wideNodes;       // 4-wide copy of `nodes` for the CPU traversal (wide.hpp), made by
+                                           // buildBlas and refitBlas; code that edits `nodes` by hand must call
+                                           // updateWideNodes() or clear it (empty: the binary walk is used)
     uint32_t triangleCount = 0;            // size of the triangle array the BLAS was built from
     BuildStats stats;
 
@@ -58,6 +62,9 @@ struct Blas {
 };
 
 Blas buildBlas(std::span<const Triangle> triangles, const BuildOptions& options = {});
+
+// Rebuilds blas.wideNodes from blas.nodes.
+void updateWideNodes(Blas& blas);
 
 // The stack-size optimisation on a box tree (exposed for tests): returns the number of leaf pairs collapsed.
 uint32_t optimizeStackSize(BoxTree& tree, const BuildOptions& options);

@@ -34,9 +34,11 @@ glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& n) {
     glm::vec3 out;
     for (int i = 0; i < 3; ++i) {
         const int32_t ulps = int32_t(kIntScale * n[i]);
-        const int32_t bits = std::bit_cast<int32_t>(p[i]);
-        // Adding to the bits of a negative float moves it towards -inf, so the sign of the step follows p.
-        const float stepped = std::bit_cast<float>(bits + (p[i] < 0.0f ? -ulps : ulps));
+        const uint32_t bits = std::bit_cast<uint32_t>(p[i]);
+        // Adding to the bits of a negative float moves it towards -inf, so the sign of the step follows p. The sum
+        // wraps in unsigned arithmetic (two's complement, as GLSL's int addition): no signed overflow for -0.0, whose
+        // stepped value is computed but not used (|p| < kOrigin takes the other branch).
+        const float stepped = std::bit_cast<float>(bits + uint32_t(p[i] < 0.0f ? -ulps : ulps));
         out[i] = std::abs(p[i]) < kOrigin ? p[i] + kFloatScale * n[i] : stepped;
     }
     return out;

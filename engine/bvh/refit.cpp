@@ -26,6 +26,7 @@ void refitBlas(Blas& blas, std::span<const Triangle> triangles) {
         }
         node.setBox(box);
     }
+    updateWideNodes(blas);
     blas.stats.sah = computeSah(blas.nodes);
 }
 

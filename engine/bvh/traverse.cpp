@@ -20,9 +20,9 @@ bool traverseBlas(const Blas& blas, const PreparedRay& ray, uint32_t instanceId,
     if (!ray.valid || blas.nodes.empty()) return false;
     const uint32_t* triIds = blas.triIds.data();
     const Triangle* triangles = blas.leafTriangles.data();
-    auto leaf = [&](const Node& node) {
+    auto range = [&](uint32_t first, uint32_t count) {
         bool found = false;
-        for (uint32_t k = node.first; k < node.first + node.count; ++k) {
+        for (uint32_t k = first; k < first + count; ++k) {
             TriangleHit h;
             if (!intersectTriangle(ray, triangles[k], h) || !(h.t < ray.tMax)) continue;
             const uint32_t id = triIds[k];
@@ -33,7 +33,12 @@ bool traverseBlas(const Blas& blas, const PreparedRay& ray, uint32_t instanceId,
         }
         return found && anyHit;
     };
-    return walkTree(blas.nodes.data(), ray, leaf, [&] { return best.t; },
+    auto bestT = [&] { return best.t; };
+    if (!blas.wideNodes.empty()) {
+        return walkWide(blas.wideNodes.data(), blas.nodes[0], ray, range, bestT,
+                        [&](uint32_t first) { return static_cast<const void*>(triangles + first); });
+    }
+    return walkTree(blas.nodes.data(), ray, [&](const Node& node) { return range(node.first, node.count); }, bestT,
                     [&](const Node& node) { return static_cast<const void*>(triangles + node.first); });
 }
 

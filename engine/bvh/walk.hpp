@@ -1,9 +1,11 @@
-// walk.hpp (internal): the traversal loop shared by the BLAS and TLAS walks: nearer child first, the farther one
-// pushed with its entry distance, popped entries skipped when they start beyond the current hit.
+// walk.hpp (internal): the traversal loops shared by the BLAS and TLAS walks: the binary walk (nearer child first,
+// the farther one pushed with its entry distance, popped entries skipped when they start beyond the current hit) and
+// the same walk over the 4-wide copy of a BLAS (wide.hpp), which the CPU BLAS traversal uses when it exists.
 #pragma once
 
 #include "bvh/box_tree.hpp"
 #include "bvh/intersect.hpp"
+#include "bvh/wide.hpp"
 
 #include <immintrin.h>
 
@@ -127,6 +129,112 @@ bool walkTree(const Node* nodes, const PreparedRay& ray, LeafFn&& leaf, BestFn&&
             const TraversalStack::Entry e = stack.pop();
             if (e.tNear <= boxLimit(bestT())) {
                 current = e.node;
+                found = true;
+                break;
+            }
+        }
+        if (!found) return false;
+    }
+}
+
+// Walks the 4-wide copy of a binary tree (wide.hpp). `root` is the binary root (its box is tested first, as in
+// walkTree); `leaf(first, count)` intersects a leaf's triangle references and returns true to stop (any hit).
+// Per wide node, one SSE pass applies intersectBox to the four slots with the same operations in the same order
+// (maxps/minps keep the bound for a NaN, as the scalar comparisons do); hit slots are visited nearest first, the
+// others pushed with their entry distances and skipped when popped beyond the current hit. `leafData(first)` is the
+// address of a leaf's first primitive (prefetched).
+template <class LeafFn, class BestFn, class LeafDataFn>
+bool walkWide(const WideNode* wide, const Node& root, const PreparedRay& ray, LeafFn&& leaf, BestFn&& bestT,
+              LeafDataFn&& leafData) {
+    constexpr float kRobustScale = 1.0f + 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
+    float tRoot = 0.0f;
+    if (!SseBoxTest(ray)(root, boxLimit(bestT()), tRoot)) return false;
+    int loRow[3], hiRow[3];
+    __m128 origin[3], inv[3];
+    for (int axis = 0; axis < 3; ++axis) {
+        const bool negative = std::signbit(ray.invDirection[axis]);
+        loRow[axis] = negative ? 3 + axis : axis;
+        hiRow[axis] = negative ? axis : 3 + axis;
+        origin[axis] = _mm_set1_ps(ray.origin[axis]);
+        inv[axis] = _mm_set1_ps(ray.invDirection[axis]);
+    }
+    const __m128 tMin = _mm_set1_ps(ray.tMin);
+    const __m128 scale = _mm_set1_ps(kRobustScale);
+
+    struct Entry {
+        uint32_t first;
+        uint32_t count;  // 0: a wide node
+        float tNear;
+    };
+    constexpr uint32_t kInline = 96;
+    Entry inlineStack[kInline];
+    std::vector<Entry> spill;  // degenerate trees only
+    uint32_t size = 0;
+    auto push = [&](const Entry& e) {
+        if (size < kInline) {
+            inlineStack[size] = e;
+        } else {
+            spill.push_back(e);
+        }
+        ++size;
+    };
+    auto pop = [&]() -> Entry {
+        --size;
+        if (size < kInline) return inlineStack[size];
+        const Entry e = spill.back();
+        spill.pop_back();
+        return e;
+    };
+
+    Entry current{0, 0, tRoot};
+    for (;;) {
+        if (current.count > 0) {
+            if (leaf(current.first, current.count)) return true;
+        } else {
+            const WideNode& node = wide[current.first];
+            __m128 nearT = tMin;
+            __m128 farT = _mm_set1_ps(boxLimit(bestT()));
+            for (int axis = 0; axis < 3; ++axis) {
+                const __m128 lo = _mm_load_ps(node.bounds[loRow[axis]]);
+                const __m128 hi = _mm_load_ps(node.bounds[hiRow[axis]]);
+                const __m128 t0 = _mm_mul_ps(_mm_sub_ps(lo, origin[axis]), inv[axis]);
+                const __m128 t1 = _mm_mul_ps(_mm_mul_ps(_mm_sub_ps(hi, origin[axis]), inv[axis]), scale);
+                nearT = _mm_max_ps(t0, nearT);  // t0 > near ? t0 : near (near kept for a NaN t0)
+                farT = _mm_min_ps(t1, farT);    // t1 < far ? t1 : far
+            }
+            uint32_t mask = uint32_t(_mm_movemask_ps(_mm_cmple_ps(nearT, farT)));
+            if (mask != 0) {
+                alignas(16) float tNear[4];
+                _mm_store_ps(tNear, nearT);
+                Entry hits[4];
+                uint32_t count = 0;
+                while (mask != 0) {
+                    const uint32_t s = uint32_t(__builtin_ctz(mask));
+                    mask &= mask - 1;
+                    Entry e{node.first[s], node.count[s], tNear[s]};
+                    // Every hit slot is likely visited: start fetching its node (two lines) or its first triangles.
+                    const char* data = e.count > 0 ? static_cast<const char*>(leafData(e.first))
+                                                   : reinterpret_cast<const char*>(&wide[e.first]);
+                    _mm_prefetch(data, _MM_HINT_T0);
+                    _mm_prefetch(data + 64, _MM_HINT_T0);
+                    // Insertion by distance (nearest first); equal distances keep slot order.
+                    uint32_t k = count++;
+                    while (k > 0 && hits[k - 1].tNear > e.tNear) {
+                        hits[k] = hits[k - 1];
+                        --k;
+                    }
+                    hits[k] = e;
+                }
+                for (uint32_t k = count; k-- > 1;) push(hits[k]);
+                current = hits[0];
+                continue;
+            }
+        }
+        bool found = false;
+        while (size > 0) {
+            const Entry e = pop();
+            if (e.tNear <= boxLimit(bestT())) {
+                current = e;
                 found = true;
                 break;
             }

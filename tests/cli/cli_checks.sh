@@ -54,6 +54,34 @@ case "$case_name" in
     "$idk" render --out "$tmp/x.bmp" --size 8x8 2>/dev/null; [ $? -eq 2 ] || fail "unsupported format should exit 2"
     "$idk" render --help | grep -q -- "--out" || fail "render --help does not describe --out"
     ;;
+  bvh)
+    shared="${IDK_SHARED_DIR:-$(cd "$(dirname "$0")/../../.." && pwd)/shared}"
+    bunny="$shared/scenes/bunny/bunny.bin"
+    [ -f "$bunny" ] || fail "missing test input $bunny"
+    "$idk" bvh "$bunny" --split-factor 0.3 >"$tmp/bvh.txt" 2>"$tmp/err" || fail "idk bvh failed: $(cat "$tmp/err")"
+    for key in "triangles: *69630" "fragments:" "references:" "nodes:" "leaves:" "SAH:" "EPO:" "max depth:" "stack:" "build:"; do
+      grep -q "$key" "$tmp/bvh.txt" || fail "text output lacks '$key': $(cat "$tmp/bvh.txt")"
+    done
+    [ ! -s "$tmp/err" ] || fail "progress or noise on a non-terminal stderr: $(cat "$tmp/err")"
+    "$idk" bvh "$bunny" --json >"$tmp/bvh.json" || fail "idk bvh --json failed"
+    python3 - "$tmp/bvh.json" <<'PY' || fail "bad JSON: $(cat "$tmp/bvh.json")"
+import json, sys
+j = json.load(open(sys.argv[1]))
+assert j["triangles"] == 69630 and j["fragments"] == 69630 and j["splitFactor"] == 0
+assert j["nodes"] == 2 * j["leaves"] - 1 and j["references"] == 69630
+assert 1 < j["sah"] < 1000 and j["epo"] > 0 and j["maxDepth"] > 10 and 0 < j["requiredStackSize"] <= j["maxDepth"]
+assert j["buildMs"] > 0
+PY
+    "$idk" bvh /no/such/mesh.bin 2>"$tmp/err" >/dev/null
+    code=$?
+    [ "$code" -eq 1 ] || fail "missing file: exit code $code, expected 1"
+    [ "$(wc -l <"$tmp/err")" -eq 1 ] || fail "expected one line on stderr, got: $(cat "$tmp/err")"
+    grep -q "/no/such/mesh.bin" "$tmp/err" || fail "error does not name the file: $(cat "$tmp/err")"
+    "$idk" bvh /no/such/scene.glb 2>"$tmp/err" >/dev/null; [ $? -eq 1 ] || fail "missing glTF should exit 1"
+    grep -q "/no/such/scene.glb" "$tmp/err" || fail "error does not name the glTF: $(cat "$tmp/err")"
+    "$idk" bvh "$bunny" --split-factor -1 2>/dev/null >/dev/null; [ $? -eq 2 ] || fail "negative split factor should exit 2"
+    "$idk" bvh --help | grep -q -- "--split-factor" || fail "bvh --help does not describe --split-factor"
+    ;;
   *) fail "unknown case" ;;
 esac
 echo "ok ($case_name)"

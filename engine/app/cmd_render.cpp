@@ -38,7 +38,8 @@ const char* const kRenderHelp =
     "  --stats          print the passes that ran, their GPU times and GPU memory by category\n"
     "  --json           print the stats as JSON (implies --stats)\n"
     "  --graph FILE     write the frame's render graph: .dot (graphviz) or any other name (text)\n"
-    "  --no-validation  do not load the Vulkan validation layer\n";
+    "  --no-validation  do not load the Vulkan validation layer\n"
+    "  --fallback       take the portable rung of every capability ladder (as `idk info --fallback` shows)\n";
 
 namespace {
 
@@ -80,7 +81,7 @@ void posePerOptions(const core::CliArgs& args, scene::Scene& scene) {
 
 int runRender(const std::vector<std::string>& argv) {
     core::CliArgs args =
-        core::parseCli(argv, {{"--stats", "--json", "--no-validation", "--help"},
+        core::parseCli(argv, {{"--stats", "--json", "--no-validation", "--fallback", "--help"},
                                   {"--out", "--size", "--graph", "--shading", "--exposure", "--environment",
                                    "--env-intensity", "--time", "--animation"}});
     if (args.has("--help")) {
@@ -114,6 +115,7 @@ int runRender(const std::vector<std::string>& argv) {
 
     vk::ContextDesc desc;
     desc.validation = desc.validation && !args.has("--no-validation");
+    desc.forceFallbackRungs = args.has("--fallback");
     vk::Context ctx(desc);
     vk::ShaderLibrary shaders(ctx);
     render::FrameResult frame;

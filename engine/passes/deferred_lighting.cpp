@@ -1,7 +1,8 @@
 // deferred_lighting.cpp: one compute dispatch (8x8 tiles) that shades every G-buffer pixel with geometry:
 // glTF metallic-roughness BRDF per punctual light, environment ambient times occlusion, plus emission, written
 // as linear radiance into an RGBA16F storage image. Ports IDKEngine's DeferredLighting pass (a fullscreen
-// fragment shader there, ToScreen/vertex.glsl + DeferredLighting/fragment.glsl); shadows and GI come later.
+// fragment shader there, ToScreen/vertex.glsl + DeferredLighting/fragment.glsl) with point-light cube shadows
+// (passes/point_shadows.cpp); GI comes later.
 #include "passes/passes.hpp"
 
 #include <memory>
@@ -13,7 +14,7 @@ namespace idk::passes {
 graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                              const GBufferOutputs& gbuffer, graph::BufferHandle frame,
                                              graph::BufferHandle lights, graph::TextureHandle environment,
-                                             graph::TextureHandle target) {
+                                             graph::TextureHandle target, const PointShadowOutputs& shadows) {
     auto written = std::make_shared<graph::TextureHandle>();
     const GBufferOutputs g = gbuffer;
     graph.addPass(
@@ -25,9 +26,13 @@ graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Cont
             b.read(environment, graph::Access::SampledRead, kCs);
             b.read(frame, graph::Access::StorageRead, kCs);
             if (lights.valid()) b.read(lights, graph::Access::StorageRead, kCs);
+            if (shadows.table.valid()) {
+                b.read(shadows.table, graph::Access::StorageRead, kCs);
+                for (graph::TextureHandle cube : shadows.cubes) b.read(cube, graph::Access::SampledRead, kCs);
+            }
             *written = b.write(target, graph::Access::StorageWrite, kCs);
         },
-        [&ctx, &shaders, g, frame, written](graph::PassContext& pc) {
+        [&ctx, &shaders, g, frame, written, table = shadows.table](graph::PassContext& pc) {
             VkCommandBuffer cmd = pc.commandBuffer();
             vk::ComputePipelineDesc desc;
             desc.shader = vk::ShaderId::deferred_lighting_lighting_comp;
@@ -43,6 +48,7 @@ graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Cont
             push.emissive = pc.texture(g.emissive).storageIndex;
             push.depth = pc.texture(g.depth).storageIndex;
             push.target = pc.texture(*written).storageIndex;
+            push.pointShadows = table.valid() ? pc.buffer(table).address : 0;
             vk::pushConstants(cmd, ctx, push);
             VkExtent3D extent = pc.texture(*written).extent;
             vkCmdDispatch(cmd, vk::groupCount(extent.width, gpu::kLightingGroupSize),

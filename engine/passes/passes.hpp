@@ -10,7 +10,13 @@
 #include "graph/render_graph.hpp"
 #include "render/lambert_scene.hpp"
 #include "shared/scene_types.h"
+#include "shared/skinning_types.h"
+#include "vk/resources.hpp"
 #include "vk/shader_library.hpp"
+
+namespace idk::render {
+class PointShadowMaps;
+}
 
 namespace idk::passes {
 
@@ -56,6 +62,21 @@ struct SceneBuffers {
 graph::BufferHandle addSceneUpdatePass(graph::RenderGraph& graph, graph::BufferHandle materials,
                                        std::vector<gpu::GpuMaterial> contents);
 
+// skinning.cpp: animation on the GPU for one frame (render/gpu_animation.hpp fills this only when the pose
+// changed): "pose_upload" copies the pose's instance transforms into scene.instances; "skinning" morphs and skins
+// every deformed vertex copy in scene.vertices (shared/skinning_types.h). Both handles become the written versions.
+struct AnimationFrame {
+    static constexpr VkDeviceSize kAbsent = ~VkDeviceSize(0);
+    const vk::Buffer* pose = nullptr;  // this frame slot's host-visible [instances | joint matrices | weights]
+    VkDeviceSize instanceBytes = 0;    // pose_upload copies these bytes; 0: no pose_upload this frame
+    VkDeviceSize jointsOffset = kAbsent, weightsOffset = kAbsent;  // in `pose`
+    bool deform = false;                                           // run skinning this frame
+    const vk::Buffer *jobs = nullptr, *influences = nullptr, *deltas = nullptr;  // static; empty ones unused
+    uint32_t jobCount = 0, threadCount = 0;
+};
+void addAnimationPasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                        const AnimationFrame& frame, SceneBuffers& scene);
+
 // gbuffer.cpp: one vkCmdDrawIndexedIndirect over every (instance, primitive) of the scene.
 // Read with imageLoad (storage), not sampled: see shared/deferred_types.h.
 struct GBufferOutputs {
@@ -69,16 +90,41 @@ struct GBufferOutputs {
 GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                               const SceneBuffers& scene, graph::BufferHandle frame, IndirectDrawLog* log);
 
+// point_shadows.cpp: one depth cube per shadow-casting light (render/point_shadow_maps.hpp), one instanced
+// indirect draw per light (native rung) or six (fallback); uploads the per-light GpuPointShadow table.
+struct PointShadowOutputs {
+    graph::BufferHandle table;                // GpuPointShadow[lightCount]; invalid: no shadows this frame
+    std::vector<graph::TextureHandle> cubes;  // the written cubes (readers declare SampledRead on each)
+};
+PointShadowOutputs addPointShadowPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                      const SceneBuffers& scene, render::PointShadowMaps& maps,
+                                      const std::vector<gpu::GpuLight>& lights, IndirectDrawLog* log);
+
 // deferred_lighting.cpp: shades the G-buffer's geometry pixels into `target` (RGBA16F); returns its new version.
 graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                              const GBufferOutputs& gbuffer, graph::BufferHandle frame,
                                              graph::BufferHandle lights, graph::TextureHandle environment,
-                                             graph::TextureHandle target);
+                                             graph::TextureHandle target, const PointShadowOutputs& shadows = {});
 
 // sky.cpp: writes the environment into the background pixels of `target` (depth == 1); returns its new version.
 graph::TextureHandle addSkyPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                 graph::TextureHandle depth, graph::BufferHandle frame, graph::TextureHandle environment,
                                 graph::TextureHandle target);
+
+// transparency.cpp: BLEND draws back to front (render/blend_draws.hpp), forward-shaded and "over"-blended into
+// the HDR `target` after sky, depth-tested against the G-buffer depth; returns the target's new version.
+struct TransparencyInputs {
+    SceneBuffers scene;
+    graph::BufferHandle sortedDraws;  // the frame's back-to-front commands (firstInstance = instance)
+    uint32_t drawCount = 0;
+    graph::BufferHandle frame;
+    graph::TextureHandle depth;        // GBufferOutputs::depth
+    graph::TextureHandle environment;
+    PointShadowOutputs shadows;
+};
+graph::TextureHandle addTransparencyPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                         const TransparencyInputs& inputs, graph::TextureHandle target,
+                                         IndirectDrawLog* log);
 
 // tonemap.cpp: AgX of exposure * hdr into the RGBA8 `target` (sRGB-encoded values); returns its new version.
 graph::TextureHandle addTonemapPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,

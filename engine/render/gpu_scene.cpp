@@ -114,6 +114,17 @@ vk::SamplerDesc samplerDesc(const scene::Sampler& s) {
     return d;
 }
 
+gpu::GpuInstance packInstance(const glm::mat4& world, uint32_t mesh) {
+    glm::mat3 m3(world);
+    float det = glm::determinant(m3);
+    gpu::GpuInstance gi{};
+    gi.model = world;
+    gi.normalMatrix = cofactor(m3) * (det < 0.0f ? -1.0f : 1.0f);  // direction of the inverse-transpose
+    gi.mesh = mesh;
+    gi.flags = det < 0.0f ? gpu::kInstanceMirrored : 0u;
+    return gi;
+}
+
 GpuSceneData packGpuScene(const scene::Scene& scene, const TextureBindings& b) {
     GpuSceneData out;
     out.features = scene.features();
@@ -161,23 +172,23 @@ GpuSceneData packGpuScene(const scene::Scene& scene, const TextureBindings& b) {
         }
     }
 
+    // Skinned/morphed (node, primitive) pairs get deformed vertex copies, which their draws use.
+    out.deformation = packDeformation(scene, firstMesh, out);
+
     // Instances: one per (node instance, primitive) with indices; draw i draws instance i.
-    for (const scene::Instance& inst : scene.instances) {
+    for (uint32_t i = 0; i < scene.instances.size(); ++i) {
+        const scene::Instance& inst = scene.instances[i];
         if (inst.mesh >= scene.meshes.size()) continue;
-        glm::mat3 m3(inst.world);
-        float det = glm::determinant(m3);
-        glm::mat3 normalMatrix = cofactor(m3) * (det < 0.0f ? -1.0f : 1.0f);  // direction of inverse-transpose
         const auto& prims = scene.meshes[inst.mesh].primitives;
         for (uint32_t p = 0; p < prims.size(); ++p) {
             const gpu::GpuMesh& gm = out.meshes[firstMesh[inst.mesh] + p];
             if (gm.indexCount == 0) continue;
-            gpu::GpuInstance gi{};
-            gi.model = inst.world;
-            gi.normalMatrix = normalMatrix;
-            gi.mesh = firstMesh[inst.mesh] + p;
-            gi.flags = det < 0.0f ? gpu::kInstanceMirrored : 0u;
-            out.instances.push_back(gi);
-            out.draws.push_back(VkDrawIndexedIndirectCommand{gm.indexCount, 1, gm.firstIndex, gm.baseVertex, 0});
+            out.instances.push_back(packInstance(inst.world, firstMesh[inst.mesh] + p));
+            out.drawInstance.push_back(i);
+            const int32_t base = out.deformation.baseVertex(inst.node, firstMesh[inst.mesh] + p, gm.baseVertex);
+            // BLEND primitives keep their slot with no instance: the transparency pass draws them, sorted.
+            const uint32_t count = out.materials[gm.material].alphaMode == gpu::kAlphaBlend ? 0u : 1u;
+            out.draws.push_back(VkDrawIndexedIndirectCommand{gm.indexCount, count, gm.firstIndex, base, 0});
         }
     }
     for (const scene::Light& l : scene.lights) out.lights.push_back(packLight(l));
@@ -243,9 +254,6 @@ GpuScene::GpuScene(vk::Context& ctx, const scene::Scene& scene) : ctx_(ctx) {
         for (const scene::Texture& t : scene.textures) b.textureSamplers.push_back(samplerFor(t.sampler));
     }
     data_ = packGpuScene(scene, b);
-    if (data_.features.hasBlend)
-        core::logWarning(scene.sourcePath.string(),
-                         ": BLEND materials are drawn opaque until the transparency pass exists");
 
     constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     vertices_ = uploadArray(ctx, data_.vertices, kStorage, "scene vertices", "geometry");
@@ -257,6 +265,8 @@ GpuScene::GpuScene(vk::Context& ctx, const scene::Scene& scene) : ctx_(ctx) {
     lights_ = uploadArray(ctx, data_.lights, kStorage, "scene lights", "lights");
     colors_ = uploadArray(ctx, data_.colors, kStorage, "scene vertex colors", "geometry");
     uv1_ = uploadArray(ctx, data_.uv1, kStorage, "scene uv1", "geometry");
+    if (!data_.deformation.jobs.empty() || data_.features.hasAnimations)
+        animation_ = std::make_unique<GpuAnimation>(ctx, data_, scene);
 }
 
 GpuScene::~GpuScene() {

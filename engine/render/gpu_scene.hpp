@@ -10,6 +10,7 @@
 #include <optional>
 #include <vector>
 
+#include "render/gpu_animation.hpp"
 #include "scene/scene.hpp"
 #include "shared/scene_types.h"
 #include "vk/bindless.hpp"
@@ -49,9 +50,13 @@ struct GpuSceneData {
     std::vector<gpu::GpuLight> lights;
     std::vector<std::vector<TextureSlotRef>> textureUses;  // per Scene::textures entry
     scene::SceneFeatures features;                         // Scene::features() of the packed scene
+    std::vector<uint32_t> drawInstance;                    // per draw: its Scene::instances index (poses)
+    DeformationData deformation;  // skinned/morphed vertex copies and their jobs (gpu_animation.hpp)
 };
 
 GpuSceneData packGpuScene(const scene::Scene& scene, const TextureBindings& bindings);
+// One draw's GpuInstance: `world` with its normal matrix and mirror flag, drawing GpuMesh `mesh`.
+gpu::GpuInstance packInstance(const glm::mat4& world, uint32_t mesh);
 
 // Sampler state of a glTF sampler (filters and wrap as glTF enums; wrapS decides both axes, see the .cpp).
 vk::SamplerDesc samplerDesc(const scene::Sampler& sampler);
@@ -79,6 +84,9 @@ public:
     uint32_t drawCount() const noexcept { return uint32_t(data_.draws.size()); }  // (instance, primitive) pairs
     uint32_t lightCount() const noexcept { return uint32_t(data_.lights.size()); }
     const std::vector<gpu::GpuMaterial>& materials() const noexcept { return data_.materials; }
+    const GpuSceneData& data() const noexcept { return data_; }
+    // Skinning, morphs and animated transforms (nullptr when the scene has no skins, morphs or animations).
+    GpuAnimation* animation() noexcept { return animation_.get(); }
 
     // Buffers (absent ones are null: e.g. no light buffer without lights, nothing at all for an empty scene).
     const vk::Buffer& vertices() const noexcept { return vertices_; }
@@ -103,6 +111,7 @@ private:
     std::vector<vk::SamplerIndex> samplers_;  // deduplicated; released with the scene
     vk::Buffer vertices_, indices_, meshes_, instances_, draws_, materials_, lights_, colors_, uv1_;
     bool materialsDirty_ = false;
+    std::unique_ptr<GpuAnimation> animation_;  // after data_: it keeps a reference to it
 };
 
 }  // namespace idk::render

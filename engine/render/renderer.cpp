@@ -1,6 +1,7 @@
-// renderer.cpp: the frame graphs: the deferred PBR frame (GPU scene + environment imported, G-buffer, lighting,
-// sky, tonemap) and the foundation's Lambert frame, both into an imported target that the graph leaves ready
-// for the readback copy. Ports IDKEngine's RasterPipeline.Render frame order (reference 1.5, steps 6.6-6.13, 9).
+// renderer.cpp: the frame graphs: the deferred PBR frame (GPU scene + environment imported, G-buffer, point
+// shadows, lighting, sky, transparency, tonemap) and the foundation's Lambert frame, both into an imported target
+// that the graph leaves ready for the readback copy. Ports IDKEngine's RasterPipeline.Render frame order
+// (reference 1.5, steps 6.6-6.13, 9).
 #include "render/renderer.hpp"
 
 #include <glm/gtc/packing.hpp>
@@ -56,8 +57,16 @@ void Renderer::setScene(const scene::Scene& scene) {
         hasLambertScene_ = true;
         return;
     }
+    pointShadows_.reset();
+    blendDraws_.reset();
     gpuScene_.reset();
     gpuScene_ = std::make_unique<GpuScene>(ctx_, scene);
+    if (blendDrawCount(gpuScene_->data()) > 0)
+        blendDraws_ = std::make_unique<BlendDraws>(ctx_, gpuScene_->data(), frames_.framesInFlight());
+}
+
+void Renderer::setPose(const scene::Scene& scene) {
+    if (gpuScene_ && gpuScene_->animation()) gpuScene_->animation()->setPose(scene);
 }
 
 const GpuEnvironment& Renderer::environment() {
@@ -120,10 +129,11 @@ void Renderer::renderPbr(graph::RenderGraph& graph, const scene::CameraView& cam
     const auto readByGBuffer = graph::stateAfterAccess(
         graph::Access::StorageRead, graph::ResourceKind::Buffer,
         VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
-    sb.vertices = importBuffer(graph, "scene vertices", s.vertices());
+    // Vertices and instances are rewritten by skinning / pose_upload in animated frames: WAR as for materials.
+    sb.vertices = importBuffer(graph, "scene vertices", s.vertices(), readByGBuffer);
     sb.indices = importBuffer(graph, "scene indices", s.indices());
     sb.meshes = importBuffer(graph, "scene meshes", s.meshes());
-    sb.instances = importBuffer(graph, "scene instances", s.instances());
+    sb.instances = importBuffer(graph, "scene instances", s.instances(), readByGBuffer);
     sb.drawCommands = importBuffer(graph, "scene draw commands", s.drawCommands());
     sb.materials = importBuffer(graph, "scene materials", s.materialBuffer(), readByGBuffer);
     sb.lights = importBuffer(graph, "scene lights", s.lights());
@@ -134,12 +144,19 @@ void Renderer::renderPbr(graph::RenderGraph& graph, const scene::CameraView& cam
         sb.materials = passes::addSceneUpdatePass(graph, sb.materials, s.materials());
         s.clearMaterialsDirty();
     }
+    if (GpuAnimation* animation = s.animation())
+        animation->addPasses(graph, shaders_, frames_.slotIndex(), frames_.framesInFlight(), sb);
     graph::BufferHandle frame = importBuffer(graph, "frame constants", frameBuffer);
     graph::ResourceState sampled;
     sampled.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     graph::TextureHandle environmentTexture = graph.importTexture(
         "environment", physicalOf(env.image), sampled, graph::FinalUse{graph::Access::SampledRead});
 
+    // Shadows before the G-buffer: the installed validation layer counts every draw that uses the bindless
+    // sampled array (the G-buffer's) as reading the cubes, so their write must not follow such a draw in the frame.
+    passes::PointShadowOutputs shadows;
+    if (updatePointShadowMaps(ctx_, s, settings_.pointShadows, pointShadows_))
+        shadows = passes::addPointShadowPass(graph, ctx_, shaders_, sb, *pointShadows_, s.data().lights, &log);
     passes::GBufferOutputs g = passes::addGBufferPass(graph, ctx_, shaders_, sb, frame, &log);
     graph::PhysicalTexture output = physicalOf(target);
     output.storageIndex = outputStorage_.value;
@@ -152,8 +169,14 @@ void Renderer::renderPbr(graph::RenderGraph& graph, const scene::CameraView& cam
         desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
         hdr = graph.createTexture("hdr radiance", desc);
     }
-    hdr = passes::addDeferredLightingPass(graph, ctx_, shaders_, g, frame, sb.lights, environmentTexture, hdr);
+    hdr = passes::addDeferredLightingPass(graph, ctx_, shaders_, g, frame, sb.lights, environmentTexture, hdr, shadows);
     hdr = passes::addSkyPass(graph, ctx_, shaders_, g.depth, frame, environmentTexture, hdr);
+    if (blendDraws_) {  // sorted for this frame's eye into this slot's host-visible indirect buffer
+        const vk::Buffer& sorted = blendDraws_->sort(frames_.slotIndex(), s.data(), camera.position);
+        passes::TransparencyInputs t{sb, importBuffer(graph, "sorted blend draws", sorted), blendDraws_->count(),
+                                     frame, g.depth, environmentTexture, shadows};
+        hdr = passes::addTransparencyPass(graph, ctx_, shaders_, t, hdr, &log);
+    }
     if (display) {
         graph.markOutput(passes::addTonemapPass(graph, ctx_, shaders_, hdr, out, settings_.exposure));
     } else {
@@ -171,6 +194,7 @@ FrameResult Renderer::renderOffscreen(const scene::CameraView& camera, uint32_t 
     desc.extent = {width, height, 1};
     // Display: the tonemap pass's colour attachment. Hdr: the lighting and sky passes' storage image.
     desc.usage = pbr && !display ? VK_IMAGE_USAGE_STORAGE_BIT : VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+    if (pbr && blendDraws_) desc.usage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;  // Hdr: transparency blends into it
     desc.name = "offscreen output";
     desc.category = "render targets";
     vk::Image target = ctx_.createImage(desc);

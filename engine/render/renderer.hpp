@@ -4,7 +4,9 @@
 // times and the indirect draws they recorded. Ports the role of IDKEngine's RasterPipeline.Render.
 #pragma once
 // Frames (RenderSettings::shading):
-//   Pbr (default): [scene_update] -> gbuffer -> deferred_lighting -> sky -> tonemap (tonemap only for Display)
+//   Pbr (default): [scene_update] [pose_upload] [skinning] -> gbuffer [-> point_shadows] -> deferred_lighting -> sky
+//                  [-> transparency] -> tonemap (point_shadows only with shadow-casting lights, transparency only
+//                  with BLEND draws, tonemap only for Display)
 //   Lambert:       lambert (the foundation's forward pass; linear HDR output)
 #include <filesystem>
 #include <functional>
@@ -16,9 +18,11 @@
 #include "core/image_file.hpp"
 #include "graph/resource_pool.hpp"
 #include "passes/passes.hpp"
+#include "render/blend_draws.hpp"
 #include "render/environment.hpp"
 #include "render/gpu_scene.hpp"
 #include "render/lambert_scene.hpp"
+#include "render/point_shadow_maps.hpp"
 #include "render/vk_graph_backend.hpp"
 #include "shared/deferred_types.h"
 #include "scene/camera.hpp"
@@ -41,6 +45,7 @@ struct RenderSettings {
     // Equirectangular HDR environment: nullopt = defaultEnvironmentPath(); an empty path = constant grey 0.5.
     // A file that cannot be read falls back to the constant with a warning.
     std::optional<std::filesystem::path> environment;
+    PointShadowSettings pointShadows;  // which lights cast cube shadows, and the cube resolution
 };
 
 struct FrameResult {
@@ -63,12 +68,17 @@ public:
     Renderer& operator=(const Renderer&) = delete;
 
     void setScene(const scene::Scene& scene);  // packs and uploads; replaces the previous scene
+    // The scene as posed now (after scene::evaluateAnimations): instance transforms, joint matrices and morph
+    // weights reach the next frame (pose_upload and skinning passes, only when something changed).
+    void setPose(const scene::Scene& scene);
     FrameResult renderOffscreen(const scene::CameraView& camera, uint32_t width, uint32_t height);
 
     // Everything but `shading` may change between frames.
     RenderSettings& settings() noexcept { return settings_; }
     // The PBR path's GPU scene (nullptr for Lambert or before setScene): the texture streamer's setTexture.
     GpuScene* gpuScene() noexcept { return gpuScene_.get(); }
+    // The point-shadow cubes of the last frame (nullptr when no light cast one): tests read them back.
+    const PointShadowMaps* pointShadowMaps() const noexcept { return pointShadows_.get(); }
     // Runs inside each frame's command buffer before the frame's graph is built (TextureStreamer::pump goes
     // here: textures it makes ready reach this frame's materials through the scene_update pass).
     void setBeforeFrame(std::function<void(VkCommandBuffer)> hook) { beforeFrame_ = std::move(hook); }
@@ -87,6 +97,8 @@ private:
     GpuLambertScene lambertScene_;
     bool hasLambertScene_ = false;
     std::unique_ptr<GpuScene> gpuScene_;
+    std::unique_ptr<PointShadowMaps> pointShadows_;  // only while a light casts a shadow
+    std::unique_ptr<BlendDraws> blendDraws_;         // only for scenes with BLEND draws
     std::optional<GpuEnvironment> environment_;
     bool environmentLoaded_ = false;  // environment_ holds the configured map (not the intensity-0 stand-in)
     std::vector<vk::Buffer> frameConstants_;  // one host-visible GpuFrame per frame slot

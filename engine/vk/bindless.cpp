@@ -139,6 +139,8 @@ SamplerIndex BindlessTable::addSampler(const SamplerDesc& desc) {
     info.maxLod = VK_LOD_CLAMP_NONE;
     info.anisotropyEnable = desc.maxAnisotropy > 1.0f ? VK_TRUE : VK_FALSE;
     info.maxAnisotropy = std::min(desc.maxAnisotropy, context_.info().limits.maxSamplerAnisotropy);
+    info.compareEnable = desc.compare ? VK_TRUE : VK_FALSE;
+    info.compareOp = desc.compareOp;
     VkSampler sampler = VK_NULL_HANDLE;
     check(vkCreateSampler(context_.device(), &info, nullptr, &sampler));
     uint32_t i = acquire(gpu::kBindingSamplers);

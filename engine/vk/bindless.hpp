@@ -24,6 +24,8 @@ struct SamplerDesc {
     VkSamplerAddressMode address = VK_SAMPLER_ADDRESS_MODE_REPEAT;
     float maxAnisotropy = 1.0f;  // > 1 enables anisotropic filtering when the device supports it
     VkSamplerReductionMode reduction = VK_SAMPLER_REDUCTION_MODE_WEIGHTED_AVERAGE;  // MIN/MAX for Hi-Z
+    bool compare = false;  // depth comparison (shadow samplers): returns reference `compareOp` texel, filtered
+    VkCompareOp compareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
 };
 
 class BindlessTable {

@@ -1,19 +1,18 @@
 #version 460
 // lighting.comp.glsl: deferred shading of every G-buffer pixel with geometry (depth < 1): glTF metallic-
 // roughness BRDF for each punctual light, ambient from the environment (SH9 diffuse irradiance + a
-// roughness-blurred radiance lookup with the split-sum environment BRDF, both times occlusion), plus emission.
+// roughness-blurred radiance lookup with the split-sum environment BRDF, both times occlusion), plus emission;
+// point-light cube shadows (include/surface_lighting.glsl holds the shading core, shared with transparency).
 // Ports IDKEngine's DeferredLighting/fragment.glsl as a compute pass (reference 2.19) without its bugs.
 #extension GL_GOOGLE_include_directive : require
 #include "scene_buffers.glsl"
 #include "bindless.glsl"
 #include "octahedral.glsl"
 #include "color.glsl"
-#include "pbr.glsl"
-#include "environment.glsl"
+#include "surface_lighting.glsl"
 
 layout(local_size_x = kLightingGroupSize, local_size_y = kLightingGroupSize) in;
 layout(push_constant, scalar) uniform Push { LightingPush p; };
-
 
 void main() {
     GpuFrame f = FrameBuffer(p.frame).frame;
@@ -38,22 +37,7 @@ void main() {
     }
 
     vec3 radiance = imageLoad(gImagesRgba16f[p.emissive], pixel).rgb;
-    LightBuffer lights = LightBuffer(f.lights);
-    for (uint i = 0; i < f.lightCount; ++i) {
-        vec3 l;
-        vec3 incident = lightIncidence(lights.data[i], position, l);
-        radiance += brdfCosine(baseColor, metallic, roughness, n, v, l) * incident;
-    }
-
-    // Ambient. Specular: split-sum, radiance from a box-filtered environment lookup times the directional albedo
-    // E_s = f0 A + B. Diffuse: c_diff / pi * E(n), weighted by (1 - E_s) as the direct term's (1 - F), so a white
-    // surface in a constant environment reflects exactly the environment (the furnace test checks it).
-    float NdotV = max(dot(n, v), 1e-4);
-    float r = clamp(roughness, kMinRoughness, 1.0);
-    vec3 specularAlbedo = environmentBrdfApprox(specularF0(baseColor, metallic), r, NdotV);
-    vec3 diffuse = (1.0 - clamp(specularAlbedo, 0.0, 1.0)) * baseColor * (1.0 - metallic) / kPi * shIrradiance(f, n);
-    vec3 specular = environmentRadiance(f, reflect(-v, n), environmentLod(f, r)) * specularAlbedo;
-    radiance += (diffuse + specular) * occlusion;
+    radiance += shadeSurface(f, p.pointShadows, position, n, v, baseColor, metallic, roughness, occlusion);
 
     imageStore(gImagesRgba16f[p.target], pixel, vec4(radiance, 1.0));  // alpha 1: geometry
 }

@@ -57,8 +57,9 @@ struct LightingPush {
     uint emissive;   // RGBA16F: emitted radiance
     uint depth;      // R32F: 0 near .. 1 far (1 = background)
     uint target;     // RGBA16F: linear radiance
+    DeviceAddress pointShadows;  // GpuPointShadow[lightCount] (shared/shadow_types.h), 0: no light casts one
 };
-IDK_GPU_SIZE(LightingPush, 32);
+IDK_GPU_SIZE(LightingPush, 40);
 
 // sky.comp: writes the environment where depth == 1.
 struct SkyPush {

@@ -1,0 +1,117 @@
+// point_shadows.cpp: renders one depth cube per shadow-casting point light from the scene's multi-draw-indirect
+// buffer, along the capability ladder "point-shadow cube faces": native = ONE instanced indirect draw per light
+// (instanceCount * 6, the vertex shader writes gl_Layer = face), fallback = six indirect draws per light into
+// single-face views. Also uploads the per-light shadow table the lighting passes read. Ports IDKEngine's
+// PointShadowManager.RenderShadowMaps (reference 2.12; its CPU face culling and GPU instance culling come later).
+#include <algorithm>
+#include <memory>
+
+#include "passes/passes.hpp"
+#include "render/point_shadow_maps.hpp"
+#include "shared/shadow_types.h"
+
+namespace idk::passes {
+namespace {
+
+constexpr VkFormat kShadowFormat = VK_FORMAT_D32_SFLOAT;
+
+void beginDepthRendering(VkCommandBuffer cmd, VkImageView view, uint32_t size, uint32_t layers) {
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = view;
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;  // the graph's DepthWrite layout
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    depth.clearValue.depthStencil = {1.0f, 0};  // far: nothing occludes
+    VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    rendering.renderArea = {{0, 0}, {size, size}};
+    rendering.layerCount = layers;
+    rendering.pDepthAttachment = &depth;
+    vkCmdBeginRendering(cmd, &rendering);
+    VkViewport viewport{0, 0, float(size), float(size), 0, 1};
+    VkRect2D scissor{{0, 0}, {size, size}};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
+}  // namespace
+
+PointShadowOutputs addPointShadowPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                      const SceneBuffers& scene, render::PointShadowMaps& maps,
+                                      const std::vector<gpu::GpuLight>& lights, IndirectDrawLog* log) {
+    auto frame = std::make_shared<render::PointShadowMaps::Frame>(maps.beginFrame(graph, lights));
+    graph::BufferDesc tableDesc;
+    tableDesc.size = std::max<size_t>(1, frame->table.size()) * sizeof(gpu::GpuPointShadow);
+    auto out = std::make_shared<PointShadowOutputs>();
+    out->table = graph.createBuffer("point shadow table", tableDesc);
+    const SceneBuffers s = scene;
+    const bool layered = maps.layered(), mask = maps.alphaMask();
+    const graph::BufferHandle draws = layered ? frame->layeredDraws : s.drawCommands;
+    graph.addPass(
+        "point_shadows",
+        [&](graph::PassBuilder& b) {
+            constexpr VkPipelineStageFlags2 kVs = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT;
+            constexpr VkPipelineStageFlags2 kFs = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+            out->table = b.write(out->table, graph::Access::TransferDst);
+            for (graph::TextureHandle cube : frame->cubes)
+                out->cubes.push_back(b.write(cube, graph::Access::DepthWrite));
+            b.read(s.vertices, graph::Access::StorageRead, kVs);
+            b.read(s.indices, graph::Access::VertexRead);
+            b.read(s.instances, graph::Access::StorageRead, mask ? kVs | kFs : kVs);
+            b.read(draws, graph::Access::IndirectRead);
+            if (s.colors.valid()) b.read(s.colors, graph::Access::StorageRead, kVs);
+            if (s.uv1.valid()) b.read(s.uv1, graph::Access::StorageRead, kVs);
+            if (mask) {
+                b.read(s.meshes, graph::Access::StorageRead, kFs);
+                b.read(s.materials, graph::Access::StorageRead, kFs);
+            }
+        },
+        [&ctx, &shaders, &maps, s, frame, out, draws, layered, mask, log](graph::PassContext& pc) {
+            VkCommandBuffer cmd = pc.commandBuffer();
+            // The table first (transfer, outside rendering): read by deferred_lighting and transparency.
+            const auto* bytes = reinterpret_cast<const uint8_t*>(frame->table.data());
+            VkDeviceSize total = frame->table.size() * sizeof(gpu::GpuPointShadow);
+            for (VkDeviceSize offset = 0; offset < total; offset += 65536)  // vkCmdUpdateBuffer's limit per call
+                vkCmdUpdateBuffer(cmd, pc.vkBuffer(out->table), offset, std::min<VkDeviceSize>(65536, total - offset),
+                                  bytes + offset);
+
+            vk::GraphicsPipelineDesc desc;
+            desc.vertex = layered ? vk::ShaderId::point_shadows_layered_vert : vk::ShaderId::point_shadows_face_vert;
+            if (mask) desc.fragment = vk::ShaderId::point_shadows_mask_frag;  // depth-only without MASK materials
+            desc.depthFormat = kShadowFormat;
+            desc.depthCompare = VK_COMPARE_OP_LESS;
+            desc.cull = VK_CULL_MODE_NONE;  // both sides cast (open meshes, single-sided walls)
+            desc.pushBytes = sizeof(gpu::PointShadowPush);
+            const vk::Pipeline& pipeline = shaders.graphics(desc);
+
+            gpu::PointShadowPush push{};
+            push.vertices = pc.buffer(s.vertices).address;
+            push.instances = pc.buffer(s.instances).address;
+            push.meshes = mask ? pc.buffer(s.meshes).address : 0;
+            push.materials = mask ? pc.buffer(s.materials).address : 0;
+            push.colors = s.colors.valid() ? pc.buffer(s.colors).address : 0;
+            push.uv1 = s.uv1.valid() ? pc.buffer(s.uv1).address : 0;
+            const uint32_t size = maps.resolution();
+            vk::bindPipeline(cmd, pipeline);  // pipeline, set and index buffer outlive the rendering scopes below
+            ctx.bindless().bind(cmd);
+            vkCmdBindIndexBuffer(cmd, pc.vkBuffer(s.indices), 0, VK_INDEX_TYPE_UINT32);
+            VkBuffer indirect = pc.vkBuffer(draws);
+            for (uint32_t c = 0; c < maps.casters().size(); ++c) {
+                push.lightPosition = frame->table[maps.casters()[c]].position;
+                push.nearPlane = frame->planes[c].x;
+                push.farPlane = frame->planes[c].y;
+                // Native: one draw, six instances per command, gl_Layer = instance. Fallback: face by face.
+                for (uint32_t face = 0; face < (layered ? 1u : 6u); ++face) {
+                    beginDepthRendering(cmd, layered ? maps.layeredView(c) : maps.faceView(c, face), size,
+                                        layered ? 6u : 1u);
+                    push.face = face;
+                    vk::pushConstants(cmd, ctx, push);
+                    vkCmdDrawIndexedIndirect(cmd, indirect, 0, s.drawCount, sizeof(VkDrawIndexedIndirectCommand));
+                    if (log) log->record(pc.passName(), s.drawCount);
+                    vkCmdEndRendering(cmd);
+                }
+            }
+        });
+    return *out;
+}
+
+}  // namespace idk::passes

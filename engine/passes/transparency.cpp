@@ -1,0 +1,93 @@
+// transparency.cpp: draws the scene's BLEND primitives after the opaque lighting and the sky, back to front (the
+// CPU-sorted second indirect buffer of render/blend_draws.cpp, ONE vkCmdDrawIndexedIndirect), forward-shaded with
+// the deferred path's BRDF, lights, point shadows and environment ambient, "over"-blended into the HDR target and
+// depth-tested against the G-buffer's depth copy without writing depth. Ports IDKEngine's RecordTransparent pass
+// (reference 2.14) with sorting in place of its k-buffer and resolve (order-independent transparency comes later).
+#include <memory>
+
+#include "passes/passes.hpp"
+#include "shared/shadow_types.h"
+
+namespace idk::passes {
+
+graph::TextureHandle addTransparencyPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                         const TransparencyInputs& in, graph::TextureHandle target,
+                                         IndirectDrawLog* log) {
+    auto written = std::make_shared<graph::TextureHandle>();
+    const TransparencyInputs t = in;
+    graph.addPass(
+        "transparency",
+        [&](graph::PassBuilder& b) {
+            constexpr VkPipelineStageFlags2 kVs = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT;
+            constexpr VkPipelineStageFlags2 kFs = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+            const SceneBuffers& s = t.scene;
+            *written = b.write(target, graph::Access::ColorReadWrite);
+            b.read(t.sortedDraws, graph::Access::IndirectRead);
+            b.read(t.depth, graph::Access::StorageRead, kFs);
+            b.read(t.environment, graph::Access::SampledRead, kFs);
+            b.read(t.frame, graph::Access::StorageRead, kVs | kFs);
+            b.read(s.vertices, graph::Access::StorageRead, kVs);
+            b.read(s.indices, graph::Access::VertexRead);
+            b.read(s.instances, graph::Access::StorageRead, kVs | kFs);
+            b.read(s.meshes, graph::Access::StorageRead, kFs);
+            b.read(s.materials, graph::Access::StorageRead, kFs);
+            if (s.lights.valid()) b.read(s.lights, graph::Access::StorageRead, kFs);
+            if (s.colors.valid()) b.read(s.colors, graph::Access::StorageRead, kVs);
+            if (s.uv1.valid()) b.read(s.uv1, graph::Access::StorageRead, kVs);
+            if (t.shadows.table.valid()) {
+                b.read(t.shadows.table, graph::Access::StorageRead, kFs);
+                for (graph::TextureHandle cube : t.shadows.cubes) b.read(cube, graph::Access::SampledRead, kFs);
+            }
+        },
+        [&ctx, &shaders, t, written, log](graph::PassContext& pc) {
+            VkCommandBuffer cmd = pc.commandBuffer();
+            const graph::PhysicalTexture& out = pc.texture(*written);
+            VkExtent2D extent{out.extent.width, out.extent.height};
+            vk::GraphicsPipelineDesc desc;
+            desc.vertex = vk::ShaderId::transparency_forward_vert;
+            desc.fragment = vk::ShaderId::transparency_forward_frag;
+            desc.colorFormats = {out.format};
+            desc.blend = {vk::BlendMode::Alpha};  // rgb: a src + (1 - a) dst; alpha (coverage): a + (1 - a) dst
+            desc.cull = VK_CULL_MODE_NONE;        // facing per material in the fragment shader, as the G-buffer
+            desc.pushBytes = sizeof(gpu::TransparencyPush);
+            const vk::Pipeline& pipeline = shaders.graphics(desc);
+
+            VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+            color.imageView = out.view;
+            color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+            color.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;  // the lit opaque surfaces and the sky
+            color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+            VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+            rendering.renderArea = {{0, 0}, extent};
+            rendering.layerCount = 1;
+            rendering.colorAttachmentCount = 1;
+            rendering.pColorAttachments = &color;
+            vkCmdBeginRendering(cmd, &rendering);
+            VkViewport viewport{0, 0, float(extent.width), float(extent.height), 0, 1};
+            VkRect2D scissor{{0, 0}, extent};
+            vkCmdSetViewport(cmd, 0, 1, &viewport);
+            vkCmdSetScissor(cmd, 0, 1, &scissor);
+            vk::bindPipeline(cmd, pipeline);
+            ctx.bindless().bind(cmd);
+            const SceneBuffers& s = t.scene;
+            gpu::TransparencyPush push{};
+            push.frame = pc.buffer(t.frame).address;
+            push.vertices = pc.buffer(s.vertices).address;
+            push.instances = pc.buffer(s.instances).address;
+            push.meshes = pc.buffer(s.meshes).address;
+            push.materials = pc.buffer(s.materials).address;
+            push.colors = s.colors.valid() ? pc.buffer(s.colors).address : 0;
+            push.uv1 = s.uv1.valid() ? pc.buffer(s.uv1).address : 0;
+            push.pointShadows = t.shadows.table.valid() ? pc.buffer(t.shadows.table).address : 0;
+            push.depth = pc.texture(t.depth).storageIndex;
+            vk::pushConstants(cmd, ctx, push);
+            vkCmdBindIndexBuffer(cmd, pc.vkBuffer(s.indices), 0, VK_INDEX_TYPE_UINT32);
+            vkCmdDrawIndexedIndirect(cmd, pc.vkBuffer(t.sortedDraws), 0, t.drawCount,
+                                     sizeof(VkDrawIndexedIndirectCommand));
+            if (log) log->record(pc.passName(), t.drawCount);
+            vkCmdEndRendering(cmd);
+        });
+    return *written;
+}
+
+}  // namespace idk::passes

@@ -1,0 +1,40 @@
+// surface_lighting.glsl: the radiance a surface point sends towards the eye, shared by the deferred lighting pass
+// and the forward transparency pass so both shade alike: the glTF BRDF for every punctual light (times its
+// point-shadow visibility when it casts one), plus ambient from the environment (SH9 diffuse irradiance and the
+// split-sum specular lookup, both times occlusion). Ports IDKEngine's DeferredLighting/fragment.glsl shading core.
+#ifndef IDK_SURFACE_LIGHTING_GLSL
+#define IDK_SURFACE_LIGHTING_GLSL
+#include "scene_buffers.glsl"
+#include "pbr.glsl"
+#include "environment.glsl"
+#include "shadows.glsl"
+
+// n: unit shading normal on the viewer's side; v: unit direction to the eye. pointShadows: GpuPointShadow[] per
+// light, or 0 when no light casts a shadow.
+vec3 shadeSurface(GpuFrame f, uint64_t pointShadows, vec3 position, vec3 n, vec3 v, vec3 baseColor, float metallic,
+                  float roughness, float occlusion) {
+    vec3 radiance = vec3(0.0);
+    LightBuffer lights = LightBuffer(f.lights);
+    for (uint i = 0; i < f.lightCount; ++i) {
+        vec3 l;
+        vec3 incident = lightIncidence(lights.data[i], position, l);
+        vec3 direct = brdfCosine(baseColor, metallic, roughness, n, v, l) * incident;
+        if (pointShadows != 0 && any(greaterThan(direct, vec3(0.0)))) {
+            GpuPointShadow s = PointShadowBuffer(pointShadows).data[i];
+            if (s.cube != kNoShadow) direct *= pointShadowVisibility(s, position, n, l);
+        }
+        radiance += direct;
+    }
+
+    // Ambient. Specular: split-sum, radiance from a box-filtered environment lookup times the directional albedo
+    // E_s = f0 A + B. Diffuse: c_diff / pi * E(n), weighted by (1 - E_s) as the direct term's (1 - F), so a white
+    // surface in a constant environment reflects exactly the environment (the furnace test checks it).
+    float NdotV = max(dot(n, v), 1e-4);
+    float r = clamp(roughness, kMinRoughness, 1.0);
+    vec3 specularAlbedo = environmentBrdfApprox(specularF0(baseColor, metallic), r, NdotV);
+    vec3 diffuse = (1.0 - clamp(specularAlbedo, 0.0, 1.0)) * baseColor * (1.0 - metallic) / kPi * shIrradiance(f, n);
+    vec3 specular = environmentRadiance(f, reflect(-v, n), environmentLod(f, r)) * specularAlbedo;
+    return radiance + (diffuse + specular) * occlusion;
+}
+
+#endif

@@ -13,6 +13,8 @@
 #include "vk/shader_library.hpp"
 #include "vk/transfer.hpp"
 
+// SYNC: this runs outside the render graph, so every dispatch that reads an earlier dispatch's storage writes
+// is preceded by vk::computeToComputeBarrier (engine/vk/transfer.hpp).
 namespace idk::render {
 namespace {
 
@@ -38,19 +40,6 @@ vk::Buffer createFilled(vk::Context& ctx, std::span<const T> values, const std::
 
 bool emptyBox(const gpu::GpuBlasNode& n) { return !(n.min.x <= n.max.x && n.min.y <= n.max.y && n.min.z <= n.max.z); }
 
-// SYNC: the previous refit level's node writes are made visible to the next level's node reads (compute ->
-// compute). The refit runs outside the render graph, so it orders its own dispatches.
-void computeToComputeBarrier(VkCommandBuffer cmd) {
-    VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    barrier.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    barrier.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    barrier.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    barrier.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dep.memoryBarrierCount = 1;
-    dep.pMemoryBarriers = &barrier;
-    vkCmdPipelineBarrier2(cmd, &dep);
-}
 
 constexpr std::array<uint32_t, 3> kTraceGroup = {gpu::kBvhTraceGroupSize, 1, 1};
 constexpr std::array<uint32_t, 3> kRefitGroup = {gpu::kBvhRefitGroupSize, 1, 1};
@@ -221,7 +210,7 @@ void recordRefit(VkCommandBuffer cmd, const BvhKernels& kernels, const GpuBlas& 
     push.order = blas.refitOrderAddress();
     bool first = true;
     for (const auto& [start, count] : blas.refitLevels()) {
-        if (!first) computeToComputeBarrier(cmd);
+        if (!first) vk::computeToComputeBarrier(cmd);
         first = false;
         push.levelStart = start;
         push.levelCount = count;

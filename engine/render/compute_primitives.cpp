@@ -10,9 +10,12 @@
 #include <vector>
 
 #include "shared/bindings.h"
+#include "vk/transfer.hpp"
 #include "vk/context.hpp"
 #include "vk/shader_library.hpp"
 
+// SYNC: this runs outside the render graph, so every dispatch that reads an earlier dispatch's storage writes
+// is preceded by vk::computeToComputeBarrier (engine/vk/transfer.hpp).
 namespace idk::render {
 namespace {
 
@@ -25,19 +28,6 @@ static_assert(sizeof(gpu::SumPush) <= gpu::kPushConstantBytes && sizeof(gpu::Rad
 constexpr std::array<uint32_t, 3> kGroup = {gpu::kComputeGroupSize, 1, 1};
 constexpr uint32_t kMaxCount = 1u << 31;
 
-// SYNC: the previous dispatch's storage writes are made visible to the next dispatch's storage reads and writes
-// (compute -> compute). These primitives run outside the render graph, so they order their own dispatches.
-void computeToComputeBarrier(VkCommandBuffer cmd) {
-    VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    barrier.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    barrier.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    barrier.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    barrier.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dep.memoryBarrierCount = 1;
-    dep.pMemoryBarriers = &barrier;
-    vkCmdPipelineBarrier2(cmd, &dep);
-}
 
 void checkCount(uint32_t count, const char* what) {
     if (count > kMaxCount) throw std::invalid_argument(std::string(what) + ": more than 2^31 elements");
@@ -128,7 +118,7 @@ void recordReduce(VkCommandBuffer cmd, const ComputeKernels& kernels, SumElement
         uint32_t groups = workgroupSumCount(n);
         GpuArray partials = scratch.at(used);
         sumPass(cmd, kernels, element, level, n, partials, kSumItemsPerInvocation, groups);
-        computeToComputeBarrier(cmd);
+        vk::computeToComputeBarrier(cmd);
         used += groups;
         level = partials;
         n = groups;
@@ -158,9 +148,9 @@ void scanLevel(VkCommandBuffer cmd, const ComputeKernels& k, GpuArray input, Gpu
     uint32_t blocks = vk::groupCount(count, kScanTile);
     GpuArray blockSums = scratch;
     sumPass(cmd, k, SumElement::Uint, input, count, blockSums, gpu::kScanItemsPerInvocation, blocks);
-    computeToComputeBarrier(cmd);
+    vk::computeToComputeBarrier(cmd);
     scanLevel(cmd, k, blockSums, blockSums, blocks, scratch.at(blocks));
-    computeToComputeBarrier(cmd);
+    vk::computeToComputeBarrier(cmd);
     scanAddPass(cmd, k, input, output, count, blockSums);
 }
 
@@ -239,11 +229,11 @@ void recordRadixSort(VkCommandBuffer cmd, const ComputeKernels& kernels, GpuArra
         gpu::RadixPush push{keysIn.buffer.value,    keysIn.offset,    keysOut.buffer.value,    keysOut.offset,
                             valuesIn.buffer.value,  valuesIn.offset,  valuesOut.buffer.value,  valuesOut.offset,
                             histograms.buffer.value, histograms.offset, count, pass * gpu::kRadixBits, layout.blocks};
-        if (pass > 0) computeToComputeBarrier(cmd);  // the previous scatter wrote keysIn and read the histograms
+        if (pass > 0) vk::computeToComputeBarrier(cmd);  // the previous scatter wrote keysIn and read the histograms
         dispatch(cmd, kernels, histogram, push, layout.blocks);
-        computeToComputeBarrier(cmd);
+        vk::computeToComputeBarrier(cmd);
         scanLevel(cmd, kernels, histograms, histograms, layout.histogramCount, scratch.at(layout.scanScratch));
-        computeToComputeBarrier(cmd);
+        vk::computeToComputeBarrier(cmd);
         dispatch(cmd, kernels, scatter, push, layout.blocks);
     }
 }

@@ -36,6 +36,13 @@ void uploadImage(Context& ctx, const Image& image, const void* texels, VkDeviceS
 // Reads mip 0 of layer 0 (tightly packed) from an image currently in currentLayout; the layout is restored.
 std::vector<uint8_t> readbackImage(Context& ctx, const Image& image, VkImageLayout currentLayout);
 
+// One global memory barrier (synchronization2), for GPU work recorded outside the render graph (uploads,
+// readbacks, the standalone compute primitives and BVH refit). Passes in the graph never call these.
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStages, VkAccessFlags2 srcAccess,
+                   VkPipelineStageFlags2 dstStages, VkAccessFlags2 dstAccess);
+// A dispatch's storage writes made visible to the next dispatch's storage reads and writes.
+void computeToComputeBarrier(VkCommandBuffer cmd);
+
 // Records a full-image layout transition (used outside the render graph: uploads, readbacks, tests).
 void transitionImage(VkCommandBuffer cmd, const Image& image, VkImageLayout from, VkImageLayout to);
 

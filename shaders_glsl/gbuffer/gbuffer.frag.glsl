@@ -8,6 +8,7 @@
 #include "bindless.glsl"
 #include "octahedral.glsl"
 #include "color.glsl"
+#include "material_eval.glsl"
 
 layout(push_constant, scalar) uniform Push { GBufferPush p; };
 
@@ -25,39 +26,7 @@ layout(location = 2) out vec4 outMaterial;  // RGBA8: metallic, roughness, occlu
 layout(location = 3) out vec4 outEmissive;  // RGBA16F: emitted radiance
 layout(location = 4) out float outDepth;    // R32F: the fragment's depth (what the depth test kept)
 
-vec4 sampleSlot(GpuTextureSlot slot) {
-    vec3 h = vec3(slot.texCoord == 1u ? inUv1 : inUv, 1.0);
-    vec2 st = vec2(dot(slot.row0, h), dot(slot.row1, h));
-    uint t = slot.texture, s = slot.samplerIndex;
-    return texture(sampler2D(gTextures2D[nonuniformEXT(t)], gSamplers[nonuniformEXT(s)]), st);
-}
-
-// Tangent (T) and glTF bitangent (B) at this fragment for the unit normal n.
-bool tangentFrame(vec3 n, out vec3 t, out vec3 b) {
-    if (inTangent.w != 0.0) {  // vertex tangents: B = cross(N, T) * w (glTF 2.0, 3.7.2.1)
-        t = inTangent.xyz - n * dot(n, inTangent.xyz);
-        float len2 = dot(t, t);
-        if (len2 < 1e-20) return false;
-        t *= inversesqrt(len2);
-        b = cross(n, t) * (inTangent.w < 0.0 ? -1.0 : 1.0);
-        return true;
-    }
-    // Cotangent frame from screen-space derivatives (Schuler 2013, "Normal Mapping Without Precomputed
-    // Tangents"), with the determinant's sign kept so mirrored UVs get the mirrored frame: T = grad u,
-    // B = -grad v (glTF's v runs down the image, its bitangent up).
-    vec3 dp1 = dFdx(inWorldPosition), dp2 = dFdy(inWorldPosition);
-    vec2 duv1 = dFdx(inUv), duv2 = dFdy(inUv);
-    vec3 dp2perp = cross(dp2, n), dp1perp = cross(n, dp1);
-    float det = dot(dp1, dp2perp);
-    t = dp2perp * duv1.x + dp1perp * duv2.x;
-    b = dp2perp * duv1.y + dp1perp * duv2.y;
-    float len2 = max(dot(t, t), dot(b, b));
-    if (len2 < 1e-30 || det == 0.0) return false;
-    float s = inversesqrt(len2) * sign(det);
-    t *= s;
-    b *= -s;
-    return true;
-}
+vec4 sampleSlot(GpuTextureSlot slot) { return sampleMaterialSlot(slot, inUv, inUv1); }
 
 void main() {
     GpuInstance instance = InstanceBuffer(p.instances).data[inDraw];
@@ -73,7 +42,7 @@ void main() {
 
     vec3 n = normalize(inNormal);
     vec3 t, b;
-    bool haveFrame = tangentFrame(n, t, b);
+    bool haveFrame = materialTangentFrame(n, inTangent, inWorldPosition, inUv, t, b);
     vec2 xy = nt.xy * 2.0 - 1.0;                          // remap first, then reconstruct z from it
     vec3 tn = vec3(xy * m.normalScale, sqrt(max(1.0 - dot(xy, xy), 0.0)));
     if (haveFrame) n = normalize(t * tn.x + b * tn.y + n * tn.z);

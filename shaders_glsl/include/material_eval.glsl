@@ -1,7 +1,7 @@
-// material_eval.glsl: glTF material inputs at a fragment for the forward transparency pass: a texture slot with
-// its KHR_texture_transform, and the tangent frame for normal mapping (vertex tangent with handedness, else a
-// screen-space cotangent frame). Same formulas as gbuffer/gbuffer.frag.glsl (which keeps its own copy), from
-// IDKEngine's GBuffer/fragment.glsl with its normal-map bugs fixed (reference section 5).
+// material_eval.glsl: glTF material inputs at a fragment, shared by the G-buffer and the forward transparency
+// pass: a texture slot with its KHR_texture_transform, and the tangent frame for normal mapping (vertex tangent
+// with handedness, else a screen-space cotangent frame). From IDKEngine's GBuffer/fragment.glsl with its
+// normal-map bugs fixed (reference section 5).
 #ifndef IDK_MATERIAL_EVAL_GLSL
 #define IDK_MATERIAL_EVAL_GLSL
 #include "scene_types.h"

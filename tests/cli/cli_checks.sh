@@ -82,6 +82,21 @@ PY
     "$idk" bvh "$bunny" --split-factor -1 2>/dev/null >/dev/null; [ $? -eq 2 ] || fail "negative split factor should exit 2"
     "$idk" bvh --help | grep -q -- "--split-factor" || fail "bvh --help does not describe --split-factor"
     ;;
+  all_shared_scenes)
+    # Issue 3's bar: every shared asset renders (or fails with one line naming the file and the cause).
+    shared="${IDK_SHARED_DIR:-$(cd "$(dirname "$0")/../../.." && pwd)/shared}"
+    count=0
+    while IFS= read -r scene; do
+      count=$((count + 1))
+      if ! "$idk" render "$scene" --size 32x32 --out "$tmp/scene.png" 2>"$tmp/err" >/dev/null; then
+        fail "$scene did not render: $(tail -2 "$tmp/err")"
+      fi
+      [ -s "$tmp/scene.png" ] || fail "$scene wrote no image"
+      grep -qiE "validation|assert|sanitizer" "$tmp/err" && fail "$scene: $(cat "$tmp/err")"
+    done < <(find "$shared/scenes" -type f \( -name '*.gltf' -o -name '*.glb' \) | sort)
+    [ "$count" -ge 20 ] || fail "found only $count shared scenes"
+    echo "rendered $count shared scenes"
+    ;;
   *) fail "unknown case" ;;
 esac
 echo "ok ($case_name)"

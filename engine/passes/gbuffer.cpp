@@ -4,6 +4,7 @@
 // Deviation: IDKEngine draws twice (single-sided with culling, then double-sided); here one draw with culling
 // off and back faces of single-sided materials rejected in the fragment shader. No GPU culling yet.
 #include "passes/passes.hpp"
+#include "passes/rendering.hpp"
 
 #include <memory>
 
@@ -90,13 +91,7 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
             depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
             depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;  // readers use the R32F copy
             depth.clearValue.depthStencil = {1.0f, 0};
-            VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
-            rendering.renderArea = {{0, 0}, extent};
-            rendering.layerCount = 1;
-            rendering.colorAttachmentCount = 5;
-            rendering.pColorAttachments = colors;
-            rendering.pDepthAttachment = &depth;
-            vkCmdBeginRendering(cmd, &rendering);
+            beginRendering(cmd, extent, colors, &depth);
             if (s.drawCount > 0) {
                 vk::GraphicsPipelineDesc desc;
                 desc.vertex = vk::ShaderId::gbuffer_gbuffer_vert;
@@ -108,10 +103,6 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
                 desc.pushBytes = sizeof(gpu::GBufferPush);
                 const vk::Pipeline& pipeline = shaders.graphics(desc);
 
-                VkViewport viewport{0, 0, float(extent.width), float(extent.height), 0, 1};
-                VkRect2D scissor{{0, 0}, extent};
-                vkCmdSetViewport(cmd, 0, 1, &viewport);
-                vkCmdSetScissor(cmd, 0, 1, &scissor);
                 vk::bindPipeline(cmd, pipeline);
                 ctx.bindless().bind(cmd);
                 gpu::GBufferPush push{pc.buffer(frame).address,

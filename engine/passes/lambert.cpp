@@ -2,6 +2,7 @@
 // depth buffer. The first pass of the port (the deferred PBR renderer replaces it); no direct IDKEngine
 // counterpart, its shading follows the original's forward "light spheres" style without textures.
 #include "passes/passes.hpp"
+#include "passes/rendering.hpp"
 
 #include <memory>
 
@@ -51,18 +52,8 @@ LambertOutputs addLambertPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
             depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
             depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;  // depth is not needed after this pass
             depth.clearValue.depthStencil = {1.0f, 0};
-            VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
-            rendering.renderArea = {{0, 0}, extent};
-            rendering.layerCount = 1;
-            rendering.colorAttachmentCount = 1;
-            rendering.pColorAttachments = &color;
-            rendering.pDepthAttachment = &depth;
-            vkCmdBeginRendering(cmd, &rendering);
+            beginRendering(cmd, extent, {&color, 1}, &depth);
 
-            VkViewport viewport{0, 0, float(extent.width), float(extent.height), 0, 1};
-            VkRect2D scissor{{0, 0}, extent};
-            vkCmdSetViewport(cmd, 0, 1, &viewport);
-            vkCmdSetScissor(cmd, 0, 1, &scissor);
             vk::bindPipeline(cmd, pipeline);
             ctx.bindless().bind(cmd);
             gpu::LambertPush push{settings.viewProjection, settings.ambient, scene.vertexIndex.value,

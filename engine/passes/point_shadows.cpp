@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "passes/passes.hpp"
+#include "passes/rendering.hpp"
 #include "render/point_shadow_maps.hpp"
 #include "shared/shadow_types.h"
 
@@ -22,15 +23,7 @@ void beginDepthRendering(VkCommandBuffer cmd, VkImageView view, uint32_t size, u
     depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
     depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     depth.clearValue.depthStencil = {1.0f, 0};  // far: nothing occludes
-    VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    rendering.renderArea = {{0, 0}, {size, size}};
-    rendering.layerCount = layers;
-    rendering.pDepthAttachment = &depth;
-    vkCmdBeginRendering(cmd, &rendering);
-    VkViewport viewport{0, 0, float(size), float(size), 0, 1};
-    VkRect2D scissor{{0, 0}, {size, size}};
-    vkCmdSetViewport(cmd, 0, 1, &viewport);
-    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    beginRendering(cmd, {size, size}, {}, &depth, layers);
 }
 
 }  // namespace

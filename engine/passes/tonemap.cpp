@@ -4,6 +4,7 @@
 // without the bloom/volumetric inputs or dithering; the curve's sources are in tonemap/tonemap.frag.glsl.
 // Deviation: a fragment pass (see shared/deferred_types.h TonemapPush for why).
 #include "passes/passes.hpp"
+#include "passes/rendering.hpp"
 
 #include <memory>
 
@@ -38,16 +39,7 @@ graph::TextureHandle addTonemapPass(graph::RenderGraph& graph, vk::Context& ctx,
             color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
             color.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;  // every pixel is written
             color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-            VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
-            rendering.renderArea = {{0, 0}, extent};
-            rendering.layerCount = 1;
-            rendering.colorAttachmentCount = 1;
-            rendering.pColorAttachments = &color;
-            vkCmdBeginRendering(cmd, &rendering);
-            VkViewport viewport{0, 0, float(extent.width), float(extent.height), 0, 1};
-            VkRect2D scissor{{0, 0}, extent};
-            vkCmdSetViewport(cmd, 0, 1, &viewport);
-            vkCmdSetScissor(cmd, 0, 1, &scissor);
+            beginRendering(cmd, extent, {&color, 1});
             vk::bindPipeline(cmd, pipeline);
             ctx.bindless().bind(cmd);
             gpu::TonemapPush push{pc.texture(hdr).storageIndex, exposure};

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "passes/passes.hpp"
+#include "passes/rendering.hpp"
 #include "shared/shadow_types.h"
 
 namespace idk::passes {
@@ -57,16 +58,7 @@ graph::TextureHandle addTransparencyPass(graph::RenderGraph& graph, vk::Context&
             color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
             color.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;  // the lit opaque surfaces and the sky
             color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-            VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
-            rendering.renderArea = {{0, 0}, extent};
-            rendering.layerCount = 1;
-            rendering.colorAttachmentCount = 1;
-            rendering.pColorAttachments = &color;
-            vkCmdBeginRendering(cmd, &rendering);
-            VkViewport viewport{0, 0, float(extent.width), float(extent.height), 0, 1};
-            VkRect2D scissor{{0, 0}, extent};
-            vkCmdSetViewport(cmd, 0, 1, &viewport);
-            vkCmdSetScissor(cmd, 0, 1, &scissor);
+            beginRendering(cmd, extent, {&color, 1});
             vk::bindPipeline(cmd, pipeline);
             ctx.bindless().bind(cmd);
             const SceneBuffers& s = t.scene;

@@ -44,6 +44,7 @@ ResourceState afterWrite(VkImageLayout layout, VkPipelineStageFlags2 stages, VkA
     s.layout = layout;
     s.writeStages = stages;
     s.unflushedWrites = access & kWriteAccessMask;
+    s.lastWriteAccess = s.unflushedWrites;
     return s;
 }
 
@@ -76,7 +77,11 @@ Transition applyUse(const ResourceState& previous, const Use& next) noexcept {
     // itself made visible to the destination scope, so the first access after it needs nothing more.
     if (isImage && (next.discard || previous.layout != info.layout)) {
         b.srcStages = earlierStages;
-        b.srcAccess = previous.unflushedWrites;
+        // SYNC: an earlier barrier may already have made the last write available (write -> barrier -> read ->
+        // transition). The spec needs nothing more then (the execution dependency chains through the read), but
+        // the synchronization validation layer (1.3.239) reports WRITE_AFTER_WRITE for a transition whose source
+        // access scope misses the last write, so the write's access is repeated: a redundant availability operation.
+        b.srcAccess = previous.unflushedWrites | previous.lastWriteAccess;
         b.dstAccess = access;
         // SYNC: UNDEFINED as old layout lets the driver drop the contents (first use of a transient, memory
         // that belonged to another resource, a persistent copy about to be overwritten).
@@ -148,6 +153,7 @@ ResourceState mergeForAliasing(const ResourceState& a, const ResourceState& b) n
     s.writeStages = a.writeStages | b.writeStages;
     s.readStages = a.readStages | b.readStages;
     s.unflushedWrites = a.unflushedWrites | b.unflushedWrites;
+    s.lastWriteAccess = a.lastWriteAccess | b.lastWriteAccess;
     s.aliasedMemory = a.aliasedMemory || b.aliasedMemory || s.writeStages != VK_PIPELINE_STAGE_2_NONE ||
                       s.readStages != VK_PIPELINE_STAGE_2_NONE || s.unflushedWrites != VK_ACCESS_2_NONE;
     return s;

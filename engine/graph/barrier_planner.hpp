@@ -32,6 +32,9 @@ struct ResourceState {
     VkPipelineStageFlags2 writeStages = VK_PIPELINE_STAGE_2_NONE;
     // Write access bits of the last write that no barrier has made available yet (srcAccessMask).
     VkAccessFlags2 unflushedWrites = VK_ACCESS_2_NONE;
+    // Write access bits of the last write even after a barrier flushed them (NONE once a layout transition
+    // followed it). A later layout transition repeats them in its srcAccessMask: see Rule 1 in the .cpp.
+    VkAccessFlags2 lastWriteAccess = VK_ACCESS_2_NONE;
     // Union of the stages of every read since the last write: a later write (or layout transition) waits on
     // ALL of them (WAR), even when the reads needed no barrier among themselves.
     VkPipelineStageFlags2 readStages = VK_PIPELINE_STAGE_2_NONE;

@@ -213,15 +213,31 @@ void RenderGraph::planBarriers() {
             const uint32_t r = use.resource;
             const detail::ResourceNode& node = resources_[r];
             ResourcePlan& plan = c.resources[r];
-            if (node.origin == Origin::Transient && pos == plan.firstPos && plan.slot != kInvalidId) {
+            if (node.origin == Origin::Transient && pos == plan.firstPos) {
                 // SYNC (aliasing): the first use of a transient starts from UNDEFINED and waits on the last
                 // accesses of every earlier occupant of its bytes: this frame's (lifetimes ended before pos)
                 // and earlier frames' (the heap's tail), because the same memory is reused in submission order.
-                const AliasSlot& slot = c.aliasing.slots[plan.slot];
-                ResourceState seed = mergeForAliasing(pool_.heapTail(c.aliasing.heaps[slot.heap].key), {});
-                for (const AliasSlot& other : c.aliasing.slots) {
-                    if (other.resource != r && bytesOverlap(slot, other) && other.lastPass < pos) {
-                        seed = mergeForAliasing(seed, states[other.resource]);
+                ResourceState seed;
+                if (plan.slot != kInvalidId) {
+                    const AliasSlot& slot = c.aliasing.slots[plan.slot];
+                    seed = mergeForAliasing(pool_.heapTail(c.aliasing.heaps[slot.heap].key), {});
+                    for (const AliasSlot& other : c.aliasing.slots) {
+                        if (other.resource != r && bytesOverlap(slot, other) && other.lastPass < pos) {
+                            seed = mergeForAliasing(seed, states[other.resource]);
+                        }
+                    }
+                }
+                // SYNC (validation): a transient image's first use also waits on this frame's earlier accesses of
+                // every other image. Nothing requires it (their bytes are elsewhere), but the synchronization
+                // validation layer (1.3.239) cannot see where an optimal-tiling image's texels lie in its
+                // VkDeviceMemory and reports WRITE_AFTER_WRITE against earlier writes to other images of the same
+                // memory. The extra execution dependency orders passes that the graph runs in order anyway.
+                if (node.kind == ResourceKind::Image) {
+                    for (uint32_t o = 0; o < resources_.size(); ++o) {
+                        if (o != r && resources_[o].kind == ResourceKind::Image && c.resources[o].used &&
+                            c.resources[o].firstPos < pos) {
+                            seed = mergeForAliasing(seed, states[o]);
+                        }
                     }
                 }
                 states[r] = seed;

@@ -2,6 +2,7 @@
 // the exact area-weighted mip filter (integer arithmetic for linear channels, double in linear light for sRGB
 // ones) and the magenta checker placeholder. Port of the decode step of IDKEngine's AsyncTextureLoader.
 #include "scene/texture_decode.hpp"
+#include "scene/jpeg_markers.hpp"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
@@ -279,6 +280,12 @@ DecodedTexture decodeImage(const Image& image, bool srgb, std::string_view label
                        [](unsigned char c) { return char(std::tolower(c)); });
     }
     if (bytes->empty()) return failed(label, "empty image data (0 bytes)", srgb);
+    std::vector<uint8_t> withoutProfiles;
+    if (bytes->size() >= 2 && (*bytes)[0] == 0xFF && (*bytes)[1] == 0xD8) {
+        size_t removed = 0;
+        withoutProfiles = withoutJpegIccProfiles(*bytes, removed);  // see jpeg_markers.hpp
+        if (removed > 0) bytes = &withoutProfiles;
+    }
     const std::string hint = formatHint(*bytes, image.mimeType, extension);
     static constexpr uint8_t kPngSignature[8] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
     if (bytes->size() >= 8 && std::equal(kPngSignature, kPngSignature + 8, bytes->begin())) {

@@ -1,12 +1,15 @@
 // renderer.cpp: the frame graphs: the deferred PBR frame (GPU scene + environment imported, G-buffer, point
 // shadows, lighting, sky, transparency, tonemap) and the foundation's Lambert frame, both into an imported target
-// that the graph leaves ready for the readback copy. Ports IDKEngine's RasterPipeline.Render frame order
-// (reference 1.5, steps 6.6-6.13, 9).
+// that the graph leaves ready for the readback copy (renderOffscreen) or that is blitted into the caller's image
+// before the caller's own passes (renderFrame, the viewer's swapchain path). Ports IDKEngine's
+// RasterPipeline.Render frame order (reference 1.5, steps 6.6-6.13, 9).
 #include "render/renderer.hpp"
 
 #include <glm/gtc/packing.hpp>
 
+#include <algorithm>
 #include <cstring>
+#include <memory>
 #include <stdexcept>
 
 #include "core/log.hpp"
@@ -44,10 +47,13 @@ Renderer::Renderer(vk::Context& ctx, vk::ShaderLibrary& shaders, RenderSettings 
 
 Renderer::~Renderer() {
     ctx_.waitIdle();
+    if (sceneImage_) ctx_.destroy(sceneImage_);
     if (hasLambertScene_) destroyLambertScene(ctx_, lambertScene_);
     gpuScene_.reset();
     if (environment_) destroyEnvironment(ctx_, *environment_);
     for (vk::Buffer& b : frameConstants_) ctx_.destroy(b);
+    for (vk::Buffer& b : lightBuffers_)
+        if (b) ctx_.destroy(b);
 }
 
 void Renderer::setScene(const scene::Scene& scene) {
@@ -87,8 +93,25 @@ const GpuEnvironment& Renderer::environment() {
     return *environment_;
 }
 
-void Renderer::renderPbr(graph::RenderGraph& graph, const scene::CameraView& camera, uint32_t width, uint32_t height,
-                         const vk::Image& target, passes::IndirectDrawLog& log) {
+// updatePointShadowMaps for the frame's light list (the scene's plus the extra lights).
+bool Renderer::updateShadowMaps(const std::vector<gpu::GpuLight>& lights) {
+    if (extraLights_.empty()) return updatePointShadowMaps(ctx_, *gpuScene_, settings_.pointShadows, pointShadows_);
+    std::vector<uint32_t> casters = pointShadowCasters(lights, settings_.pointShadows.maxLights);
+    if (casters.empty() || gpuScene_->drawCount() == 0 || settings_.pointShadows.resolution == 0) {
+        pointShadows_.reset();
+        return false;
+    }
+    const bool layered = ctx_.ladder("point-shadow cube faces").chosen == vk::Rung::Native;
+    if (!pointShadows_ || !pointShadows_->matches(casters, settings_.pointShadows.resolution, layered)) {
+        pointShadows_.reset();
+        pointShadows_ = std::make_unique<PointShadowMaps>(ctx_, gpuScene_->data(), std::move(casters),
+                                                          settings_.pointShadows.resolution, layered);
+    }
+    return true;
+}
+
+graph::TextureHandle Renderer::renderPbr(graph::RenderGraph& graph, const scene::CameraView& camera, uint32_t width,
+                                         uint32_t height, const vk::Image& target, passes::IndirectDrawLog& log) {
     const GpuEnvironment& env = environment();
     GpuScene& s = *gpuScene_;
     if (frameConstants_.empty()) {
@@ -110,8 +133,29 @@ void Renderer::renderPbr(graph::RenderGraph& graph, const scene::CameraView& cam
     f.viewProjection = scene::projectionMatrix(camera, aspect) * scene::viewMatrix(camera);
     f.inverseViewProjection = glm::inverse(f.viewProjection);
     f.cameraPosition = camera.position;
-    f.lightCount = s.lightCount();
-    f.lights = s.lights() ? s.lights().address : 0;
+    // Extra lights (the viewer's shot lights) join the scene's in a per-slot host-visible copy of the list.
+    const std::vector<gpu::GpuLight>& lights = extraLights_.empty() ? s.data().lights : combinedLights_;
+    if (!extraLights_.empty()) {
+        combinedLights_ = s.data().lights;
+        combinedLights_.insert(combinedLights_.end(), extraLights_.begin(), extraLights_.end());
+        if (lightBuffers_.size() < frames_.framesInFlight()) lightBuffers_.resize(frames_.framesInFlight());
+        vk::Buffer& buffer = lightBuffers_[frames_.slotIndex()];
+        const VkDeviceSize bytes = combinedLights_.size() * sizeof(gpu::GpuLight);
+        if (!buffer || buffer.size < bytes) {
+            if (buffer) ctx_.destroyDeferred(buffer);
+            vk::BufferDesc desc;
+            desc.size = std::max<VkDeviceSize>(bytes, 64 * sizeof(gpu::GpuLight));
+            desc.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+            desc.memory = vk::MemoryUsage::Upload;
+            desc.name = "frame lights " + std::to_string(frames_.slotIndex());
+            desc.category = "frame constants";
+            buffer = ctx_.createBuffer(desc);
+        }
+        vk::uploadBuffer(ctx_, buffer, combinedLights_.data(), bytes);
+    }
+    const vk::Buffer& lightBuffer = extraLights_.empty() ? s.lights() : lightBuffers_[frames_.slotIndex()];
+    f.lightCount = uint32_t(lights.size());
+    f.lights = lightBuffer ? lightBuffer.address : 0;
     f.extent = glm::uvec2(width, height);
     for (uint32_t k = 0; k < gpu::kShCoefficients; ++k)
         f.irradianceSh[k] = env.irradianceSh[k] * settings_.environmentIntensity;
@@ -136,7 +180,7 @@ void Renderer::renderPbr(graph::RenderGraph& graph, const scene::CameraView& cam
     sb.instances = importBuffer(graph, "scene instances", s.instances(), readByGBuffer);
     sb.drawCommands = importBuffer(graph, "scene draw commands", s.drawCommands());
     sb.materials = importBuffer(graph, "scene materials", s.materialBuffer(), readByGBuffer);
-    sb.lights = importBuffer(graph, "scene lights", s.lights());
+    sb.lights = importBuffer(graph, "scene lights", lightBuffer);
     sb.colors = importBuffer(graph, "scene vertex colors", s.colors());
     sb.uv1 = importBuffer(graph, "scene uv1", s.uv1());
     sb.drawCount = s.drawCount();
@@ -155,8 +199,8 @@ void Renderer::renderPbr(graph::RenderGraph& graph, const scene::CameraView& cam
     // Shadows before the G-buffer: the installed validation layer counts every draw that uses the bindless
     // sampled array (the G-buffer's) as reading the cubes, so their write must not follow such a draw in the frame.
     passes::PointShadowOutputs shadows;
-    if (updatePointShadowMaps(ctx_, s, settings_.pointShadows, pointShadows_))
-        shadows = passes::addPointShadowPass(graph, ctx_, shaders_, sb, *pointShadows_, s.data().lights, &log);
+    if (updateShadowMaps(lights))
+        shadows = passes::addPointShadowPass(graph, ctx_, shaders_, sb, *pointShadows_, lights, &log);
     passes::GBufferOutputs g = passes::addGBufferPass(graph, ctx_, shaders_, sb, frame, &log);
     graph::PhysicalTexture output = physicalOf(target);
     output.storageIndex = outputStorage_.value;
@@ -177,11 +221,9 @@ void Renderer::renderPbr(graph::RenderGraph& graph, const scene::CameraView& cam
                                      frame, g.depth, environmentTexture, shadows};
         hdr = passes::addTransparencyPass(graph, ctx_, shaders_, t, hdr, &log);
     }
-    if (display) {
-        graph.markOutput(passes::addTonemapPass(graph, ctx_, shaders_, hdr, out, settings_.exposure));
-    } else {
-        graph.markOutput(hdr);
-    }
+    graph::TextureHandle last = display ? passes::addTonemapPass(graph, ctx_, shaders_, hdr, out, settings_.exposure) : hdr;
+    graph.markOutput(last);
+    return last;
 }
 
 FrameResult Renderer::renderOffscreen(const scene::CameraView& camera, uint32_t width, uint32_t height) {
@@ -209,6 +251,7 @@ FrameResult Renderer::renderOffscreen(const scene::CameraView& camera, uint32_t 
         }
     } guard{*this, target};
 
+    hasTimings_ = false;  // this frame's timestamps replace renderFrame's
     VkCommandBuffer cmd = frames_.begin();
     graph::RenderGraph graph(pool_, {width, height});
     passes::IndirectDrawLog log;
@@ -254,6 +297,89 @@ FrameResult Renderer::renderOffscreen(const scene::CameraView& camera, uint32_t 
         for (size_t i = 0; i < result.image.pixels.size(); ++i) result.image.pixels[i] = glm::unpackHalf1x16(halves[i]);
     }
     return result;
+}
+
+// ---- renderFrame: the viewer's path (same frame graph, no readback, caller's passes after it) ----
+
+FrameInfo Renderer::renderFrame(const scene::CameraView& camera, const FrameTarget& target) {
+    if (settings_.shading != Shading::Pbr || settings_.output != OutputKind::Display)
+        throw std::logic_error("Renderer::renderFrame: needs PBR shading with Display output");
+    if (!gpuScene_) throw std::logic_error("Renderer::renderFrame: call setScene first");
+    const uint32_t width = target.image.extent.width, height = target.image.extent.height;
+    if (width == 0 || height == 0) throw std::logic_error("Renderer::renderFrame: the target has no pixels");
+
+    // The backend keeps one set of timestamp queries: wait for the previous frame so its timings can be read
+    // before this frame resets them (the viewer trades CPU/GPU overlap for per-pass timings every frame).
+    FrameInfo info;
+    ctx_.waitFor(lastFrameValue_);
+    if (hasTimings_) info.passTimes = backend_.passTimings();
+
+    if (!sceneImage_ || sceneImage_.extent.width != width || sceneImage_.extent.height != height) {
+        if (sceneImage_) ctx_.destroyDeferred(sceneImage_);
+        vk::ImageDesc desc;
+        desc.format = VK_FORMAT_R8G8B8A8_UNORM;  // what renderOffscreen's Display path renders into
+        desc.extent = {width, height, 1};
+        desc.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;  // tonemap target; blit source (TRANSFER_SRC is implied)
+        desc.name = "viewer scene image";
+        desc.category = "render targets";
+        sceneImage_ = ctx_.createImage(desc);
+    }
+
+    VkCommandBuffer cmd = frames_.begin();
+    graph::RenderGraph graph(pool_, {width, height});
+    passes::IndirectDrawLog log;
+    try {
+        if (beforeFrame_) beforeFrame_(cmd);
+        graph::TextureHandle scene = renderPbr(graph, camera, width, height, sceneImage_, log);
+        graph::TextureHandle out = graph.importTexture("frame target", target.image, target.initial, target.finalUse);
+        auto blitted = std::make_shared<graph::TextureHandle>();
+        graph.addPass(
+            "present_blit",
+            [&](graph::PassBuilder& b) {
+                b.read(scene, graph::Access::TransferSrc);
+                *blitted = b.write(out, graph::Access::TransferDst);
+            },
+            [scene, blitted, width, height](graph::PassContext& pc) {
+                // A blit, not a copy: it converts RGBA8 into the target's format (swapchains are often BGRA8).
+                VkImageBlit2 region{VK_STRUCTURE_TYPE_IMAGE_BLIT_2};
+                region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+                region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+                region.srcOffsets[1] = {int32_t(width), int32_t(height), 1};
+                region.dstOffsets[1] = {int32_t(width), int32_t(height), 1};
+                VkBlitImageInfo2 blit{VK_STRUCTURE_TYPE_BLIT_IMAGE_INFO_2};
+                blit.srcImage = pc.image(scene);
+                blit.srcImageLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+                blit.dstImage = pc.image(*blitted);
+                blit.dstImageLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+                blit.regionCount = 1;
+                blit.pRegions = &region;
+                blit.filter = VK_FILTER_NEAREST;
+                vkCmdBlitImage2(pc.commandBuffer(), &blit);
+            });
+        graph::TextureHandle last = *blitted;
+        if (target.addPasses) last = target.addPasses(graph, last);
+        graph.markOutput(last);
+        graph.compile();
+        info.passesRun = graph.executionOrder();
+        graph.execute(cmd);
+    } catch (...) {
+        lastFrameValue_ = frames_.end();  // submit what was recorded so the frame slot stays usable
+        hasTimings_ = false;
+        throw;
+    }
+    lastFrameValue_ = frames_.end(target.waits, target.signals);
+    info.timelineValue = lastFrameValue_;
+    hasTimings_ = true;
+    return info;
+}
+
+std::vector<uint8_t> Renderer::readLastFrame(uint32_t& width, uint32_t& height) {
+    width = height = 0;
+    if (!sceneImage_ || lastFrameValue_ == 0) return {};
+    ctx_.waitFor(lastFrameValue_);
+    width = sceneImage_.extent.width;
+    height = sceneImage_.extent.height;
+    return vk::readbackImage(ctx_, sceneImage_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
 }
 
 }  // namespace idk::render

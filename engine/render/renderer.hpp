@@ -1,5 +1,6 @@
 // renderer.hpp: renders one frame of a scene into an offscreen image and reads it back (the headless path of
-// `idk render` and of the GPU tests). Builds the frame's render graph from the settings and the scene's
+// `idk render` and of the GPU tests), or into a caller's image without readback (the viewer's swapchain path:
+// renderFrame, one code path with the same passes, plus the caller's own passes such as the UI). Builds the frame's render graph from the settings and the scene's
 // features, executes it in a frame slot, waits, and returns the pixels with the passes that ran, their GPU
 // times and the indirect draws they recorded. Ports the role of IDKEngine's RasterPipeline.Render.
 #pragma once
@@ -60,6 +61,25 @@ struct FrameResult {
     std::string graphDot;                    // RenderGraph::toGraphviz() of the frame
 };
 
+// renderFrame's target: the caller's colour image (e.g. a swapchain image). The frame is rendered exactly as
+// renderOffscreen renders it (Display output) into the renderer's own RGBA8 scene image, which is blitted into
+// the target; then `addPasses` (the UI) may draw over the target in the same graph.
+struct FrameTarget {
+    graph::PhysicalTexture image;                 // needs TRANSFER_DST usage (plus what addPasses needs)
+    graph::ResourceState initial;                 // state when the frame starts (UNDEFINED: contents discarded)
+    graph::FinalUse finalUse{graph::Access::Present};
+    // Returns the target's last version; gets the version the blit wrote. Runs while the graph is built.
+    std::function<graph::TextureHandle(graph::RenderGraph&, graph::TextureHandle target)> addPasses;
+    std::vector<VkSemaphoreSubmitInfo> waits;     // e.g. the swapchain's acquire semaphore
+    std::vector<VkSemaphoreSubmitInfo> signals;   // e.g. the semaphore present waits on
+};
+
+struct FrameInfo {
+    std::vector<std::string> passesRun;      // this frame's execution order after culling
+    std::vector<vk::ScopeTiming> passTimes;  // GPU time per pass of the PREVIOUS frame (empty for the first)
+    uint64_t timelineValue = 0;              // signalled when this frame's commands completed
+};
+
 class Renderer {
 public:
     Renderer(vk::Context& ctx, vk::ShaderLibrary& shaders, RenderSettings settings = {});
@@ -72,7 +92,17 @@ public:
     // weights reach the next frame (pose_upload and skinning passes, only when something changed).
     void setPose(const scene::Scene& scene);
     FrameResult renderOffscreen(const scene::CameraView& camera, uint32_t width, uint32_t height);
+    // Renders into target.image (size = its extent) and submits without waiting for the GPU (PBR shading,
+    // Display output; throws std::logic_error otherwise). Before recording it waits for this renderer's previous
+    // frame, so that frame's pass timings can be read and its resources reused.
+    FrameInfo renderFrame(const scene::CameraView& camera, const FrameTarget& target);
+    // The last renderFrame's image before the caller's passes (RGBA8 sRGB-encoded, top row first, as
+    // FrameResult::display): waits for that frame. Empty before the first renderFrame.
+    std::vector<uint8_t> readLastFrame(uint32_t& width, uint32_t& height);
 
+    // Lights that are not part of the scene (the viewer's shot lights), appended to the scene's lights from the
+    // next frame on; they light, cast point shadows (PointShadowSettings) and move as the caller updates them.
+    void setExtraLights(std::vector<gpu::GpuLight> lights) { extraLights_ = std::move(lights); }
     // Everything but `shading` may change between frames.
     RenderSettings& settings() noexcept { return settings_; }
     // The PBR path's GPU scene (nullptr for Lambert or before setScene): the texture streamer's setTexture.
@@ -84,9 +114,11 @@ public:
     void setBeforeFrame(std::function<void(VkCommandBuffer)> hook) { beforeFrame_ = std::move(hook); }
 
 private:
-    void renderPbr(graph::RenderGraph& graph, const scene::CameraView& camera, uint32_t width, uint32_t height,
-                   const vk::Image& target, passes::IndirectDrawLog& log);
+    // Returns the output's last version (already marked as the graph's output).
+    graph::TextureHandle renderPbr(graph::RenderGraph& graph, const scene::CameraView& camera, uint32_t width,
+                                   uint32_t height, const vk::Image& target, passes::IndirectDrawLog& log);
     const GpuEnvironment& environment();
+    bool updateShadowMaps(const std::vector<gpu::GpuLight>& lights);
 
     vk::Context& ctx_;
     vk::ShaderLibrary& shaders_;
@@ -104,6 +136,12 @@ private:
     std::vector<vk::Buffer> frameConstants_;  // one host-visible GpuFrame per frame slot
     vk::StorageImageIndex outputStorage_;     // the frame's output image while it renders
     std::function<void(VkCommandBuffer)> beforeFrame_;
+    std::vector<gpu::GpuLight> extraLights_;
+    std::vector<gpu::GpuLight> combinedLights_;  // scene lights + extra lights of the frame being built
+    std::vector<vk::Buffer> lightBuffers_;       // per frame slot, only while there are extra lights
+    vk::Image sceneImage_;            // renderFrame's pre-UI image (recreated when the size changes)
+    uint64_t lastFrameValue_ = 0;     // timeline value of the last renderFrame
+    bool hasTimings_ = false;         // the backend's timestamps belong to a completed renderFrame
 };
 
 }  // namespace idk::render

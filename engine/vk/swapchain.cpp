@@ -56,6 +56,8 @@ void Swapchain::create() {
             }
     }
 
+    presentMode_ = mode;
+
     // SPEC: currentExtent 0xFFFFFFFF means the surface takes the swapchain's size.
     extent_ = caps.currentExtent.width != UINT32_MAX ? caps.currentExtent : desc_.preferredExtent;
     extent_.width = std::clamp(extent_.width, caps.minImageExtent.width, caps.maxImageExtent.width);
@@ -71,7 +73,7 @@ void Swapchain::create() {
     info.imageColorSpace = chosen.colorSpace;
     info.imageExtent = extent_;
     info.imageArrayLayers = 1;
-    info.imageUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    info.imageUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;  // blit + UI pass
     info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
     info.preTransform = caps.currentTransform;
     info.compositeAlpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR;
@@ -119,6 +121,12 @@ void Swapchain::create() {
 
 void Swapchain::resize(VkExtent2D extent) {
     desc_.preferredExtent = extent;
+    outOfDate_ = true;
+}
+
+void Swapchain::setVsync(bool vsync) {
+    if (desc_.vsync == vsync) return;
+    desc_.vsync = vsync;
     outOfDate_ = true;
 }
 

@@ -36,6 +36,9 @@ public:
     std::optional<AcquiredImage> acquire();
     void present(const AcquiredImage& image);
     void resize(VkExtent2D extent);  // recreate at the next acquire
+    void setVsync(bool vsync);       // FIFO or MAILBOX/IMMEDIATE from the next acquire (recreates)
+    bool vsync() const noexcept { return desc_.vsync; }
+    VkPresentModeKHR presentMode() const noexcept { return presentMode_; }
 
     VkFormat format() const noexcept { return format_; }
     VkExtent2D extent() const noexcept { return extent_; }
@@ -50,6 +53,7 @@ private:
     SwapchainDesc desc_;
     VkSwapchainKHR swapchain_ = VK_NULL_HANDLE;
     VkFormat format_ = VK_FORMAT_UNDEFINED;
+    VkPresentModeKHR presentMode_ = VK_PRESENT_MODE_FIFO_KHR;
     VkExtent2D extent_{};
     std::vector<VkImage> images_;
     std::vector<VkImageView> views_;

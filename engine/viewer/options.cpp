@@ -1,0 +1,71 @@
+// options.cpp: parses the idk-viewer command line with the same parser as `idk`.
+#include "viewer/options.hpp"
+
+#include <cmath>
+
+#include "core/cli.hpp"
+
+namespace idk::viewer {
+
+const char* const kViewerHelp =
+    "usage: idk-viewer [SCENE.gltf|SCENE.glb] [options]\n"
+    "  SCENE             glTF 2.0 file; without one, the embedded Cornell box\n"
+    "  --size WxH        window size (default 1280x720)\n"
+    "  --frames N        exit after N rendered frames (default: run until closed)\n"
+    "  --screenshot F    write the last frame (before the UI) as PNG F on exit\n"
+    "  --script F        timed input script: lines 'FRAME down|up|press KEY', 'FRAME mouse DX DY',\n"
+    "                    'FRAME cursor X Y', 'FRAME resize W H' (keys: A..Z, 0..9, SPACE, SHIFT, CTRL, ESCAPE, F11,\n"
+    "                    MOUSE_RIGHT...)\n"
+    "  --fixed-dt S      advance time by S seconds per frame instead of the wall clock (reproducible scripts)\n"
+    "  --no-ui           no ImGui (input still works)\n"
+    "  --shader-dir DIR  GLSL sources for hot reload (key 1, --watch); default: the source tree's shaders_glsl\n"
+    "  --watch           recompile shaders whose source changed, every frame\n"
+    "  --capture F       camera recording file for Ctrl+R / Ctrl+Space (default capture.idkcap)\n"
+    "  --no-vsync        start without vsync (V toggles)\n"
+    "  --sync-textures   load every texture before the first frame (as idk render) instead of streaming\n"
+    "  --no-validation   do not load the Vulkan validation layer\n"
+    "  --fallback        take the portable rung of every capability ladder\n"
+    "controls: W/A/S/D move, Space up, Shift faster, E GUI/FPS mode, T pause time, right-click select (GUI) or\n"
+    "  shoot a light (FPS), Ctrl+R record, Ctrl+Space replay, G hide GUI, V vsync, F11 fullscreen, 1 recompile\n"
+    "  shaders, Esc exit. Without a display use `idk render SCENE --out F.png`.\n";
+
+ViewerOptions parseViewerOptions(const std::vector<std::string>& argv) {
+    core::CliArgs args = core::parseCli(
+        argv, {{"--no-ui", "--watch", "--no-vsync", "--sync-textures", "--no-validation", "--fallback", "--help"},
+               {"--size", "--frames", "--screenshot", "--script", "--shader-dir", "--capture", "--fixed-dt"}});
+    ViewerOptions o;
+    o.help = args.has("--help");
+    if (args.positional.size() > 1) throw core::CliError("more than one scene given");
+    if (!args.positional.empty()) o.scene = args.positional[0];
+    if (auto size = args.get("--size")) std::tie(o.width, o.height) = core::parseSize(*size);
+    if (auto frames = args.get("--frames")) {
+        double n = core::parseNumber("--frames", *frames);
+        if (n < 1 || n != std::floor(n)) throw core::CliError("--frames '" + *frames + "': give a whole number >= 1");
+        o.frames = uint64_t(n);
+    }
+    if (auto dt = args.get("--fixed-dt")) {
+        double s = core::parseNumber("--fixed-dt", *dt);
+        if (!(s > 0 && s <= 1)) throw core::CliError("--fixed-dt '" + *dt + "': give seconds in (0, 1]");
+        o.fixedDt = float(s);
+    }
+    if (auto f = args.get("--screenshot")) {
+        if (std::filesystem::path(*f).extension() != ".png")
+            throw core::CliError("--screenshot '" + *f + "': the file must end in .png");
+        o.screenshot = *f;
+    }
+    if (auto f = args.get("--script")) o.script = *f;
+    if (auto d = args.get("--shader-dir")) {
+        if (!std::filesystem::is_directory(*d)) throw core::CliError("--shader-dir '" + *d + "': not a directory");
+        o.shaderDir = *d;
+    }
+    if (auto f = args.get("--capture")) o.captureFile = *f;
+    o.ui = !args.has("--no-ui");
+    o.watch = args.has("--watch");
+    o.vsync = !args.has("--no-vsync");
+    o.syncTextures = args.has("--sync-textures");
+    o.validation = !args.has("--no-validation");
+    o.fallback = args.has("--fallback");
+    return o;
+}
+
+}  // namespace idk::viewer

@@ -1,0 +1,187 @@
+// pt_math_test.cpp: the path tracer's shared maths (shared/pt_sampling.h) compiled as GLSL
+// (conformance/pt_bsdf_probe.comp.glsl) against its C++ compilation, on 4096 random cases: the RNG bit for bit;
+// BSDF evaluation (f cos and pdf), BSDF sampling (lobe, direction, weight, pdf), light sampling and pdf, the
+// equirectangular mapping, texel lookup, environment pdf and sampling within the stated tolerances. Tolerances:
+// values relative 2e-3 of max(|C++|, 1e-2) (GPU transcendentals: Vulkan allows sin/cos 2^-11 absolute error, the
+// GGX peak amplifies float rounding); directions 2e-3 absolute. Discontinuities (lobe choice, texel borders,
+// cone and horizon tests) may flip for cases within rounding of the edge: at most 0.5% of the cases.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "shared/pt_probe_types.h"
+#include "shared/pt_sampling.h"
+#include "support/gpu_fixture.hpp"
+#include "vk/transfer.hpp"
+
+namespace idk::test {
+namespace {
+
+using namespace idk::gpu;
+
+struct ProbePush {
+    uint64_t cases;
+    uint64_t results;
+    uint32_t count, envWidth, envHeight, pad;
+};
+static_assert(sizeof(ProbePush) == 32);
+
+constexpr uint32_t kEnvWidth = 64, kEnvHeight = 32;
+
+glm::vec3 randomUnit(std::mt19937& gen) {
+    std::normal_distribution<float> n(0.0f, 1.0f);
+    return glm::normalize(glm::vec3(n(gen), n(gen), n(gen)) + glm::vec3(1e-6f));
+}
+
+GpuPtProbeCase randomCase(std::mt19937& gen, uint32_t i) {
+    std::uniform_real_distribution<float> uni(0.0f, 1.0f);
+    GpuPtProbeCase c{};
+    PtSurface& s = c.surface;
+    s.baseColor = glm::vec3(uni(gen), uni(gen), uni(gen));
+    s.alpha = 1.0f;
+    s.metallic = i % 5 == 0 ? 1.0f : (i % 5 == 1 ? 0.0f : uni(gen));
+    s.roughness = i % 11 == 0 ? 0.0f : 0.1f + 0.9f * uni(gen);  // exact 0: delta lobes
+    s.transmission = i % 3 == 0 ? uni(gen) : 0.0f;
+    s.ior = i % 7 == 0 ? 1.0f : 1.0f + 1.5f * uni(gen);
+    s.thickness = i % 2 == 0 ? 1.0f : 0.0f;
+    s.attenuationColor = glm::vec3(1.0f);
+    s.geometricNormal = randomUnit(gen);
+    s.shadingNormal = glm::normalize(s.geometricNormal + 0.3f * randomUnit(gen));
+    c.wo = randomUnit(gen);
+    c.wi = randomUnit(gen);
+    c.u = glm::vec3(uni(gen), uni(gen), uni(gen));
+    c.pixel = uint32_t(gen());
+    c.sampleIndex = uint32_t(gen());
+    c.seed = uint32_t(gen());
+    GpuPtLight& l = c.light;
+    l.type = i % 4;  // point, spot, directional, triangle
+    l.position = 2.0f * randomUnit(gen);
+    l.direction = l.type == kPtLightTriangle ? randomUnit(gen) * (0.2f + uni(gen)) : randomUnit(gen);
+    l.edge2 = randomUnit(gen) * (0.2f + uni(gen));
+    l.range = i % 8 < 4 ? 0.0f : 5.0f;
+    l.intensity = glm::vec3(uni(gen), uni(gen), uni(gen)) * 10.0f;
+    l.spotScale = 1.0f / 0.3f;
+    l.spotOffset = -0.5f * l.spotScale;
+    l.flags = i % 3 == 0 ? kPtLightDoubleSided : (i % 3 == 1 ? kPtLightFlipped : 0u);
+    c.point = 0.5f * randomUnit(gen);
+    c.lightU = glm::vec2(uni(gen), uni(gen));
+    c.envDir = randomUnit(gen);
+    c.envU = glm::vec2(uni(gen), uni(gen));
+    c.envTexel = uint32_t(gen() % (kEnvWidth * kEnvHeight));
+    c.envProbability = uni(gen) * 1e-3f;
+    return c;
+}
+
+GpuPtProbeResult cpuResult(const GpuPtProbeCase& c) {
+    GpuPtProbeResult r{};
+    r.evalValue = ptEvalBsdf(c.surface, c.wo, c.wi, r.evalPdf);
+    ptSampleBsdf(c.surface, c.wo, c.u, r.sampleWi, r.sampleWeight, r.samplePdf, r.sampleLobe);
+    PtRng rng = ptRngInit(c.pixel, c.sampleIndex, c.seed);
+    r.rngUints.x = ptNextUint(rng);
+    r.rngUints.y = ptNextUint(rng);
+    r.rngUints.z = ptNextUint(rng);
+    r.rngUints.w = ptNextUint(rng);
+    r.rngFloat = ptRandom(rng);
+    r.hash = ptHash(c.pixel);
+    PtLightSample ls;
+    r.lightOk = ptSampleLight(c.light, c.point, c.lightU, ls) ? 1u : 0u;
+    r.lightDistance = ls.distance;
+    r.lightPdf = ls.pdf;
+    r.lightDirection = ls.direction;
+    r.lightRadiance = ls.radiance;
+    r.lightPdfAtSample = ptLightPdf(c.light, c.point, ls.position);
+    r.envUv = ptEquirectUv(c.envDir);
+    r.envTexel = ptEnvironmentTexel(c.envDir, kEnvWidth, kEnvHeight);
+    r.envPdf = ptEnvironmentPdf(c.envProbability, c.envDir, kEnvWidth, kEnvHeight);
+    r.envSamplePdf = ptSampleEnvironment(c.envTexel, c.envProbability, kEnvWidth, kEnvHeight, c.envU, r.envSampleDir);
+    return r;
+}
+
+bool close(float gpu, float cpu, float rel = 2e-3f, float floor = 1e-2f) {
+    return std::abs(gpu - cpu) <= rel * std::max(std::abs(cpu), floor);
+}
+bool close3(glm::vec3 gpu, glm::vec3 cpu, float rel = 2e-3f, float floor = 1e-2f) {
+    const float scale = std::max({std::abs(cpu.x), std::abs(cpu.y), std::abs(cpu.z), floor});
+    return glm::all(glm::lessThanEqual(glm::abs(gpu - cpu), glm::vec3(rel * scale)));
+}
+
+class PtMathTest : public GpuTest {};
+
+TEST_F(PtMathTest, GlslMatchesCpp) {
+    const uint32_t count = 4096;
+    std::mt19937 gen(2024);
+    std::vector<GpuPtProbeCase> cases(count);
+    for (uint32_t i = 0; i < count; ++i) cases[i] = randomCase(gen, i);
+
+    vk::Buffer in = ctx().createBuffer({count * sizeof(GpuPtProbeCase), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                        vk::MemoryUsage::GpuOnly, "pt probe cases", "test"});
+    vk::Buffer out = ctx().createBuffer({count * sizeof(GpuPtProbeResult), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                         vk::MemoryUsage::GpuOnly, "pt probe results", "test"});
+    vk::uploadBuffer(ctx(), in, std::span<const GpuPtProbeCase>(cases));
+    const vk::Pipeline& probe =
+        shaders().compute({vk::ShaderId::conformance_pt_bsdf_probe_comp, {}, sizeof(ProbePush), {{64, 1, 1}}});
+    ProbePush push{in.address, out.address, count, kEnvWidth, kEnvHeight, 0};
+    ctx().runImmediate([&](VkCommandBuffer cmd) {
+        vk::bindPipeline(cmd, probe);
+        vk::pushConstants(cmd, ctx(), push);
+        vkCmdDispatch(cmd, vk::groupCount(count, 64), 1, 1);
+    });
+    const std::vector<GpuPtProbeResult> gpu = vk::downloadBuffer<GpuPtProbeResult>(ctx(), out, count);
+    ctx().destroy(in);
+    ctx().destroy(out);
+
+    uint32_t lobeFlips = 0, lightFlips = 0, texelFlips = 0, evaluated = 0, sampled = 0, lit = 0;
+    for (uint32_t i = 0; i < count; ++i) {
+        const GpuPtProbeResult cpu = cpuResult(cases[i]);
+        const GpuPtProbeResult& g = gpu[i];
+        // RNG: bit for bit.
+        ASSERT_EQ(g.hash, cpu.hash) << i;
+        ASSERT_EQ(g.rngUints, cpu.rngUints) << i;
+        ASSERT_EQ(g.rngFloat, cpu.rngFloat) << i;
+        // BSDF evaluation.
+        EXPECT_TRUE(close3(g.evalValue, cpu.evalValue)) << i;
+        EXPECT_TRUE(close(g.evalPdf, cpu.evalPdf)) << i << ": " << g.evalPdf << " vs " << cpu.evalPdf;
+        evaluated += cpu.evalPdf > 0.0f ? 1 : 0;
+        // BSDF sampling.
+        if (g.sampleLobe != cpu.sampleLobe) {
+            ++lobeFlips;
+        } else if (cpu.sampleLobe != kPtLobeNone) {
+            EXPECT_TRUE(close3(g.sampleWi, cpu.sampleWi, 2e-3f, 1.0f)) << i;
+            EXPECT_TRUE(close3(g.sampleWeight, cpu.sampleWeight, 5e-3f)) << i;
+            EXPECT_TRUE(close(g.samplePdf, cpu.samplePdf, 5e-3f)) << i << ": " << g.samplePdf << " vs " << cpu.samplePdf;
+            ++sampled;
+        }
+        // Lights.
+        if (g.lightOk != cpu.lightOk) {
+            ++lightFlips;
+        } else if (cpu.lightOk) {
+            EXPECT_TRUE(close(g.lightDistance, cpu.lightDistance)) << i;
+            EXPECT_TRUE(close(g.lightPdf, cpu.lightPdf)) << i;
+            EXPECT_TRUE(close3(g.lightDirection, cpu.lightDirection, 2e-3f, 1.0f)) << i;
+            EXPECT_TRUE(close3(g.lightRadiance, cpu.lightRadiance)) << i;
+            EXPECT_TRUE(close(g.lightPdfAtSample, cpu.lightPdfAtSample)) << i;
+            ++lit;
+        }
+        // Environment.
+        EXPECT_NEAR(g.envUv.x, cpu.envUv.x, 1e-4f) << i;
+        EXPECT_NEAR(g.envUv.y, cpu.envUv.y, 1e-4f) << i;
+        if (g.envTexel != cpu.envTexel) ++texelFlips;
+        EXPECT_TRUE(close(g.envPdf, cpu.envPdf)) << i;
+        EXPECT_TRUE(close3(g.envSampleDir, cpu.envSampleDir, 2e-3f, 1.0f)) << i;
+        EXPECT_TRUE(close(g.envSamplePdf, cpu.envSamplePdf)) << i;
+    }
+    EXPECT_LE(lobeFlips, count / 200);
+    EXPECT_LE(lightFlips, count / 200);
+    EXPECT_LE(texelFlips, count / 200);
+    // The random cases exercise every path.
+    EXPECT_GT(evaluated, count / 4);
+    EXPECT_GT(sampled, count / 2);
+    EXPECT_GT(lit, count / 3);
+    std::printf("pt_math: %u evaluated, %u sampled, %u lit; flips: lobe %u, light %u, texel %u\n", evaluated, sampled,
+                lit, lobeFlips, lightFlips, texelFlips);
+}
+
+}  // namespace
+}  // namespace idk::test

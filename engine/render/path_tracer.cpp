@@ -1,0 +1,354 @@
+// path_tracer.cpp: PathTracer: scene upload for tracing (GpuScene buffers and bindless textures, BLAS/TLAS for our
+// BVH, driver acceleration structures for ray query, the path-tracing tables), the per-batch render graphs of
+// pt_stages.cpp, progress, timings and readback.
+#include "render/path_tracer.hpp"
+
+#include <glm/gtc/packing.hpp>
+
+#include <chrono>
+#include <cstring>
+#include <map>
+#include <stdexcept>
+
+#include "graph/render_graph.hpp"
+#include "core/log.hpp"
+#include "pathtrace/cpu_path_tracer.hpp"
+#include "pathtrace/pt_scene.hpp"
+#include "render/environment.hpp"
+#include "render/gpu_scene.hpp"
+#include "render/pt_frame.hpp"
+#include "render/pt_geometry.hpp"
+#include "render/pt_stages.hpp"
+#include "render/pt_tables.hpp"
+#include "render/texture_streamer.hpp"
+#include "render/vk_graph_backend.hpp"
+#include "vk/acceleration_structure.hpp"
+#include "vk/context.hpp"
+#include "vk/frames.hpp"
+#include "vk/shader_library.hpp"
+#include "vk/transfer.hpp"
+
+namespace idk::render {
+
+const char* traversalName(PtTraversal t) {
+    switch (t) {
+        case PtTraversal::Auto: return "auto";
+        case PtTraversal::Bvh: return "bvh";
+        case PtTraversal::RayQuery: return "rayquery";
+    }
+    return "?";
+}
+
+namespace {
+
+vk::Buffer uploadTable(vk::Context& ctx, const void* data, size_t bytes, const std::string& name) {
+    vk::BufferDesc desc;
+    desc.size = std::max<VkDeviceSize>(bytes, 16);
+    desc.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    desc.name = name;
+    desc.category = "path tracer";
+    vk::Buffer b = ctx.createBuffer(desc);
+    if (bytes > 0) vk::uploadBuffer(ctx, b, data, bytes);
+    return b;
+}
+
+vk::Buffer hostBuffer(vk::Context& ctx, size_t bytes, const std::string& name) {
+    vk::BufferDesc desc;
+    desc.size = bytes;
+    desc.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    desc.memory = vk::MemoryUsage::Upload;
+    desc.name = name;
+    desc.category = "path tracer";
+    return ctx.createBuffer(desc);
+}
+
+PtTraversal resolveTraversal(const vk::Context& ctx, PtTraversal requested) {
+    if (requested == PtTraversal::RayQuery && !vk::rayQuerySupported(ctx))
+        throw std::runtime_error("--traversal rayquery: " + ctx.info().name + " lacks VK_KHR_ray_query");
+    if (requested != PtTraversal::Auto) return requested;
+    if (ctx.ladder("ray traversal").chosen != vk::Rung::Native) return PtTraversal::Bvh;
+    // A CPU implementation's ray query (lavapipe) is no hardware path: measured 2 spp of TransmissionTest at
+    // 128x128 in 21.4 s against 0.62 s with our BVH, so auto keeps the portable rung there.
+    return ctx.info().type == VK_PHYSICAL_DEVICE_TYPE_CPU ? PtTraversal::Bvh : PtTraversal::RayQuery;
+}
+
+core::ImageRgba32f toImage(const std::vector<uint8_t>& bytes, VkFormat format, uint32_t w, uint32_t h) {
+    core::ImageRgba32f img;
+    img.width = w;
+    img.height = h;
+    img.pixels.assign(size_t(w) * h * 4, 0.0f);
+    for (size_t i = 0; i < size_t(w) * h; ++i) {
+        if (format == VK_FORMAT_R32G32B32A32_SFLOAT) {
+            std::memcpy(&img.pixels[4 * i], bytes.data() + 16 * i, 16);
+        } else if (format == VK_FORMAT_R16G16B16A16_SFLOAT) {
+            const auto* halves = reinterpret_cast<const uint16_t*>(bytes.data()) + 4 * i;
+            for (int c = 0; c < 4; ++c) img.pixels[4 * i + c] = glm::unpackHalf1x16(halves[c]);
+        } else {  // R32_SFLOAT
+            std::memcpy(&img.pixels[4 * i], bytes.data() + 4 * i, 4);
+            img.pixels[4 * i + 3] = 1.0f;
+        }
+    }
+    return img;
+}
+
+// "pt_trace s3 b1" -> "trace"; the denoiser's own passes ("denoise_atrous_2", ...) -> "denoise".
+std::string stageOf(const std::string& passName) {
+    if (passName.rfind("pt_", 0) != 0) return passName.substr(0, passName.find('_'));
+    return passName.substr(3, passName.find(' ') - 3);
+}
+
+}  // namespace
+
+struct PathTracer::Impl {
+    Impl(vk::Context& c, vk::ShaderLibrary& s, const PathTracerOptions& o)
+        : ctx(c), shaders(s), options(o), backend(c), pool(backend), frames(c, 1) {}
+
+    vk::Context& ctx;
+    vk::ShaderLibrary& shaders;
+    PathTracerOptions options;
+    PtTraversal traversal = PtTraversal::Bvh;
+    std::unique_ptr<GpuScene> gpuScene;
+    PtGpuGeometry geometry;
+    std::unique_ptr<vk::AccelerationStructures> accel;
+    PtTables tables;
+    bool hasAlpha = false;
+    vk::Buffer sceneDesc, camera, accumDesc;
+    VkGraphBackend backend;
+    graph::ResourcePool pool;
+    vk::FrameRing frames;
+    PtFrameResources frame;
+    std::map<const void*, graph::ResourceState> states;
+
+    ~Impl() {
+        ctx.waitIdle();
+        destroyPtFrame(ctx, frame);
+        destroyPtTables(ctx, tables);
+        destroyPtGeometry(ctx, geometry);
+        for (vk::Buffer* b : {&sceneDesc, &camera, &accumDesc})
+            if (b->buffer) ctx.destroy(*b);
+    }
+
+    void ensureFrame(uint32_t w, uint32_t h) {
+        if (frame.width == w && frame.height == h && (!options.sortRays || frame.keys.buffer)) return;
+        ctx.waitIdle();
+        destroyPtFrame(ctx, frame);
+        states.clear();
+        frame = createPtFrame(ctx, w, h, options.sortRays);
+        gpu::GpuPtAccum a{};
+        a.color = frame.accumColor.address;
+        a.albedo = frame.accumAlbedo.address;
+        a.normal = frame.accumNormal.address;
+        a.depth = frame.accumDepth.address;
+        a.guides = frame.guides.address;
+        a.colorImage = frame.colorStorage.value;
+        a.albedoImage = frame.albedoStorage.value;
+        a.normalImage = frame.normalStorage.value;
+        a.depthImage = frame.depthStorage.value;
+        vk::uploadBuffer(ctx, accumDesc, &a, sizeof(a));
+    }
+
+    PtStageConfig config(const PathTraceSettings& settings) const {
+        PtStageConfig c;
+        c.rayQuery = traversal == PtTraversal::RayQuery;
+        c.sort = options.sortRays;
+        c.hasAlpha = hasAlpha;
+        c.nee = settings.nee;
+        c.blasStack = geometry.blasStackSize;
+        c.tlasStack = geometry.tlasStackSize;
+        c.scene = sceneDesc.address;
+        c.camera = camera.address;
+        c.accum = accumDesc.address;
+        c.maxDepth = std::max(settings.maxDepth, 1u);
+        c.rouletteDepth = settings.rouletteDepth;
+        c.seed = settings.seed;
+        return c;
+    }
+
+    void setCamera(const scene::CameraView& view, uint32_t w, uint32_t h) {
+        gpu::GpuPtCamera cam{};
+        cam.inverseViewProjection = pathtrace::inverseViewProjection(view, w, h);  // the CPU reference's matrix
+        cam.position = view.position;
+        vk::uploadBuffer(ctx, camera, &cam, sizeof(cam));
+    }
+
+    // Records `build` into one graph, submits it and waits; returns the graph's pass timings.
+    std::vector<vk::ScopeTiming> runGraph(const std::function<void(const PtStageContext&)>& build,
+                                          const PtStageConfig& cfg) {
+        VkCommandBuffer cmd = frames.begin();
+        graph::RenderGraph graph(pool, {frame.width, frame.height});
+        PtGraphResources res(graph, states);
+        try {
+            PtStageContext sc{ctx, shaders, graph, res, frame, cfg};
+            build(sc);
+            graph.compile();
+            res.saveStates();
+            graph.execute(cmd);
+        } catch (...) {
+            ctx.waitFor(frames.end());
+            throw;
+        }
+        ctx.waitFor(frames.end());
+        return backend.passTimings();
+    }
+};
+
+namespace {
+
+// PT-A's scene for options.environment: the HDR file (default: the raster's), or a constant grey 0.5 for an empty
+// path; a file that cannot be read falls back to the constant with a warning, as the raster does.
+pathtrace::PathTraceScene buildScene(const scene::Scene& scene, const PathTracerOptions& options) {
+    const std::filesystem::path file = options.environment.value_or(defaultEnvironmentPath());
+    if (!file.empty()) {
+        try {
+            const core::ImageRgba32f image = core::readImage(file);
+            return pathtrace::buildPathTraceScene(scene, &image, options.environmentIntensity);
+        } catch (const std::runtime_error& e) {
+            core::logWarning("environment: ", e.what(), "; using a constant grey environment instead");
+        }
+    }
+    return pathtrace::buildPathTraceScene(scene, nullptr, options.environmentIntensity,
+                                          glm::vec3(0.5f * options.environmentIntensity));
+}
+
+}  // namespace
+
+PathTracer::PathTracer(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene::Scene& scene, PathTracerOptions options)
+    : PathTracer(ctx, shaders, scene, buildScene(scene, options), options) {}
+
+PathTracer::PathTracer(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene::Scene& scene,
+                       const pathtrace::PathTraceScene& pts, PathTracerOptions options)
+    : impl_(std::make_unique<Impl>(ctx, shaders, options)) {
+    Impl& m = *impl_;
+    m.traversal = resolveTraversal(ctx, options.traversal);
+    if (options.denoise && !denoiserAvailable())
+        throw std::runtime_error("path tracer: --denoise needs engine/passes/denoise.hpp, which this build lacks");
+    if (m.traversal == PtTraversal::Bvh && !bvhTraversalSupported(ctx))
+        throw std::runtime_error(ctx.info().name + " lacks shaderFloat64, which our BVH traversal needs");
+    // Materials with bindless texture slots come from GpuScene (its geometry buffers are not traced).
+    m.gpuScene = std::make_unique<GpuScene>(ctx, scene);
+    std::vector<PtTextureBinding> textures(scene.textures.size());
+    if (m.gpuScene->features().hasTextures) {
+        TextureStreamer streamer(ctx, scene, [&](uint32_t texture, vk::SampledIndex image, vk::SamplerIndex sampler) {
+            m.gpuScene->setTexture(texture, image, sampler);
+            if (texture < textures.size()) textures[texture] = {image.value, sampler.value};
+        });
+        streamer.finishSynchronously();
+    }
+    // The patched material slots reach the GPU before any trace reads them (nothing is in flight yet).
+    if (m.gpuScene->materialBuffer())
+        vk::uploadBuffer(ctx, m.gpuScene->materialBuffer(), std::span<const gpu::GpuMaterial>(m.gpuScene->materials()));
+    m.gpuScene->clearMaterialsDirty();
+    m.hasAlpha = pts.alphaTesting;
+
+    m.geometry = uploadPtGeometry(ctx, pts);
+    if (m.traversal == PtTraversal::RayQuery) {
+        std::vector<vk::AccelMesh> meshes;
+        for (const pathtrace::PtGeometry& g : pts.geometries) meshes.push_back({g.positions, g.triangles});
+        std::vector<vk::AccelInstance> instances;
+        for (uint32_t i = 0; i < pts.instances.size(); ++i)
+            instances.push_back({pts.instances[i].objectToWorld, pts.instances[i].blasIndex, i});
+        m.accel = std::make_unique<vk::AccelerationStructures>(ctx, meshes, instances);
+    }
+    m.tables = uploadPtTables(ctx, pts, textures, PtTextureBinding{});
+    gpu::GpuPtSceneDesc d = m.tables.desc;
+    d.tlas = m.geometry.tlas->descAddress();
+    d.accel = m.accel ? m.accel->tlasAddress() : 0;
+    d.geometries = m.geometry.geometryTable.address;
+    d.instances = m.geometry.instanceTable.address;
+    d.materials = m.gpuScene->materialBuffer().address;
+    d.instanceCount = uint32_t(m.geometry.instances.size());
+    m.sceneDesc = uploadTable(ctx, &d, sizeof(d), "pt scene");
+    m.camera = hostBuffer(ctx, sizeof(gpu::GpuPtCamera), "pt camera");
+    m.accumDesc = hostBuffer(ctx, sizeof(gpu::GpuPtAccum), "pt accumulation");
+}
+
+PathTracer::~PathTracer() = default;
+
+PtTraversal PathTracer::traversal() const noexcept { return impl_->traversal; }
+
+PathTraceResult PathTracer::render(const scene::CameraView& camera, uint32_t width, uint32_t height,
+                                   const PathTraceSettings& settings, const Progress& progress) {
+    if (width == 0 || height == 0) throw std::invalid_argument("PathTracer::render: empty image size");
+    Impl& m = *impl_;
+    const auto start = std::chrono::steady_clock::now();
+    m.ensureFrame(width, height);
+    m.setCamera(camera, width, height);
+    const PtStageConfig cfg = m.config(settings);
+    PathTraceResult result;
+    result.traversal = m.traversal;
+    std::map<std::string, double> stageMs;
+    auto addTimes = [&](const std::vector<vk::ScopeTiming>& times) {
+        for (const vk::ScopeTiming& t : times) {
+            stageMs[stageOf(t.name)] += t.milliseconds;
+            result.gpuMilliseconds += t.milliseconds;
+        }
+    };
+    const uint32_t spp = std::max(settings.spp, 1u);
+    const uint32_t batch = std::max(m.options.samplesPerBatch, 1u);
+    for (uint32_t done = 0; done < spp;) {
+        const uint32_t count = std::min(batch, spp - done);
+        const bool last = done + count == spp;
+        addTimes(m.runGraph(
+            [&](const PtStageContext& sc) {
+                if (done == 0) addPtClear(sc);
+                for (uint32_t k = 0; k < count; ++k) addPtSample(sc, done + k);
+                if (last) addPtResolve(sc);
+                if (last && m.options.denoise) addPtDenoise(sc);
+            },
+            cfg));
+        done += count;
+        if (progress) progress(done, spp);
+    }
+    result.samples = spp;
+    const PtFrameResources& f = m.frame;
+    result.image = toImage(vk::readbackImage(m.ctx, f.colorImage, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL),
+                           VK_FORMAT_R32G32B32A32_SFLOAT, width, height);
+    if (m.options.readGuides || m.options.denoise) {
+        result.albedo = toImage(vk::readbackImage(m.ctx, f.albedoImage, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL),
+                                VK_FORMAT_R16G16B16A16_SFLOAT, width, height);
+        result.normal = toImage(vk::readbackImage(m.ctx, f.normalImage, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL),
+                                VK_FORMAT_R16G16B16A16_SFLOAT, width, height);
+        result.depth = toImage(vk::readbackImage(m.ctx, f.depthImage, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL),
+                               VK_FORMAT_R32_SFLOAT, width, height);
+    }
+    if (m.options.denoise) {
+        result.denoised = toImage(vk::readbackImage(m.ctx, f.denoisedImage, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL),
+                                  VK_FORMAT_R32G32B32A32_SFLOAT, width, height);
+        result.didDenoise = true;
+    }
+    for (const auto& [stage, ms] : stageMs) result.stageTimes.push_back({stage, ms});
+    result.wallMilliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+PtCapture PathTracer::capture(const scene::CameraView& camera, uint32_t width, uint32_t height,
+                              const PathTraceSettings& settings, uint32_t bounce) {
+    Impl& m = *impl_;
+    m.ensureFrame(width, height);
+    m.setCamera(camera, width, height);
+    PathTraceSettings s = settings;
+    s.maxDepth = std::max(s.maxDepth, bounce + 1);
+    const PtStageConfig cfg = m.config(s);
+    const PtFrameResources& f = m.frame;
+    const size_t pixels = size_t(width) * height;
+    PtCapture c;
+    // Three deterministic replays of sample 0 (paths and hits are per pixel and seeded; only the order of
+    // appended queue entries may differ between replays): the rays of `bounce`, the state after its shade stage,
+    // and the dispatch size its args stage derives.
+    auto run = [&](PtStop stop) { m.runGraph([&](const PtStageContext& sc) { addPtSample(sc, 0, stop); }, cfg); };
+    run(bounce == 0 ? PtStop{PtStop::AfterCamera, 0} : PtStop{PtStop::AfterShade, bounce - 1});
+    c.rays = vk::downloadBuffer<gpu::GpuPtPath>(m.ctx, f.paths, pixels);
+    run(PtStop{PtStop::AfterShade, bounce});
+    const int in = int(bounce % 2);
+    c.paths = vk::downloadBuffer<gpu::GpuPtPath>(m.ctx, f.paths, pixels);
+    c.hits = vk::downloadBuffer<gpu::GpuPtHit>(m.ctx, f.hits, pixels);
+    c.queueIn = vk::downloadBuffer<uint32_t>(m.ctx, f.queue[in], pixels + gpu::kPtQueueHeaderWords);
+    c.queueOut = vk::downloadBuffer<uint32_t>(m.ctx, f.queue[1 - in], pixels + gpu::kPtQueueHeaderWords);
+    if (m.options.sortRays) c.keys = vk::downloadBuffer<uint32_t>(m.ctx, f.keys, pixels);
+    run(PtStop{PtStop::AfterArgs, bounce});
+    c.argsOut = vk::downloadBuffer<uint32_t>(m.ctx, f.args[1 - in], 3);
+    return c;
+}
+
+}  // namespace idk::render

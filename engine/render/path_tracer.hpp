@@ -1,0 +1,115 @@
+// path_tracer.hpp: the GPU wavefront path tracer. Each sample is a chain of compute passes on the render graph:
+// camera rays -> for every bounce: closest hit (our BVH or VK_KHR_ray_query) -> [ray sort by material/direction]
+// -> shade (emission, next-event shadow ray, extension ray, Russian roulette; alive rays compacted by atomic
+// append) -> args (indirect dispatch sizes on the GPU) -> shadow rays -> after the last bounce: accumulate into
+// RGBA32F sums; a final resolve writes the mean radiance and the first-hit albedo/normal/depth guides.
+// Ports IDKEngine's PathTracer.cs / PathTracerPipeline.cs (reference 1.6, 2.1) with the differences stated there:
+// NEE + MIS, GPU-side dispatch sizes, a stable radix sort instead of the fixed 2^21-bucket counting sort.
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/image_file.hpp"
+#include "pathtrace/pt_settings.hpp"
+#include "scene/camera.hpp"
+#include "scene/scene.hpp"
+#include "shared/pt_wavefront.h"
+
+namespace idk::vk {
+class Context;
+class ShaderLibrary;
+}  // namespace idk::vk
+namespace idk::pathtrace {
+struct PathTraceScene;
+}  // namespace idk::pathtrace
+
+namespace idk::render {
+
+enum class PtTraversal : uint8_t {
+    Auto,      // the "ray traversal" capability ladder's rung (ray query when the device has it, not with --fallback),
+               // except on a CPU device (lavapipe), whose ray query is ~35x slower than our BVH: Bvh there
+    Bvh,       // our GLSL BVH (engine/bvh trees, include/bvh_traverse.glsl): the portable rung
+    RayQuery,  // VK_KHR_ray_query over driver acceleration structures
+};
+const char* traversalName(PtTraversal traversal);  // "auto", "bvh", "rayquery"
+
+struct PathTracerOptions {
+    PtTraversal traversal = PtTraversal::Auto;
+    bool sortRays = false;   // sort each bounce's rays by (material, direction octant) before shading
+    bool denoise = false;    // also run PT-C's edge-aware denoiser on the result (PathTraceResult::denoised)
+    bool readGuides = false; // read back the albedo/normal/depth guide images
+    uint32_t samplesPerBatch = 4;  // samples recorded per submission (progress granularity)
+    float environmentIntensity = 1.0f;
+    // Equirectangular HDR environment: nullopt = defaultEnvironmentPath(); an empty path = constant radiance 0.5.
+    std::optional<std::filesystem::path> environment;
+};
+
+// What a render computes: PT-A's settings struct, shared with the CPU reference (pathtrace::renderReference), so
+// both tracers read the same knobs (spp, maxDepth in ray segments, seed, nee, rouletteDepth).
+using PathTraceSettings = pathtrace::PtSettings;
+
+struct PtStageTime {
+    std::string stage;  // camera, trace, sort, shade, args, shadow, accumulate, resolve, denoise
+    double milliseconds = 0.0;
+};
+
+struct PathTraceResult {
+    core::ImageRgba32f image;     // mean linear radiance, alpha 1
+    core::ImageRgba32f albedo;    // readGuides/denoise: first-hit albedo (1 for the sky)
+    core::ImageRgba32f normal;    // readGuides/denoise: first-hit world normal (0 for the sky)
+    core::ImageRgba32f depth;     // readGuides/denoise: first-hit distance along the ray in r (0 for the sky)
+    core::ImageRgba32f denoised;  // denoise: the denoiser's output
+    std::vector<PtStageTime> stageTimes;  // GPU time per stage, summed over samples and bounces
+    double gpuMilliseconds = 0.0;
+    double wallMilliseconds = 0.0;
+    uint32_t samples = 0;
+    PtTraversal traversal = PtTraversal::Bvh;  // the rung that ran
+    bool didDenoise = false;      // the denoiser ran (denoised holds its output)
+};
+
+// The wavefront state after the shade stage of one bounce of sample 0 (conformance tests of compaction,
+// sorting and traversal).
+struct PtCapture {
+    std::vector<gpu::GpuPtPath> paths;   // after shade
+    std::vector<gpu::GpuPtHit> hits;     // of this bounce's rays
+    std::vector<gpu::GpuPtPath> rays;    // path state before trace (the rays that were traced)
+    std::vector<uint32_t> queueIn;       // header + items (sorted when sorting is on)
+    std::vector<uint32_t> queueOut;      // header + items appended by shade
+    std::vector<uint32_t> argsOut;       // the next bounce's dispatch size (x, y, z), as the args stage computes it
+    std::vector<uint32_t> keys;          // sort keys per queue slot (sorting on)
+};
+
+class PathTracer {
+public:
+    using Progress = std::function<void(uint32_t samplesDone, uint32_t samplesTotal)>;
+
+    // Builds PT-A's PathTraceScene (BVHs, lights, environment tables from options.environment) and uploads it with
+    // the GpuScene materials and textures (+ acceleration structures for the ray-query rung). Throws
+    // std::runtime_error when the requested traversal cannot run on the device.
+    PathTracer(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene::Scene& scene, PathTracerOptions options = {});
+    // The same from an already built PathTraceScene of `scene` (tests share it with the CPU reference; the
+    // environment options are then ignored). `pts` is only read during construction.
+    PathTracer(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene::Scene& scene,
+               const pathtrace::PathTraceScene& pts, PathTracerOptions options = {});
+    ~PathTracer();
+    PathTracer(const PathTracer&) = delete;
+    PathTracer& operator=(const PathTracer&) = delete;
+
+    PathTraceResult render(const scene::CameraView& camera, uint32_t width, uint32_t height,
+                           const PathTraceSettings& settings, const Progress& progress = {});
+    PtCapture capture(const scene::CameraView& camera, uint32_t width, uint32_t height,
+                      const PathTraceSettings& settings, uint32_t bounce);
+
+    PtTraversal traversal() const noexcept;  // resolved (never Auto)
+    struct Impl;
+
+private:
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace idk::render

@@ -13,6 +13,8 @@
 
 #include "app/commands.hpp"
 #include "app/default_scene.hpp"
+#include "app/render_pathtrace.hpp"
+#include "app/render_replay.hpp"
 #include "core/cli.hpp"
 #include "render/renderer.hpp"
 #include "render/scene_textures.hpp"
@@ -39,7 +41,14 @@ const char* const kRenderHelp =
     "  --json           print the stats as JSON (implies --stats)\n"
     "  --graph FILE     write the frame's render graph: .dot (graphviz) or any other name (text)\n"
     "  --no-validation  do not load the Vulkan validation layer\n"
-    "  --fallback       take the portable rung of every capability ladder (as `idk info --fallback` shows)\n";
+    "  --fallback       take the portable rung of every capability ladder (as `idk info --fallback` shows)\n"
+    "\n"
+    "usage: idk render [SCENE] --replay F.idkcap --video OUT.mp4 [--frames a:b] [--size WxH] [options]\n"
+    "  --replay F       render every frame of a camera capture (the viewer's Ctrl+R) at its recorded camera and\n"
+    "                   scene time, with the same renderer and options as a still image\n"
+    "  --video OUT.mp4  encode the frames with ffmpeg (H.264, yuv420p, the capture's frame rate); odd sizes are\n"
+    "                   padded to even with a black column/row; on any error no video is left behind\n"
+    "  --frames a:b     only frames a..b-1 (counted from 0; 'a:' to the end), to split a long video across machines\n";
 
 namespace {
 
@@ -81,18 +90,20 @@ void posePerOptions(const core::CliArgs& args, scene::Scene& scene) {
 
 int runRender(const std::vector<std::string>& argv) {
     core::CliArgs args =
-        core::parseCli(argv, {{"--stats", "--json", "--no-validation", "--fallback", "--help"},
+        core::parseCli(argv, {{"--stats", "--json", "--no-validation", "--fallback", "--help", "--pathtrace", "--denoise"},
                                   {"--out", "--size", "--graph", "--shading", "--exposure", "--environment",
-                                   "--env-intensity", "--time", "--animation"}});
+                                   "--env-intensity", "--time", "--animation", "--replay", "--video", "--frames",
+                                   "--spp", "--max-depth", "--seed", "--light-sampling", "--sort", "--traversal"}});
     if (args.has("--help")) {
         std::fputs(kRenderHelp, stdout);
+        std::fputs(kPathTraceHelp, stdout);
         return 0;
     }
     if (args.positional.size() > 1) throw core::CliError("more than one scene given");
     std::optional<std::string> out = args.get("--out");
-    if (!out) throw core::CliError("--out FILE is required");
+    if (!out && !args.get("--replay")) throw core::CliError("--out FILE is required");
     auto [width, height] = core::parseSize(args.get("--size", "256x256"));
-    std::string extension = std::filesystem::path(*out).extension().string();
+    std::string extension = std::filesystem::path(out.value_or("replay.png")).extension().string();
     if (extension != ".png" && extension != ".exr") {
         throw core::CliError("--out '" + *out + "': the file must end in .png or .exr");
     }
@@ -112,6 +123,8 @@ int runRender(const std::vector<std::string>& argv) {
     scene::Scene scene = args.positional.empty() ? loadDefaultScene() : scene::loadGltf(args.positional[0]);
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "idk render: warning: %s\n", w.c_str());
     posePerOptions(args, scene);
+    if (args.get("--replay")) return runRenderReplay(args, scene, settings, width, height);
+    if (args.has("--pathtrace")) return runRenderPathTrace(args, scene, settings, width, height);
 
     vk::ContextDesc desc;
     desc.validation = desc.validation && !args.has("--no-validation");

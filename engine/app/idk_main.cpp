@@ -19,6 +19,7 @@ const char* const kHelp =
     "  info     the Vulkan device, its limits and the capability ladders (--json for machines)\n"
     "  render   render a glTF scene (or the embedded Cornell box) to a PNG or EXR image\n"
     "  bvh      build the BVH of a scene and print its statistics (SAH, EPO, depth, stack, build time)\n"
+    "  compare  error metrics of an image against a reference (RMSE, relative MSE, max, NaN count)\n"
     "  help     this text; `idk <command> --help` describes one command\n";
 
 }  // namespace
@@ -35,6 +36,7 @@ int main(int argc, char** argv) {
         if (command == "info") return idk::app::runInfo(rest);
         if (command == "render") return idk::app::runRender(rest);
         if (command == "bvh") return idk::app::runBvh(rest);
+        if (command == "compare") return idk::app::runCompare(rest);
         std::fprintf(stderr, "idk: unknown command '%s' (see `idk help`)\n", command.c_str());
         return 2;
     } catch (const idk::core::CliError& e) {

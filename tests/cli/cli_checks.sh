@@ -97,6 +97,80 @@ PY
     [ "$count" -ge 20 ] || fail "found only $count shared scenes"
     echo "rendered $count shared scenes"
     ;;
+  replay_video | replay_frames | replay_corrupt)
+    # Issue 6: camera capture -> `idk render --replay --video`. The capture is written here from the documented
+    # layout (engine/tools/camera_capture.hpp), independently of the engine: 10 records at 30 Hz walking into the
+    # Cornell box while turning right.
+    python3 - "$tmp/cap.idkcap" 10 <<'PY' || fail "cannot write the test capture"
+import struct, sys
+out, n = sys.argv[1], int(sys.argv[2])
+records = b"".join(struct.pack("<d3f3fdI", i / 30, -0.278 + 0.005 * i, 0.273, 0.8 - 0.03 * i, 0.01 * i, 0.0, 0.686,
+                               i / 30, 0) for i in range(n))
+open(out, "wb").write(b"IDKCAPT\0" + struct.pack("<IIfIQ", 1, 44, 30.0, 0, n) + records)
+PY
+    probe() {
+      ffprobe -v error -select_streams v:0 -count_frames \
+        -show_entries stream=codec_name,width,height,pix_fmt,nb_read_frames -of csv=p=0 "$1"
+    }
+    leftovers() { find "$tmp" -name '*.mp4' -o -name '*partial*' | sort | tr '\n' ' '; }
+    case "$case_name" in
+      replay_video)
+        "$idk" render --replay "$tmp/cap.idkcap" --video "$tmp/out.mp4" --size 64x48 2>"$tmp/err" \
+          || fail "replay failed: $(cat "$tmp/err")"
+        [ "$(probe "$tmp/out.mp4")" = "h264,64,48,yuv420p,10" ] || fail "ffprobe: $(probe "$tmp/out.mp4")"
+        [ "$(ffprobe -v error -show_entries stream=r_frame_rate -of csv=p=0 "$tmp/out.mp4")" = "30/1" ] \
+          || fail "not the capture's 30 Hz"
+        grep -q $'\r' "$tmp/err" && fail "progress bar on a non-terminal stderr: $(cat -A "$tmp/err")"
+        [ "$(leftovers)" = "$tmp/out.mp4 " ] || fail "unexpected files: $(leftovers)"
+        # Odd sizes are padded to the next even size (yuv420p).
+        "$idk" render --replay "$tmp/cap.idkcap" --video "$tmp/odd.mp4" --size 33x17 --frames 0:2 2>/dev/null \
+          || fail "odd-size replay failed"
+        [ "$(probe "$tmp/odd.mp4")" = "h264,34,18,yuv420p,2" ] || fail "odd size: $(probe "$tmp/odd.mp4")"
+        ;;
+      replay_frames)
+        # Two halves of a split render add up to the whole capture.
+        "$idk" render --replay "$tmp/cap.idkcap" --video "$tmp/a.mp4" --size 32x32 --frames 0:4 2>/dev/null \
+          || fail "--frames 0:4 failed"
+        "$idk" render --replay "$tmp/cap.idkcap" --video "$tmp/b.mp4" --size 32x32 --frames 4: 2>/dev/null \
+          || fail "--frames 4: failed"
+        [ "$(probe "$tmp/a.mp4")" = "h264,32,32,yuv420p,4" ] || fail "0:4 gave $(probe "$tmp/a.mp4")"
+        [ "$(probe "$tmp/b.mp4")" = "h264,32,32,yuv420p,6" ] || fail "4: gave $(probe "$tmp/b.mp4")"
+        # Deterministic replay: the same range again decodes to the same pixels, frame for frame.
+        "$idk" render --replay "$tmp/cap.idkcap" --video "$tmp/a2.mp4" --size 32x32 --frames 0:4 2>/dev/null \
+          || fail "second --frames 0:4 failed"
+        [ "$(ffmpeg -v error -i "$tmp/a.mp4" -f framemd5 - | grep -v '^#')" = \
+          "$(ffmpeg -v error -i "$tmp/a2.mp4" -f framemd5 - | grep -v '^#')" ] || fail "two replays of 0:4 differ"
+        "$idk" render --replay "$tmp/cap.idkcap" --video "$tmp/c.mp4" --frames 3:11 2>"$tmp/err"
+        [ $? -eq 2 ] || fail "--frames past the end should exit 2"
+        grep -q "10 frames" "$tmp/err" || fail "range error does not give the frame count: $(cat "$tmp/err")"
+        "$idk" render --replay "$tmp/cap.idkcap" --size 8x8 2>/dev/null; [ $? -eq 2 ] || fail "--replay without --video should exit 2"
+        [ ! -e "$tmp/c.mp4" ] || fail "a failed range wrote a video"
+        ;;
+      replay_corrupt)
+        check_bad() {  # FILE OFFSET: exit 1, one line naming the file and the byte offset, no video
+          "$idk" render --replay "$1" --video "$tmp/bad.mp4" --size 16x16 2>"$tmp/err"
+          code=$?
+          [ "$code" -eq 1 ] || fail "$1: exit code $code, expected 1"
+          [ "$(wc -l <"$tmp/err")" -eq 1 ] || fail "$1: expected one line on stderr, got: $(cat "$tmp/err")"
+          grep -q "$1: byte offset $2:" "$tmp/err" || fail "$1: message lacks the file and offset $2: $(cat "$tmp/err")"
+          [ -z "$(leftovers)" ] || fail "$1: files left behind: $(leftovers)"
+        }
+        head -c 100 "$tmp/cap.idkcap" >"$tmp/truncated.idkcap"
+        check_bad "$tmp/truncated.idkcap" 76
+        head -c 20 "$tmp/cap.idkcap" >"$tmp/short.idkcap"
+        check_bad "$tmp/short.idkcap" 20
+        { printf 'NOTACAPT'; tail -c +9 "$tmp/cap.idkcap"; } >"$tmp/magic.idkcap"
+        check_bad "$tmp/magic.idkcap" 0
+        { head -c 8 "$tmp/cap.idkcap"; printf '\x02\x00\x00\x00'; tail -c +13 "$tmp/cap.idkcap"; } >"$tmp/newer.idkcap"
+        check_bad "$tmp/newer.idkcap" 8
+        grep -q "version 2 is newer" "$tmp/err" || fail "newer version not named: $(cat "$tmp/err")"
+        "$idk" render --replay "$tmp/missing.idkcap" --video "$tmp/bad.mp4" 2>"$tmp/err"
+        [ $? -eq 1 ] || fail "a missing capture should exit 1"
+        grep -q "missing.idkcap" "$tmp/err" || fail "missing capture not named: $(cat "$tmp/err")"
+        [ -z "$(leftovers)" ] || fail "missing capture: files left behind: $(leftovers)"
+        ;;
+    esac
+    ;;
   *) fail "unknown case" ;;
 esac
 echo "ok ($case_name)"

@@ -3,7 +3,7 @@
 # usage: scripts/bench.sh BUILD_DIR      (`make bench` builds first and passes $(BUILD))
 # Writes bench/results/latest.json (medians and spread of 5 repetitions per benchmark) and BENCHMARKS.md.
 # Extra arguments after BUILD_DIR go to idk_bench (e.g. --benchmark_filter=Gpu). Takes about a minute on
-# 2 cores with lavapipe.
+# 2 cores with lavapipe, plus about 15 minutes for the path tracer (scripts/bench_pathtrace.sh).
 set -euo pipefail
 
 build="${1:?usage: scripts/bench.sh BUILD_DIR [idk_bench options]}"
@@ -27,4 +27,9 @@ start=$(date +%s)
 "$bench" --benchmark_out=bench/results/latest.json --benchmark_out_format=json \
   --benchmark_repetitions=5 --benchmark_report_aggregates_only=true "$@"
 echo "bench.sh: benchmarks took $(( $(date +%s) - start )) s"
+# The path tracer's error-vs-time runs (about 15 minutes; IDK_BENCH_PATHTRACE=0 skips them and keeps the last
+# bench/results/pathtrace_section.md, which bench_report.py includes as its own section).
+if [ "${IDK_BENCH_PATHTRACE:-1}" != 0 ]; then
+  bash scripts/bench_pathtrace.sh "$build"
+fi
 python3 scripts/bench_report.py --compact bench/results/latest.json BENCHMARKS.md

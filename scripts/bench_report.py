@@ -485,6 +485,17 @@ def scene_section(results, exe):
     return lines + [""]
 
 
+# ---- Path tracer section (scripts/bench_pathtrace.sh -> bench/pathtrace_report.py) ------------------------------
+
+def pathtrace_section(results_dir):
+    """The Markdown that bench/pathtrace_report.py wrote next to the results (its own section), if any."""
+    path = os.path.join(results_dir, "pathtrace_section.md")
+    if not os.path.exists(path):
+        return []
+    with open(path) as f:
+        return f.read().rstrip().splitlines() + [""]
+
+
 def main(argv):
     args = [a for a in argv[1:] if not a.startswith("--")]
     if len(args) != 2:
@@ -507,6 +518,7 @@ def main(argv):
             lines += scene_section(results, exe)
         elif group in groups:
             lines += [f"## {group[0].upper() + group[1:]}", ""] + table(groups[group]) + [""]
+    lines += pathtrace_section(os.path.dirname(os.path.abspath(results_path)))
     with open(out_path, "w") as f:
         f.write("\n".join(lines).rstrip() + "\n")
     print(f"bench_report.py: wrote {out_path} ({sum(len(r) for r in groups.values())} rows)")

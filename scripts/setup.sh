@@ -12,6 +12,7 @@ PACKAGES=(
   libopenimageio-dev openimageio-tools libmeshoptimizer-dev libdraco-dev libimgui-dev libembree-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   ffmpeg xvfb xauth
+  python3-matplotlib
 )
 BACKPORT_PACKAGES=(mesa-vulkan-drivers libgl1-mesa-dri libegl-mesa0 libglx-mesa0 libglapi-mesa libgbm1)
 

@@ -41,17 +41,6 @@ const char* traversalName(PtTraversal t) {
 
 namespace {
 
-vk::Buffer uploadTable(vk::Context& ctx, const void* data, size_t bytes, const std::string& name) {
-    vk::BufferDesc desc;
-    desc.size = std::max<VkDeviceSize>(bytes, 16);
-    desc.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    desc.name = name;
-    desc.category = "path tracer";
-    vk::Buffer b = ctx.createBuffer(desc);
-    if (bytes > 0) vk::uploadBuffer(ctx, b, data, bytes);
-    return b;
-}
-
 vk::Buffer hostBuffer(vk::Context& ctx, size_t bytes, const std::string& name) {
     vk::BufferDesc desc;
     desc.size = bytes;
@@ -257,7 +246,7 @@ PathTracer::PathTracer(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene
     d.instances = m.geometry.instanceTable.address;
     d.materials = m.gpuScene->materialBuffer().address;
     d.instanceCount = uint32_t(m.geometry.instances.size());
-    m.sceneDesc = uploadTable(ctx, &d, sizeof(d), "pt scene");
+    m.sceneDesc = uploadPtBuffer(ctx, &d, sizeof(d), "pt scene");
     m.camera = hostBuffer(ctx, sizeof(gpu::GpuPtCamera), "pt camera");
     m.accumDesc = hostBuffer(ctx, sizeof(gpu::GpuPtAccum), "pt accumulation");
 }

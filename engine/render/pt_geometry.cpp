@@ -5,26 +5,16 @@
 
 #include "bvh/flatten.hpp"
 #include "bvh/metrics.hpp"
+#include "render/pt_tables.hpp"
 #include "vk/context.hpp"
 #include "vk/transfer.hpp"
 
 namespace idk::render {
 namespace {
 
-vk::Buffer upload(vk::Context& ctx, const void* data, size_t bytes, const std::string& name) {
-    vk::BufferDesc desc;
-    desc.size = std::max<VkDeviceSize>(bytes, 16);
-    desc.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    desc.name = name;
-    desc.category = "path tracer";
-    vk::Buffer b = ctx.createBuffer(desc);
-    if (bytes > 0) vk::uploadBuffer(ctx, b, data, bytes);
-    return b;
-}
-
 template <class T>
 vk::Buffer upload(vk::Context& ctx, const std::vector<T>& v, const std::string& name) {
-    return upload(ctx, v.data(), v.size() * sizeof(T), name);
+    return uploadPtBuffer(ctx, v.data(), v.size() * sizeof(T), name);
 }
 
 }  // namespace

@@ -9,17 +9,21 @@ namespace {
 
 template <class T>
 VkDeviceAddress upload(vk::Context& ctx, PtTables& t, const std::vector<T>& v, const std::string& name) {
-    vk::BufferDesc desc;
-    desc.size = std::max<VkDeviceSize>(v.size() * sizeof(T), 16);
-    desc.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    desc.name = name;
-    desc.category = "path tracer";
-    vk::Buffer& b = t.buffers.emplace_back(ctx.createBuffer(desc));
-    if (!v.empty()) vk::uploadBuffer(ctx, b, v.data(), v.size() * sizeof(T));
-    return b.address;
+    return t.buffers.emplace_back(uploadPtBuffer(ctx, v.data(), v.size() * sizeof(T), name)).address;
 }
 
 }  // namespace
+
+vk::Buffer uploadPtBuffer(vk::Context& ctx, const void* data, size_t bytes, const std::string& name) {
+    vk::BufferDesc desc;
+    desc.size = std::max<VkDeviceSize>(bytes, 16);
+    desc.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    desc.name = name;
+    desc.category = "path tracer";
+    vk::Buffer b = ctx.createBuffer(desc);
+    if (bytes > 0) vk::uploadBuffer(ctx, b, data, bytes);
+    return b;
+}
 
 PtTables uploadPtTables(vk::Context& ctx, const pathtrace::PathTraceScene& pts,
                         const std::vector<PtTextureBinding>& textures, PtTextureBinding white) {

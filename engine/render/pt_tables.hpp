@@ -2,6 +2,7 @@
 // light list and its power alias table, the environment's texel radiance and alias table, and the path-tracing
 // material fields (transmission, IOR, volume) with the transmission texture turned into a bindless index.
 #pragma once
+#include <string>
 #include <vector>
 
 #include "pathtrace/pt_scene.hpp"
@@ -29,5 +30,9 @@ struct PtTables {
 PtTables uploadPtTables(vk::Context& ctx, const pathtrace::PathTraceScene& pts,
                         const std::vector<PtTextureBinding>& textures, PtTextureBinding white);
 void destroyPtTables(vk::Context& ctx, PtTables& tables);
+
+// A device-local storage buffer (category "path tracer", at least 16 bytes) holding `bytes` of `data`, read by
+// device address: every table and geometry buffer of the GPU tracer is made by this one function.
+vk::Buffer uploadPtBuffer(vk::Context& ctx, const void* data, size_t bytes, const std::string& name);
 
 }  // namespace idk::render

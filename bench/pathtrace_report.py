@@ -247,7 +247,7 @@ def main(argv):
              "(`engine/passes/denoise.cpp`), its time included; it is biased (blur, firefly clamp), so its error "
              "flattens while the raw error keeps falling: the crossing is where to stop denoising. On the Cornell box "
              "RMSE is dominated by a few ceiling pixels under the point light (radiance ~500) that the firefly clamp "
-             "trims, so there the relative MSE is the telling metric. Sorting and traversal rows run at one spp.", ""]
+             "trims, so there the relative MSE is the telling metric. The sorting row runs at 8 spp (against the 8-spp NEE+MIS row), the traversal rows at 1 spp.", ""]
     crashes_path = os.path.join(a.work, "crashes.txt")
     if os.path.exists(crashes_path):
         with open(crashes_path) as f:

@@ -6,6 +6,9 @@
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <string>
+
+#include <unistd.h>
 
 #include "app/commands.hpp"
 #include "app/image_compare.hpp"
@@ -64,7 +67,10 @@ TEST(ImageCompare, SizeMismatchThrows) {
 
 class CompareCommand : public ::testing::Test {
 protected:
-    std::filesystem::path dir = std::filesystem::temp_directory_path() / "idk_compare_test";
+    // One folder per process and test: ctest runs the tests of this fixture in parallel processes.
+    std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                ("idk_compare_test_" + std::to_string(::getpid()) + "_" +
+                                 ::testing::UnitTest::GetInstance()->current_test_info()->name());
     void SetUp() override { std::filesystem::create_directories(dir); }
     void TearDown() override { std::filesystem::remove_all(dir); }
     std::string expectErrorNaming(const std::vector<std::string>& args, const std::string& name) {

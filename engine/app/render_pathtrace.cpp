@@ -1,7 +1,7 @@
 // render_pathtrace.cpp: `idk render [SCENE] --pathtrace --spp N --max-depth D --seed S --light-sampling nee-mis|bsdf
 // --sort on|off --traversal auto|bvh|rayquery [--denoise] --out F.exr|F.png [--json]`: the GPU wavefront path
 // tracer (render/path_tracer.hpp) headless, with a progress bar on stderr when stderr is a terminal. .exr gets the
-// linear radiance, .png exposure * radiance sRGB-encoded and clamped (no tone curve). --json adds a "pathtrace"
+// linear radiance, .png the raster's display transform (exposure, AgX, sRGB). --json adds a "pathtrace"
 // object: spp, maxDepth, traversal, sort, lightSampling, denoised, wallMilliseconds, gpuMilliseconds,
 // samplesPerSecond, stageMilliseconds.
 #include "app/render_pathtrace.hpp"
@@ -14,6 +14,7 @@
 #include <iostream>
 
 #include "render/path_tracer.hpp"
+#include "shared/agx.h"
 #include "vk/context.hpp"
 #include "vk/shader_library.hpp"
 
@@ -100,8 +101,13 @@ int runRenderPathTrace(const core::CliArgs& args, const scene::Scene& scene, con
     }
     core::ImageRgba32f image = options.denoise && result.didDenoise ? result.denoised : result.image;
     if (std::filesystem::path(out).extension() == ".png") {
-        for (size_t i = 0; i < image.pixels.size(); ++i)
-            if (i % 4 != 3) image.pixels[i] *= settings.exposure;
+        // The raster's display transform (shared/agx.h, as the tonemap pass): exposure, AgX to display-linear;
+        // writeImage applies the sRGB encoding.
+        for (size_t i = 0; i < image.pixels.size(); i += 4) {
+            const glm::vec3 radiance(image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]);
+            const glm::vec3 display = gpu::agx(radiance * settings.exposure);
+            for (int c = 0; c < 3; ++c) image.pixels[i + c] = display[c];
+        }
     }
     core::writeImage(out, image);
 

@@ -36,4 +36,17 @@ using DeviceAddress = uint64_t;  // GLSL: a buffer_reference or uint64_t
 #define IDK_CONST(type, name, value) const type name = value
 #endif
 
+// Functions shared by C++ and GLSL (one source, e.g. pt_sampling.h, agx.h): IDK_OUT / IDK_INOUT declare out
+// parameters (C++ references, GLSL out/inout qualifiers); IDK_INLINE is C++'s inline for header functions (GLSL
+// has no such keyword).
+#ifdef __cplusplus
+#define IDK_OUT(T) T&
+#define IDK_INOUT(T) T&
+#define IDK_INLINE inline
+#else
+#define IDK_OUT(T) out T
+#define IDK_INOUT(T) inout T
+#define IDK_INLINE
+#endif
+
 #endif

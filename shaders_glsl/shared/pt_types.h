@@ -20,22 +20,6 @@
 #define IDK_PT_TYPES_H
 #include "interop.h"
 
-// IDK_OUT / IDK_INOUT: out parameters of functions shared by C++ (references) and GLSL (out/inout qualifiers).
-// IDK_INLINE: C++ needs inline on header functions; GLSL has no such keyword.
-#ifdef __cplusplus
-#ifndef IDK_OUT
-#define IDK_OUT(T) T&
-#define IDK_INOUT(T) T&
-#endif
-#define IDK_INLINE inline
-#else
-#ifndef IDK_OUT
-#define IDK_OUT(T) out T
-#define IDK_INOUT(T) inout T
-#endif
-#define IDK_INLINE
-#endif
-
 IDK_GPU_BEGIN
 
 IDK_CONST(uint, kPtNoLight, 0xFFFFFFFFu);

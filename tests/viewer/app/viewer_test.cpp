@@ -7,7 +7,6 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
-#include <regex>
 #include <sstream>
 #include <thread>
 
@@ -45,19 +44,21 @@ struct CameraLine {
     glm::vec3 position{0.0f};
     float yaw = 0, pitch = 0, radius = 0;
 };
+// Parses "camera position X Y Z yaw A pitch B radius R" (a stream, not std::regex: GCC 12 reports a false
+// -Wmaybe-uninitialized inside <regex> in the sanitizer build).
 CameraLine parseCamera(const std::string& output) {
-    std::smatch m;
-    static const std::regex line(
-        R"(camera position (\S+) (\S+) (\S+) yaw (\S+) pitch (\S+) radius (\S+))");
     CameraLine c;
-    if (!std::regex_search(output, m, line)) {
+    const size_t at = output.find("camera position ");
+    if (at == std::string::npos) {
         ADD_FAILURE() << "no camera line in:\n" << output;
         return c;
     }
-    c.position = {std::stof(m[1]), std::stof(m[2]), std::stof(m[3])};
-    c.yaw = std::stof(m[4]);
-    c.pitch = std::stof(m[5]);
-    c.radius = std::stof(m[6]);
+    std::istringstream line(output.substr(at + std::string("camera position ").size()));
+    std::string yawWord, pitchWord, radiusWord;
+    line >> c.position.x >> c.position.y >> c.position.z >> yawWord >> c.yaw >> pitchWord >> c.pitch >> radiusWord >>
+        c.radius;
+    if (!line || yawWord != "yaw" || pitchWord != "pitch" || radiusWord != "radius")
+        ADD_FAILURE() << "malformed camera line in:\n" << output;
     return c;
 }
 

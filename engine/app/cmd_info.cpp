@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "app/cli_context.hpp"
 #include "app/commands.hpp"
 #include "core/cli.hpp"
 #include "vk/context.hpp"
@@ -105,10 +106,7 @@ int runInfo(const std::vector<std::string>& argv) {
         return 0;
     }
     if (!args.positional.empty()) throw core::CliError("unexpected argument '" + args.positional[0] + "'");
-    vk::ContextDesc desc;
-    desc.validation = !args.has("--no-validation") && desc.validation;
-    desc.forceFallbackRungs = args.has("--fallback");
-    vk::Context ctx(desc);
+    vk::Context ctx(contextDescFromCli(args));
     nlohmann::json j = describe(ctx);
     if (args.has("--json"))
         std::cout << j.dump(2) << "\n";

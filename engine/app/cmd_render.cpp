@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iostream>
 
+#include "app/cli_context.hpp"
 #include "app/commands.hpp"
 #include "app/default_scene.hpp"
 #include "app/render_pathtrace.hpp"
@@ -126,10 +127,7 @@ int runRender(const std::vector<std::string>& argv) {
     if (args.get("--replay")) return runRenderReplay(args, scene, settings, width, height);
     if (args.has("--pathtrace")) return runRenderPathTrace(args, scene, settings, width, height);
 
-    vk::ContextDesc desc;
-    desc.validation = desc.validation && !args.has("--no-validation");
-    desc.forceFallbackRungs = args.has("--fallback");
-    vk::Context ctx(desc);
+    vk::Context ctx(contextDescFromCli(args));
     vk::ShaderLibrary shaders(ctx);
     render::FrameResult frame;
     vk::MemoryStats memory;

@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "app/cli_context.hpp"
 #include "render/path_tracer.hpp"
 #include "shared/agx.h"
 #include "vk/context.hpp"
@@ -87,10 +88,7 @@ int runRenderPathTrace(const core::CliArgs& args, const scene::Scene& scene, con
     options.environment = settings.environment;
     options.environmentIntensity = settings.environmentIntensity;
 
-    vk::ContextDesc desc;
-    desc.validation = desc.validation && !args.has("--no-validation");
-    desc.forceFallbackRungs = args.has("--fallback");
-    vk::Context ctx(desc);
+    vk::Context ctx(contextDescFromCli(args));
     vk::ShaderLibrary shaders(ctx);
     render::PathTraceResult result;
     {

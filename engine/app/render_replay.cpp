@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <unistd.h>
 
+#include "app/cli_context.hpp"
 #include "render/scene_textures.hpp"
 #include "scene/animation.hpp"
 #include "scene/camera.hpp"
@@ -98,10 +99,7 @@ int runRenderReplay(const core::CliArgs& args, scene::Scene& scene, render::Rend
     lens.aspectRatio = 0.0f;
     settings.output = render::OutputKind::Display;
 
-    vk::ContextDesc desc;
-    desc.validation = desc.validation && !args.has("--no-validation");
-    desc.forceFallbackRungs = args.has("--fallback");
-    vk::Context ctx(desc);
+    vk::Context ctx(contextDescFromCli(args));
     vk::ShaderLibrary shaders(ctx);
     {
         render::Renderer renderer(ctx, shaders, settings);

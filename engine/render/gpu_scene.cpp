@@ -222,7 +222,7 @@ vk::Image placeholder(vk::Context& ctx, VkFormat format, const void* texel, VkDe
 
 }  // namespace
 
-GpuScene::GpuScene(vk::Context& ctx, const scene::Scene& scene) : ctx_(ctx) {
+GpuScene::GpuScene(vk::Context& ctx, const scene::Scene& scene, GpuSceneContents contents) : ctx_(ctx) {
     TextureBindings b;
     if (!scene.meshes.empty()) {
         const uint8_t white[4] = {255, 255, 255, 255};
@@ -256,12 +256,13 @@ GpuScene::GpuScene(vk::Context& ctx, const scene::Scene& scene) : ctx_(ctx) {
     data_ = packGpuScene(scene, b);
 
     constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    materials_ = uploadArray(ctx, data_.materials, kStorage, "scene materials", "materials");
+    if (contents == GpuSceneContents::MaterialsOnly) return;
     vertices_ = uploadArray(ctx, data_.vertices, kStorage, "scene vertices", "geometry");
     indices_ = uploadArray(ctx, data_.indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "scene indices", "geometry");
     meshes_ = uploadArray(ctx, data_.meshes, kStorage, "scene meshes", "geometry");
     instances_ = uploadArray(ctx, data_.instances, kStorage, "scene instances", "instances");
     draws_ = uploadArray(ctx, data_.draws, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, "scene draw commands", "instances");
-    materials_ = uploadArray(ctx, data_.materials, kStorage, "scene materials", "materials");
     lights_ = uploadArray(ctx, data_.lights, kStorage, "scene lights", "lights");
     colors_ = uploadArray(ctx, data_.colors, kStorage, "scene vertex colors", "geometry");
     uv1_ = uploadArray(ctx, data_.uv1, kStorage, "scene uv1", "geometry");

@@ -61,9 +61,14 @@ gpu::GpuInstance packInstance(const glm::mat4& world, uint32_t mesh);
 // Sampler state of a glTF sampler (filters and wrap as glTF enums; wrapS decides both axes, see the .cpp).
 vk::SamplerDesc samplerDesc(const scene::Sampler& sampler);
 
+// What a GpuScene uploads. The path tracer traces its own geometry (render/pt_geometry.hpp) and reads only the
+// materials with their bindless textures and samplers: MaterialsOnly leaves the vertex, index, mesh, instance,
+// draw, light and optional-stream buffers null and creates no animation state.
+enum class GpuSceneContents : uint8_t { Everything, MaterialsOnly };
+
 class GpuScene {
 public:
-    GpuScene(vk::Context& ctx, const scene::Scene& scene);
+    GpuScene(vk::Context& ctx, const scene::Scene& scene, GpuSceneContents contents = GpuSceneContents::Everything);
     ~GpuScene();
     GpuScene(const GpuScene&) = delete;
     GpuScene& operator=(const GpuScene&) = delete;

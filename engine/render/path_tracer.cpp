@@ -213,8 +213,8 @@ PathTracer::PathTracer(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene
         throw std::runtime_error("path tracer: --denoise needs engine/passes/denoise.hpp, which this build lacks");
     if (m.traversal == PtTraversal::Bvh && !bvhTraversalSupported(ctx))
         throw std::runtime_error(ctx.info().name + " lacks shaderFloat64, which our BVH traversal needs");
-    // Materials with bindless texture slots come from GpuScene (its geometry buffers are not traced).
-    m.gpuScene = std::make_unique<GpuScene>(ctx, scene);
+    // Materials with bindless texture slots come from GpuScene; the geometry is PT-A's (uploaded below).
+    m.gpuScene = std::make_unique<GpuScene>(ctx, scene, GpuSceneContents::MaterialsOnly);
     std::vector<PtTextureBinding> textures(scene.textures.size());
     if (m.gpuScene->features().hasTextures) {
         TextureStreamer streamer(ctx, scene, [&](uint32_t texture, vk::SampledIndex image, vk::SamplerIndex sampler) {

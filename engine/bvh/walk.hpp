@@ -65,13 +65,12 @@ public:
           tMin_(_mm_set1_ps(r.tMin)) {}
 
     bool operator()(const Node& node, float tLimit, float& tNear) const {
-        constexpr float kRobustScale = 1.0f + 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
         const __m128 bmin = _mm_loadu_ps(&node.min.x);
         const __m128 bmax = _mm_loadu_ps(&node.max.x);
         const __m128 lo = _mm_or_ps(_mm_and_ps(negative_, bmax), _mm_andnot_ps(negative_, bmin));
         const __m128 hi = _mm_or_ps(_mm_and_ps(negative_, bmin), _mm_andnot_ps(negative_, bmax));
         __m128 t0 = _mm_mul_ps(_mm_sub_ps(lo, origin_), inv_);
-        __m128 t1 = _mm_mul_ps(_mm_mul_ps(_mm_sub_ps(hi, origin_), inv_), _mm_set1_ps(kRobustScale));
+        __m128 t1 = _mm_mul_ps(_mm_mul_ps(_mm_sub_ps(hi, origin_), inv_), _mm_set1_ps(kBoxRobustScale));
         t0 = _mm_max_ps(t0, tMin_);                // maxps/minps return the second operand for a NaN
         t1 = _mm_min_ps(t1, _mm_set1_ps(tLimit));
         t0 = _mm_max_ps(t0, _mm_shuffle_ps(t0, t0, _MM_SHUFFLE(2, 3, 0, 1)));
@@ -146,7 +145,6 @@ bool walkTree(const Node* nodes, const PreparedRay& ray, LeafFn&& leaf, BestFn&&
 template <class LeafFn, class BestFn, class LeafDataFn>
 bool walkWide(const WideNode* wide, const Node& root, const PreparedRay& ray, LeafFn&& leaf, BestFn&& bestT,
               LeafDataFn&& leafData) {
-    constexpr float kRobustScale = 1.0f + 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
     float tRoot = 0.0f;
     if (!SseBoxTest(ray)(root, boxLimit(bestT()), tRoot)) return false;
     int loRow[3], hiRow[3];
@@ -159,7 +157,7 @@ bool walkWide(const WideNode* wide, const Node& root, const PreparedRay& ray, Le
         inv[axis] = _mm_set1_ps(ray.invDirection[axis]);
     }
     const __m128 tMin = _mm_set1_ps(ray.tMin);
-    const __m128 scale = _mm_set1_ps(kRobustScale);
+    const __m128 scale = _mm_set1_ps(kBoxRobustScale);
 
     struct Entry {
         uint32_t first;

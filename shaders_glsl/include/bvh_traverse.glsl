@@ -2,14 +2,17 @@
 // through buffer device addresses (shared/bvh_trace_types.h), for the path tracer, ray-traced shadows and picking.
 // Port of IDKEngine include/BVHIntersect.glsl (pair-wise walk, stack top in registers, leaf pairs intersected as
 // one range) with the robust tests of engine/bvh/intersect.hpp ported operation for operation: the watertight
-// ray/triangle test in double precision, the robust slab test, the same tie rule; hits equal the CPU traversal's.
+// ray/triangle test in single precision with exact edge-function signs (bvh_edge_function.glsl), the robust slab
+// test, the same tie rule; hits equal the CPU traversal's. No double precision anywhere: it runs on any Vulkan 1.3
+// device (consumer GPUs run fp64 at 1/16-1/64 rate, Intel Arc, Apple and mobile GPUs have none).
 //
 // The includer may define, before including:
 //   BVH_STACK_SIZE       BLAS stack entries (default 32); at least bvh::requiredStackSize() of every BLAS traced.
 //                        A specialization constant works (arrays may be sized by one).
 //   BVH_TLAS_STACK_SIZE  TLAS stack entries (default 32).
 // A push onto a full stack is dropped (the subtree is skipped, never written out of bounds) and reported with
-// kBvhHitFlagStackOverflow in the hit's flags. Needs shaderFloat64 and shaderInt64.
+// kBvhHitFlagStackOverflow in the hit's flags. Needs shaderInt64 (64-bit buffer addresses in GpuBlasDesc and the
+// exact edge-function fallback), which the engine requires anyway.
 //
 // Exactness: every float expression that the C++ rounds step by step is `precise`, so no contraction into FMA and
 // no reassociation; NaN and infinity tests use the bits, which no fast-math assumption can fold away.
@@ -19,6 +22,7 @@
 #extension GL_EXT_scalar_block_layout : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #include "bvh_trace_types.h"
+#include "bvh_edge_function.glsl"
 
 #ifndef BVH_STACK_SIZE
 #define BVH_STACK_SIZE 32
@@ -37,7 +41,7 @@ layout(buffer_reference, scalar, buffer_reference_align = 8) readonly buffer Bvh
 layout(buffer_reference, scalar, buffer_reference_align = 8) readonly buffer BvhTlasDescRef { GpuTlasDesc d; };
 
 #define kBvhInfinity uintBitsToFloat(0x7F800000u)
-const float kBvhRobustScale = 1.00000035762786865234375;     // 1 + 2 * gamma(3) as intersect.hpp rounds it: 0x3F800003
+const float kBvhRobustScale = 1.0000019073486328125;          // bvh::kBoxRobustScale = 1 + 2^-19 (0x3F800010)
 const float kBvhTieSlack = 9.5367431640625e-7;               // 2^-20: walk.hpp boxLimit()
 
 bool bvhIsFinite(float x) { return (floatBitsToUint(x) & 0x7F800000u) != 0x7F800000u; }
@@ -96,8 +100,9 @@ BvhPreparedRay bvhPrepareRay(vec3 origin, vec3 direction, float tMin, float tMax
     return r;
 }
 
-// bvh::intersectBox: robust slabs (Ize 2013). The face is picked by the sign bit of the inverse direction, a NaN
-// from 0 * inf constrains nothing (the comparisons below are false for NaN), the exit distance is widened.
+// bvh::intersectBox: robust slabs (Ize 2013, widened for Vulkan's faithful rounding and 2.5-ulp division). The
+// face is picked by the sign bit of the inverse direction, a NaN from 0 * inf constrains nothing (the comparisons
+// below are false for NaN), the exit distance is widened.
 bool bvhIntersectBox(BvhPreparedRay r, vec3 boxMin, vec3 boxMax, float tLimit, out float tNear) {
     precise float nearT = r.tMin;
     precise float farT = tLimit;
@@ -116,9 +121,9 @@ bool bvhIntersectBox(BvhPreparedRay r, vec3 boxMin, vec3 boxMax, float tLimit, o
     return nearT <= farT;
 }
 
-// bvh::intersectTriangle: watertight test (Woop, Benthin & Wald 2013), edge functions in double (every product of
-// two floats is exact there, so every sign is exact). Two-sided; edges and vertices inside; degenerate triangles
-// miss. Reports t > r.tMin only; u, v are the weights of v1 and v2.
+// bvh::intersectTriangle: watertight test (Woop, Benthin & Wald 2013) in single precision; the edge functions have
+// exact signs (bvhEdgeFunction). Two-sided; edges and vertices inside; degenerate triangles miss. Reports
+// t > r.tMin only; u, v are the weights of v1 and v2.
 bool bvhIntersectTriangle(BvhPreparedRay r, vec3 v0, vec3 v1, vec3 v2, out float tHit, out float uHit,
                           out float vHit) {
     tHit = 0.0;
@@ -127,32 +132,33 @@ bool bvhIntersectTriangle(BvhPreparedRay r, vec3 v0, vec3 v1, vec3 v2, out float
     precise vec3 a = v0 - r.origin;
     precise vec3 b = v1 - r.origin;
     precise vec3 c = v2 - r.origin;
-    precise float axf = a[r.kx] - r.sx * a[r.kz];
-    precise float ayf = a[r.ky] - r.sy * a[r.kz];
-    precise float bxf = b[r.kx] - r.sx * b[r.kz];
-    precise float byf = b[r.ky] - r.sy * b[r.kz];
-    precise float cxf = c[r.kx] - r.sx * c[r.kz];
-    precise float cyf = c[r.ky] - r.sy * c[r.kz];
-    double ax = double(axf), ay = double(ayf), bx = double(bxf), by = double(byf), cx = double(cxf),
-           cy = double(cyf);
-    precise double u = cx * by - cy * bx;
-    precise double v = ax * cy - ay * cx;
-    precise double w = bx * ay - by * ax;
-    if ((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0)) return false;
-    precise double det = u + v + w;
+    precise float axs = a[r.kx] - r.sx * a[r.kz];
+    precise float ays = a[r.ky] - r.sy * a[r.kz];
+    precise float bxs = b[r.kx] - r.sx * b[r.kz];
+    precise float bys = b[r.ky] - r.sy * b[r.kz];
+    precise float cxs = c[r.kx] - r.sx * c[r.kz];
+    precise float cys = c[r.ky] - r.sy * c[r.kz];
+    float ax = bvhFlushSubnormal(axs), ay = bvhFlushSubnormal(ays), bx = bvhFlushSubnormal(bxs),
+          by = bvhFlushSubnormal(bys), cx = bvhFlushSubnormal(cxs), cy = bvhFlushSubnormal(cys);
+    int su, sv, sw;
+    float u = bvhEdgeFunction(cx, by, cy, bx, su);
+    float v = bvhEdgeFunction(ax, cy, ay, cx, sv);
+    float w = bvhEdgeFunction(bx, ay, by, ax, sw);
+    if ((su < 0 || sv < 0 || sw < 0) && (su > 0 || sv > 0 || sw > 0)) return false;
+    precise float det = u + v + w;
     if (det == 0.0) return false;
-    precise double az = double(r.sz) * double(a[r.kz]);
-    precise double bz = double(r.sz) * double(b[r.kz]);
-    precise double cz = double(r.sz) * double(c[r.kz]);
-    precise double rcp = 1.0 / det;
-    precise double t = (u * az + v * bz + w * cz) * rcp;
-    if (!(t > double(r.tMin)) || !(t < double(kBvhInfinity))) return false;
-    tHit = float(t);
-    if (!(tHit > r.tMin)) return false;
-    precise double uw = v * rcp;
-    precise double vw = w * rcp;
-    uHit = float(uw);
-    vHit = float(vw);
+    precise float az = r.sz * a[r.kz];
+    precise float bz = r.sz * b[r.kz];
+    precise float cz = r.sz * c[r.kz];
+    precise float tScaled = u * az + v * bz + w * cz;
+    precise float rcp = 1.0 / det;
+    precise float t = tScaled * rcp;
+    if (!(t > r.tMin) || !(t < kBvhInfinity)) return false;
+    tHit = t;
+    precise float uw = v * rcp;
+    precise float vw = w * rcp;
+    uHit = uw;
+    vHit = vw;
     return true;
 }
 

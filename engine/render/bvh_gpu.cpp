@@ -47,9 +47,6 @@ constexpr std::array<uint32_t, 3> kRefitGroup = {gpu::kBvhRefitGroupSize, 1, 1};
 void dispatchTrace(VkCommandBuffer cmd, const BvhKernels& k, const gpu::BvhTracePush& push, TraceMode mode,
                    bool useTlas, uint32_t blasStack, uint32_t tlasStack) {
     if (push.count == 0) return;
-    if (!bvhTraversalSupported(k.ctx)) {
-        throw std::runtime_error(k.ctx.info().name + " lacks shaderFloat64, which the exact BVH traversal needs");
-    }
     // A stack of 0 entries is not a valid array size; 1 is the smallest pipeline variant.
     const vk::Pipeline& pipeline =
         k.shaders.compute({ShaderId::bvh_trace_rays_comp,
@@ -66,12 +63,6 @@ void dispatchTrace(VkCommandBuffer cmd, const BvhKernels& k, const gpu::BvhTrace
 }
 
 }  // namespace
-
-bool bvhTraversalSupported(const vk::Context& ctx) {
-    VkPhysicalDeviceFeatures features{};
-    vkGetPhysicalDeviceFeatures(ctx.physicalDevice(), &features);
-    return features.shaderFloat64 == VK_TRUE;
-}
 
 std::vector<uint32_t> refitOrder(std::span<const gpu::GpuBlasNode> nodes,
                                  std::vector<std::pair<uint32_t, uint32_t>>& levels) {

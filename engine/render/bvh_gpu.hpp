@@ -144,7 +144,4 @@ TriangleMesh worldTriangles(const scene::Scene& scene);
 // BLAS per mesh under a TLAS.
 TriangleMesh meshTriangles(const scene::Scene& scene, uint32_t mesh);
 
-// True when the device can run the traversal (it needs shaderFloat64 for the exact watertight test).
-bool bvhTraversalSupported(const vk::Context& ctx);
-
 }  // namespace idk::render

@@ -211,8 +211,6 @@ PathTracer::PathTracer(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene
     m.traversal = resolveTraversal(ctx, options.traversal);
     if (options.denoise && !denoiserAvailable())
         throw std::runtime_error("path tracer: --denoise needs engine/passes/denoise.hpp, which this build lacks");
-    if (m.traversal == PtTraversal::Bvh && !bvhTraversalSupported(ctx))
-        throw std::runtime_error(ctx.info().name + " lacks shaderFloat64, which our BVH traversal needs");
     // Materials with bindless texture slots come from GpuScene; the geometry is PT-A's (uploaded below).
     m.gpuScene = std::make_unique<GpuScene>(ctx, scene, GpuSceneContents::MaterialsOnly);
     std::vector<PtTextureBinding> textures(scene.textures.size());

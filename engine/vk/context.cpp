@@ -392,7 +392,6 @@ void Context::createDevice() {
     c.depthClamp = s.depthClamp;
     c.fillModeNonSolid = s.fillModeNonSolid;
     c.shaderInt16 = s.shaderInt16;
-    c.shaderFloat64 = s.shaderFloat64;  // the BVH traversal's exact watertight test (bvh_traverse.glsl)
     c.multiViewport = s.multiViewport;
     c.drawIndirectFirstInstance = s.drawIndirectFirstInstance;
     c.shaderImageGatherExtended = s.shaderImageGatherExtended;

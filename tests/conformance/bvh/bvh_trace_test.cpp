@@ -19,11 +19,6 @@ using render::TraceMode;
 
 class BvhTraceTest : public GpuTest {
 protected:
-    void SetUp() override {
-        GpuTest::SetUp();
-        if (!render::bvhTraversalSupported(ctx())) GTEST_SKIP() << "device lacks shaderFloat64";
-    }
-
     // Closest and any hit of `rays` on one BLAS against the CPU; expects agreement and returns the counts.
     Agreement traceBoth(const TestBlas& scene, const std::vector<bvh::Ray>& rays, const std::string& what) {
         RayBatch batch(ctx(), shaders(), 1u << 17);

@@ -1,5 +1,7 @@
 // cmd_info.cpp: `idk info [--json]`: device, driver, API version, the limits that matter to the engine and
 // the capability-ladder table (which rung each optional feature uses on this device, and why).
+// Shader features: the optional arithmetic types the shaders could use and whether they do (shaderFloat64: unused,
+// every shader is single precision, the BVH traversal included; tests/unit/shader/spirv_capabilities_test.cpp).
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
@@ -35,6 +37,21 @@ const char* typeName(VkPhysicalDeviceType t) {
     }
 }
 
+// How the engine's shaders use the optional 64-bit arithmetic features, next to what the device supports.
+nlohmann::json shaderFeatures(const vk::Context& ctx) {
+    VkPhysicalDeviceFeatures f{};
+    vkGetPhysicalDeviceFeatures(ctx.physicalDevice(), &f);
+    return nlohmann::json::array(
+        {{{"feature", "shaderFloat64"},
+          {"use", "unused"},
+          {"supported", f.shaderFloat64 == VK_TRUE},
+          {"note", "no shader uses double precision (the BVH traversal is fp32 with exact edge signs)"}},
+         {{"feature", "shaderInt64"},
+          {"use", "required"},
+          {"supported", f.shaderInt64 == VK_TRUE},
+          {"note", "64-bit buffer device addresses; the BVH traversal's exact edge-sign fallback"}}});
+}
+
 nlohmann::json describe(const vk::Context& ctx) {
     const vk::DeviceInfo& d = ctx.info();
     const vk::DeviceCapabilities& c = ctx.capabilities();
@@ -46,6 +63,7 @@ nlohmann::json describe(const vk::Context& ctx) {
                    {"apiVersion", versionString(d.apiVersion)},
                    {"unifiedMemory", d.uma},
                    {"forcedStaging", ctx.desc().forceStaging}};
+    j["shaderFeatures"] = shaderFeatures(ctx);
     j["limits"] = {{"maxImageDimension2D", d.limits.maxImageDimension2D},
                    {"maxImageDimension3D", d.limits.maxImageDimension3D},
                    {"maxStorageBufferRange", d.limits.maxStorageBufferRange},
@@ -83,6 +101,12 @@ void printText(const nlohmann::json& j) {
     std::printf("api:      Vulkan %s\n", d["apiVersion"].get<std::string>().c_str());
     std::printf("memory:   %s%s\n", d["unifiedMemory"].get<bool>() ? "unified" : "discrete",
                 d["forcedStaging"].get<bool>() ? " (staging uploads forced)" : "");
+    std::printf("\nshader features:\n");
+    for (const auto& f : j["shaderFeatures"]) {
+        const char* supported = f["supported"].get<bool>() ? "supported" : "not supported";
+        std::printf("  %-32s %-9s (device: %s) %s\n", f["feature"].get<std::string>().c_str(),
+                    f["use"].get<std::string>().c_str(), supported, f["note"].get<std::string>().c_str());
+    }
     std::printf("\nlimits:\n");
     for (const auto& [key, value] : j["limits"].items()) std::printf("  %-32s %s\n", key.c_str(), value.dump().c_str());
     std::printf("\ncapability ladders:\n  %-44s %-11s %s\n", "feature", "rung", "mechanism");

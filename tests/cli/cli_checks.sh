@@ -40,6 +40,9 @@ case "$case_name" in
     for key in '"device"' '"ladders"' '"subgroupSize"' '"chosen"' '"apiVersion"'; do
       grep -q "$key" "$tmp/info.json" || fail "missing $key in: $(cat "$tmp/info.json")"
     done
+    # No shader uses double precision: shaderFloat64 is reported as unused (issue 19).
+    grep -A3 '"feature": "shaderFloat64"' "$tmp/info.json" | grep -q '"use": "unused"' ||
+      fail "shaderFloat64 not reported as unused in: $(cat "$tmp/info.json")"
     ;;
   no_device)
     VK_ICD_FILENAMES="$tmp/none.json" VK_DRIVER_FILES="$tmp/none.json" "$idk" info --no-validation 2>"$tmp/err"

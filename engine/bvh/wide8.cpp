@@ -74,6 +74,23 @@ std::vector<uint32_t> collapse(std::span<const gpu::GpuBlasNode> nodes, uint32_t
     return slots;
 }
 
+// Origin, exponents and quantised boxes of a wide node whose slots stand for binary nodes `slots` (in order).
+void quantize(gpu::GpuWideNode& wn, std::span<const gpu::GpuBlasNode> nodes, std::span<const uint32_t> slots) {
+    Box bounds;
+    for (uint32_t s : slots) bounds.grow(Box{nodes[s].min, nodes[s].max});
+    if (slots.empty()) bounds = Box{glm::vec3(0.0f), glm::vec3(0.0f)};
+    wn.origin = bounds.min;
+    for (uint32_t a = 0; a < 3; ++a) setByte(wn.exponents, a, pickExponent(bounds.min[int(a)], bounds.max[int(a)]));
+    for (uint32_t i = 0; i < gpu::kWideArity; ++i) {
+        for (uint32_t a = 0; a < 3; ++a) {
+            const float scale = scaleOf(byteOf(wn.exponents, a));
+            const bool used = i < slots.size();
+            setByte(wn.qmin[2 * a + i / 4], i % 4, used ? quantizeDown(wn.origin[int(a)], scale, nodes[slots[i]].min[int(a)]) : 0);
+            setByte(wn.qmax[2 * a + i / 4], i % 4, used ? quantizeUp(wn.origin[int(a)], scale, nodes[slots[i]].max[int(a)]) : 0);
+        }
+    }
+}
+
 }  // namespace
 
 bool wideSlotInner(const gpu::GpuWideNode& node, uint32_t slot) { return ((node.exponents >> (24u + slot)) & 1u) != 0; }
@@ -100,26 +117,17 @@ Bvh8 buildBvh8(std::span<const gpu::GpuBlasNode> nodes, std::span<const gpu::Gpu
         uint32_t binary, wide, depth;
     };
     std::vector<Item> work{{gpu::kBvhRootNode, 0, 1}};
-    std::vector<uint32_t> usedSlots, firstInner;  // per wide node, for the stack bound
+    std::vector<uint32_t> usedSlots;  // per wide node, for the stack bound
     for (size_t w = 0; w < work.size(); ++w) {
         const Item item = work[w];
         const std::vector<uint32_t> slots = collapse(nodes, item.binary);
         gpu::GpuWideNode wn{};
-        Box bounds;
-        for (uint32_t s : slots) bounds.grow(Box{nodes[s].min, nodes[s].max});
-        if (slots.empty()) bounds = Box{glm::vec3(0.0f), glm::vec3(0.0f)};
-        wn.origin = bounds.min;
-        for (uint32_t a = 0; a < 3; ++a) setByte(wn.exponents, a, pickExponent(bounds.min[int(a)], bounds.max[int(a)]));
+        quantize(wn, nodes, slots);
         wn.childBase = uint32_t(out.nodes.size());
         wn.triangleBase = uint32_t(out.triangles.size());
         uint32_t inner = 0;
         for (uint32_t i = 0; i < slots.size(); ++i) {
             const gpu::GpuBlasNode& child = nodes[slots[i]];
-            for (uint32_t a = 0; a < 3; ++a) {
-                const float scale = scaleOf(byteOf(wn.exponents, a));
-                setByte(wn.qmin[2 * a + i / 4], i % 4, quantizeDown(wn.origin[int(a)], scale, child.min[int(a)]));
-                setByte(wn.qmax[2 * a + i / 4], i % 4, quantizeUp(wn.origin[int(a)], scale, child.max[int(a)]));
-            }
             if (child.triCount == 0) {
                 wn.exponents |= 1u << (24u + i);
                 work.push_back({slots[i], wn.childBase + inner++, item.depth + 1});
@@ -158,6 +166,20 @@ Bvh8 buildBvh8(std::span<const gpu::GpuBlasNode> nodes, std::span<const gpu::Gpu
     }
     out.stackSize = need[0];
     return out;
+}
+
+void refitBvh8(Bvh8& bvh, std::span<const gpu::GpuBlasNode> nodes) {
+    for (size_t w = 0; w < bvh.nodes.size(); ++w) {
+        uint32_t used = 0;
+        while (used < gpu::kWideArity && bvh.slotSources[w][used] != kInvalidIndex) {
+            if (bvh.slotSources[w][used] >= nodes.size()) throw std::invalid_argument("refitBvh8: fewer binary nodes than at conversion");
+            ++used;
+        }
+        const uint32_t mask = bvh.nodes[w].exponents & 0xFF000000u;
+        bvh.nodes[w].exponents = 0;
+        quantize(bvh.nodes[w], nodes, std::span(bvh.slotSources[w]).first(used));
+        bvh.nodes[w].exponents |= mask;
+    }
 }
 
 }  // namespace idk::bvh

@@ -7,7 +7,7 @@
 // from a binary inner node's two children and repeatedly replaces the inner child of largest surface area by its
 // two children until it has 8 or only leaves are left. Leaves are the binary leaves with the same triangle
 // references, so the wide walk finds the same closest hit as the binary one (its boxes contain the binary boxes).
-// Refit keeps the binary layout: refit the binary nodes, then convert again (buildBvh8 on the refitted nodes).
+// Refit keeps the binary layout: refit the binary nodes, then re-quantise the wide boxes (refitBvh8, same topology).
 #pragma once
 
 #include "bvh/geometry.hpp"
@@ -34,6 +34,11 @@ struct Bvh8 {
 // Throws std::invalid_argument for a malformed array (child or triangle range out of bounds, fewer than 4 nodes)
 // or a leaf of more than 255 references (the 8-bit count; the builders' leaves hold at most maxLeafSize).
 Bvh8 buildBvh8(std::span<const gpu::GpuBlasNode> nodes, std::span<const gpu::GpuBlasTriangle> triangles);
+
+// Refit with fixed topology: re-derives every wide node's origin, scales and quantised boxes from the refitted
+// binary nodes its slots stand for (Bvh8::slotSources), e.g. after render::recordRefit. `nodes` is the refitted
+// flattened array of the BLAS `bvh` was built from.
+void refitBvh8(Bvh8& bvh, std::span<const gpu::GpuBlasNode> nodes);
 
 // Slot queries and the decoded (conservative) box of slot `slot`, exactly as the shader computes them.
 bool wideSlotInner(const gpu::GpuWideNode& node, uint32_t slot);

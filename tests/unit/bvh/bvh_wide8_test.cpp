@@ -1,12 +1,15 @@
 // bvh_wide8_test.cpp: the 8-wide compressed BVH (engine/bvh/wide8.hpp): every decoded child box contains the
 // binary child box it stands for (checked on every slot of every node), the leaves keep exactly the binary leaves'
 // triangle references, the stack bound holds, and the wide walk returns the binary walk's hits (same triangle,
-// bit-identical t; same any-hit answer) on the bunny, the rotated pre-split atrium, hard cases and after a refit.
+// bit-identical t; same any-hit answer) on the bunny, the rotated pre-split atrium and hard cases; re-quantising after a
+// refit (fixed topology) equals a conversion from scratch where the topology cannot differ, and stays exact.
 #include "bvh/flatten.hpp"
 #include "bvh/procedural.hpp"
 #include "bvh/refit.hpp"
 #include "bvh/wide8.hpp"
 #include "bvh_test_util.hpp"
+
+#include <cstring>
 
 namespace idk::bvh {
 namespace {
@@ -168,15 +171,34 @@ TEST(BvhWide8, SmallStackFlagsOverflowAndUnflaggedRaysAreExact) {
     EXPECT_EQ(wrong, 0u);
 }
 
-TEST(BvhWide8, ConversionAfterRefitTracesTheRefittedBinary) {
-    // Refit keeps the binary layout; the wide BVH is converted again from the refitted nodes.
+bool sameNodes(const std::vector<gpu::GpuWideNode>& a, const std::vector<gpu::GpuWideNode>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(gpu::GpuWideNode)) == 0;
+}
+
+TEST(BvhWide8, RefitEqualsConversionFromScratchOfTheRefittedBinary) {
+    // Scaling every vertex by 2 is exact and scales every area by 4: the greedy collapse picks the same slots, so
+    // re-quantising with fixed topology must give the from-scratch conversion bit for bit.
+    Scene s(fromTriangles(test::bunny()), {});
+    for (glm::vec3& p : s.mesh.positions) p *= 2.0f;
+    refitBlas(s.blas, s.mesh.triangles());
+    s.nodes = flatten(s.blas);
+    Bvh8 refitted = s.wide;
+    refitBvh8(refitted, s.nodes);
+    const Bvh8 scratch = buildBvh8(s.nodes, s.refs);
+    EXPECT_FALSE(sameNodes(refitted.nodes, Scene(fromTriangles(test::bunny()), {}).wide.nodes));  // boxes changed
+    EXPECT_TRUE(sameNodes(refitted.nodes, scratch.nodes));
+    EXPECT_EQ(refitted.slotSources, scratch.slotSources);
+}
+
+TEST(BvhWide8, RefitAfterDeformationTracesTheRefittedBinary) {
     Scene s(fromTriangles(test::bunny()), {});
     for (glm::vec3& p : s.mesh.positions) p += 0.01f * glm::vec3(std::sin(40.0f * p.y), std::cos(30.0f * p.x), 0.0f);
     refitBlas(s.blas, s.mesh.triangles());
     s.nodes = flatten(s.blas);
-    s.wide = buildBvh8(s.nodes, s.refs);
+    refitBvh8(s.wide, s.nodes);
     expectWellFormed(s, "bunny after refit");
     EXPECT_GT(expectSameHits(s, test::randomRays(s.blas.bounds(), 10000, 90), "bunny after refit"), 3000u);
+    EXPECT_THROW(refitBvh8(s.wide, std::span(s.nodes).first(100)), std::invalid_argument);
 }
 
 TEST(BvhWide8, MalformedInputIsRejected) {

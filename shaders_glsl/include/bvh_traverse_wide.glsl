@@ -5,8 +5,9 @@
 // this walk, step for step, is engine/bvh/wide8_traverse.cpp.
 //
 // Walk (ordered, after Ylitie, Karras & Laine 2017, without their octant trick): per node, every used slot's box is
-// decoded and slab-tested; hit slots are sorted nearest first by entry distance (insertion sort, equal distances keep
-// slot order); all but the nearest are pushed with that distance, the nearest is entered; a leaf is intersected
+// decoded and slab-tested; hit slots are ordered nearest first by entry distance (equal distances keep
+// slot order; done by pushing the farthest remaining hit until one is left); all but the nearest are pushed with
+// that distance, the nearest is entered; a leaf is intersected
 // when it is entered; popped entries that start beyond the current hit are skipped.
 //
 // Decoding: origin + float(q) * 2^e. float(q) * 2^e is exact (q < 2^8, a power-of-two scale), so the result is
@@ -15,11 +16,13 @@
 //
 // The includer may define BVH_WIDE_STACK_SIZE (default 64): at least Bvh8::stackSize of every BLAS traced. A push
 // onto a full stack is dropped and reported with kBvhHitFlagStackOverflow, as in the binary walk.
-// On a real GPU: the sorted hit list and the stack are per-thread arrays indexed dynamically, which compilers put
-// in scratch memory; Ylitie et al. keep a 32-bit hit mask per node group in registers instead (octant-ordered
-// slots). Lavapipe (LLVM on the CPU) has no such cost, and a node read is 80 bytes instead of 2 x 32 per pair.
+// On a real GPU: the per-slot values are indexed by unrolled loop counters only (registers) and the ordering is a
+// hit mask with selection passes, but the stack is a per-thread array indexed dynamically, which compilers put in
+// scratch memory (as the binary walk's); Ylitie et al. push node groups (a base index and a hit mask, one entry per
+// node instead of up to 7) and order by ray octant instead of distance, which cuts the stack traffic further.
 #ifndef IDK_BVH_TRAVERSE_WIDE_GLSL
 #define IDK_BVH_TRAVERSE_WIDE_GLSL
+#extension GL_EXT_control_flow_attributes : require
 #include "bvh_traverse.glsl"
 #include "bvh_wide_types.h"
 
@@ -49,21 +52,23 @@ bool bvhTraverseBlasWide(GpuBlasDesc blas, BvhPreparedRay r, uint instanceId, bo
                               uintBitsToFloat(((node.exponents >> 8) & 0xFFu) << 23),
                               uintBitsToFloat(((node.exponents >> 16) & 0xFFu) << 23));
             uint innerMask = node.exponents >> 24;
-            uint hitFirst[kWideArity];
-            uint hitCount[kWideArity];
-            float hitT[kWideArity];
-            uint hits = 0u;
+            // Per-slot values live in arrays indexed only by the unrolled loop counter (registers, no scratch).
+            uint slotFirst[kWideArity];
+            uint slotCount[kWideArity];
+            float slotT[kWideArity];
+            uint hitMask = 0u;
             uint inner = 0u;
             uint triangle = node.triangleBase;
-            for (uint i = 0u; i < kWideArity; ++i) {
+            [[unroll]] for (uint i = 0u; i < kWideArity; ++i) {
                 bool isInner = ((innerMask >> i) & 1u) != 0u;
                 uint shift = 8u * (i & 3u);
                 uint word = i >> 2;
-                uint slotCount = (node.counts[word] >> shift) & 0xFFu;
-                if (!isInner && slotCount == 0u) continue;
-                uint slotFirst = isInner ? node.childBase + inner : triangle;
+                slotCount[i] = (node.counts[word] >> shift) & 0xFFu;
+                slotFirst[i] = isInner ? node.childBase + inner : triangle;
+                slotT[i] = 0.0;
                 inner += isInner ? 1u : 0u;
-                triangle += slotCount;
+                triangle += slotCount[i];
+                if (!isInner && slotCount[i] == 0u) continue;
                 vec3 qlo = vec3(float((node.qmin[word] >> shift) & 0xFFu), float((node.qmin[2u + word] >> shift) & 0xFFu),
                                 float((node.qmin[4u + word] >> shift) & 0xFFu));
                 vec3 qhi = vec3(float((node.qmax[word] >> shift) & 0xFFu), float((node.qmax[2u + word] >> shift) & 0xFFu),
@@ -71,31 +76,41 @@ bool bvhTraverseBlasWide(GpuBlasDesc blas, BvhPreparedRay r, uint instanceId, bo
                 precise vec3 lo = node.origin + qlo * scale;
                 precise vec3 hi = node.origin + qhi * scale;
                 float t;
-                if (!bvhIntersectBox(r, lo, hi, limit, t)) continue;
-                uint k = hits++;
-                while (k > 0u && hitT[k - 1u] > t) {
-                    hitFirst[k] = hitFirst[k - 1u];
-                    hitCount[k] = hitCount[k - 1u];
-                    hitT[k] = hitT[k - 1u];
-                    --k;
+                if (bvhIntersectBox(r, lo, hi, limit, t)) {
+                    hitMask |= 1u << i;
+                    slotT[i] = t;
                 }
-                hitFirst[k] = slotFirst;
-                hitCount[k] = slotCount;
-                hitT[k] = t;
             }
-            if (hits > 0u) {
-                for (uint k = hits - 1u; k >= 1u; --k) {
+            if (hitMask != 0u) {
+                // Push the farthest hit slot until one is left (ties: the higher slot is pushed first, so equal
+                // distances are popped in slot order, as the C++ walk's stable sort visits them), enter that one.
+                while (bitCount(hitMask) > 1) {
+                    uint far = 0u, farFirst = 0u, farCount = 0u;
+                    float farT = -kBvhInfinity;
+                    [[unroll]] for (uint i = 0u; i < kWideArity; ++i) {
+                        if (((hitMask >> i) & 1u) != 0u && slotT[i] >= farT) {
+                            far = i;
+                            farT = slotT[i];
+                            farFirst = slotFirst[i];
+                            farCount = slotCount[i];
+                        }
+                    }
+                    hitMask &= ~(1u << far);
                     if (size < uint(BVH_WIDE_STACK_SIZE)) {
-                        stackFirst[size] = hitFirst[k];
-                        stackCount[size] = hitCount[k];
-                        stackT[size] = hitT[k];
+                        stackFirst[size] = farFirst;
+                        stackCount[size] = farCount;
+                        stackT[size] = farT;
                         ++size;
                     } else {
                         best.flags |= kBvhHitFlagStackOverflow;
                     }
                 }
-                first = hitFirst[0];
-                count = hitCount[0];
+                [[unroll]] for (uint i = 0u; i < kWideArity; ++i) {
+                    if (((hitMask >> i) & 1u) != 0u) {
+                        first = slotFirst[i];
+                        count = slotCount[i];
+                    }
+                }
                 continue;
             }
         }

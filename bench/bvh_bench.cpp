@@ -23,6 +23,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "bench_support.hpp"
+#include "bvh_bench_scenes.hpp"
 #include "bvh/blas.hpp"
 #include "bvh/flatten.hpp"
 #include "bvh/metrics.hpp"
@@ -604,4 +605,20 @@ int registerAll() {
 [[maybe_unused]] const int kRegistered = registerAll();
 
 }  // namespace
+
+// For bench/bvh_wide_bench.cpp: the same scenes, rays and CPU hits, and the same row labels.
+BvhBenchScene bvhBenchScene(const std::string& name) {
+    const SceneSpec* spec = nullptr;
+    for (const SceneSpec& s : kScenes) {
+        if (name == s.name) spec = &s;
+    }
+    if (!spec) throw std::invalid_argument("bvhBenchScene: unknown scene " + name);
+    const SceneData& s = sceneData(name);
+    return {&s.mesh, s.traceBlas.get(), &s.primary, &s.diffuse, &s.primaryHits, &s.diffuseHits, inputText(*spec),
+            std::string("BLAS split ") + splitName(kTraceSplitFactor), spec->big};
+}
+
+void setBvhBenchRow(benchmark::State& state, const RowInfo& row, const std::string& kind, const std::string& rays) {
+    setBvhRow(state, row, kind, rays);
+}
 }  // namespace idk::bench

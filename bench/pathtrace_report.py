@@ -21,6 +21,7 @@ SCENE_TITLES = {"cornell": "Cornell box (embedded default scene)", "DamagedHelme
 CURVES = [("nee", "NEE+MIS", "tab:blue"), ("bsdf", "BSDF sampling only", "tab:orange"),
           ("denoised", "NEE+MIS + denoiser", "tab:green")]
 POINTS = [("sort-on", "NEE+MIS, rays sorted", "s"), ("traversal-bvh", "NEE+MIS, our BVH traversal", "^"),
+          ("traversal-bvh2", "NEE+MIS, our binary BVH walk", ">"),
           ("traversal-rayquery", "NEE+MIS, ray query", "v")]
 
 
@@ -171,8 +172,8 @@ def summary_lines(by_scene):
     lines = ["### Comparisons", "",
              "| scene | NEE+MIS vs BSDF only at equal time | RMSE slope vs spp (NEE+MIS; -0.5 = Monte Carlo) | "
              "denoised / raw RMSE (by spp) | denoised / raw relative MSE (by spp) | sorting on / off (samples/s) | "
-             "our BVH / ray query (samples/s) |",
-             "|---|---|---|---|---|---|---|"]
+             "our BVH / ray query (samples/s) | 8-wide / binary BVH walk (samples/s) |",
+             "|---|---|---|---|---|---|---|---|"]
     for scene, runs in by_scene.items():
         get = {(r["variant"], r["spp"]): r for r in runs}
         nee = [r for r in runs if r["variant"] == "nee" and r["wallMilliseconds"] and r["rmse"]]
@@ -205,8 +206,9 @@ def summary_lines(by_scene):
         sort_ratio = ratio(("sort-on", mid), ("nee", mid)) if mid else "-"
         mid_t = next((r["spp"] for r in runs if r["variant"] == "traversal-bvh"), None)
         trav_ratio = ratio(("traversal-bvh", mid_t), ("traversal-rayquery", mid_t)) if mid_t else "-"
+        wide_ratio = ratio(("traversal-bvh", mid_t), ("traversal-bvh2", mid_t)) if mid_t else "-"
         lines.append(f"| {scene} | {equal} | {fmt(s) if s is not None else '-'} | {', '.join(den) or '-'} | {', '.join(den_rel) or '-'} | "
-                     f"{sort_ratio} | {trav_ratio} |")
+                     f"{sort_ratio} | {trav_ratio} | {wide_ratio} |")
     return lines + [""]
 
 
@@ -237,7 +239,8 @@ def main(argv):
              "(RMSE and relative MSE = mean (a-b)^2 / (b^2 + 0.01) over RGB; spp per scene below). The reference's "
              "own noise adds to every measured error (at 16 spp against 256 spp: sqrt(1 + 16/256) = +3% RMSE; "
              "TransmissionTest's 128-spp reference: +6%); its spp is lower than ideal to keep the section within "
-             "~15 minutes on lavapipe. All renders use our BVH traversal except the ray-query row. "
+             "~15 minutes on lavapipe. All renders use our BVH traversal (`--traversal bvh`: the 8-wide compressed walk) "
+             "except the ray-query row and the binary-walk row (`--traversal bvh2`). "
              "**Wall time** = the render only (`pathtrace.wallMilliseconds` of `idk render --json`: upload excluded, "
              "readback included); samples/s = pixels x spp / wall time as the command reports it. **BSDF sampling "
              "only** is IDKEngine's approach (no light sampling): at equal time it is read off its error-vs-time curve "

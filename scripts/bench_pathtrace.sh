@@ -102,6 +102,7 @@ for scene in "${scenes[@]}"; do
   done
   render "$scene" sort-on "$mid_spp" --seed 1 --traversal bvh --sort on || true
   render "$scene" traversal-bvh "$trav_spp" --seed 1 --traversal bvh
+  render "$scene" traversal-bvh2 "$trav_spp" --seed 1 --traversal bvh2
   render "$scene" traversal-rayquery "$trav_spp" --seed 1 --traversal rayquery || true
 done
 elapsed=$(( $(date +%s) - start ))

@@ -1,5 +1,5 @@
 // render_pathtrace.cpp: `idk render [SCENE] --pathtrace --spp N --max-depth D --seed S --light-sampling nee-mis|bsdf
-// --sort on|off --traversal auto|bvh|rayquery [--denoise] --out F.exr|F.png [--json]`: the GPU wavefront path
+// --sort on|off --traversal auto|bvh|bvh2|rayquery [--denoise] --out F.exr|F.png [--json]`: the GPU wavefront path
 // tracer (render/path_tracer.hpp) headless, with a progress bar on stderr when stderr is a terminal. .exr gets the
 // linear radiance, .png the raster's display transform (exposure, AgX, sRGB). --json adds a "pathtrace"
 // object: spp, maxDepth, traversal, sort, lightSampling, denoised, wallMilliseconds, gpuMilliseconds,
@@ -29,8 +29,9 @@ const char* const kPathTraceHelp =
     "  --seed S         random seed (default 0; the same seed gives the same image)\n"
     "  --light-sampling nee-mis|bsdf  next-event estimation + MIS (default) or BSDF sampling only (the original's)\n"
     "  --sort on|off    sort rays by material and direction before shading (default off)\n"
-    "  --traversal auto|bvh|rayquery  auto: VK_KHR_ray_query on a GPU that has it; bvh (our BVH) with --fallback\n"
-    "                   and on CPU devices such as lavapipe, whose ray query is far slower\n"
+    "  --traversal auto|bvh|bvh2|rayquery  auto: VK_KHR_ray_query on a GPU that has it; bvh (our BVH, 8-wide\n"
+    "                   compressed nodes) with --fallback and on CPU devices such as lavapipe, whose ray query is far\n"
+    "                   slower; bvh2: our binary BVH walk (same hits as bvh)\n"
     "  --denoise        also run the edge-aware denoiser (albedo/normal/depth guided) and write its output\n"
     "  --environment, --env-intensity, --exposure (.png only), --size, --json, --no-validation, --fallback as above\n";
 
@@ -75,12 +76,13 @@ int runRenderPathTrace(const core::CliArgs& args, const scene::Scene& scene, con
     const std::string lightSampling = oneOf(args, "--light-sampling", "nee-mis", {"nee-mis", "bsdf"});
     pt.nee = lightSampling == "nee-mis";
     const std::string sort = oneOf(args, "--sort", "off", {"on", "off"});
-    const std::string traversal = oneOf(args, "--traversal", "auto", {"auto", "bvh", "rayquery"});
+    const std::string traversal = oneOf(args, "--traversal", "auto", {"auto", "bvh", "bvh2", "rayquery"});
     if (traversal == "rayquery" && args.has("--fallback"))
         throw core::CliError("--traversal rayquery contradicts --fallback (which takes our BVH, the portable rung)");
 
     render::PathTracerOptions options;
     options.traversal = traversal == "bvh"        ? render::PtTraversal::Bvh
+                        : traversal == "bvh2"     ? render::PtTraversal::Bvh2
                         : traversal == "rayquery" ? render::PtTraversal::RayQuery
                                                   : render::PtTraversal::Auto;
     options.sortRays = sort == "on";

@@ -34,6 +34,7 @@ const char* traversalName(PtTraversal t) {
     switch (t) {
         case PtTraversal::Auto: return "auto";
         case PtTraversal::Bvh: return "bvh";
+        case PtTraversal::Bvh2: return "bvh2";
         case PtTraversal::RayQuery: return "rayquery";
     }
     return "?";
@@ -139,10 +140,11 @@ struct PathTracer::Impl {
     PtStageConfig config(const PathTraceSettings& settings) const {
         PtStageConfig c;
         c.rayQuery = traversal == PtTraversal::RayQuery;
+        c.wideBvh = traversal == PtTraversal::Bvh;
         c.sort = options.sortRays;
         c.hasAlpha = hasAlpha;
         c.nee = settings.nee;
-        c.blasStack = geometry.blasStackSize;
+        c.blasStack = traversal == PtTraversal::Bvh ? geometry.wideStackSize : geometry.blasStackSize;
         c.tlasStack = geometry.tlasStackSize;
         c.scene = sceneDesc.address;
         c.camera = camera.address;
@@ -227,7 +229,7 @@ PathTracer::PathTracer(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene
     m.gpuScene->clearMaterialsDirty();
     m.hasAlpha = pts.alphaTesting;
 
-    m.geometry = uploadPtGeometry(ctx, pts);
+    m.geometry = uploadPtGeometry(ctx, pts, m.traversal == PtTraversal::Bvh);
     if (m.traversal == PtTraversal::RayQuery) {
         std::vector<vk::AccelMesh> meshes;
         for (const pathtrace::PtGeometry& g : pts.geometries) meshes.push_back({g.positions, g.triangles});
@@ -238,7 +240,7 @@ PathTracer::PathTracer(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene
     }
     m.tables = uploadPtTables(ctx, pts, textures, PtTextureBinding{});
     gpu::GpuPtSceneDesc d = m.tables.desc;
-    d.tlas = m.geometry.tlas->descAddress();
+    d.tlas = m.geometry.wideTlas ? m.geometry.wideTlas->descAddress() : m.geometry.tlas->descAddress();
     d.accel = m.accel ? m.accel->tlasAddress() : 0;
     d.geometries = m.geometry.geometryTable.address;
     d.instances = m.geometry.instanceTable.address;

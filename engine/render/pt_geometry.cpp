@@ -5,6 +5,7 @@
 
 #include "bvh/flatten.hpp"
 #include "bvh/metrics.hpp"
+#include "bvh/wide8.hpp"
 #include "render/pt_tables.hpp"
 #include "vk/context.hpp"
 #include "vk/transfer.hpp"
@@ -19,7 +20,7 @@ vk::Buffer upload(vk::Context& ctx, const std::vector<T>& v, const std::string& 
 
 }  // namespace
 
-PtGpuGeometry uploadPtGeometry(vk::Context& ctx, const pathtrace::PathTraceScene& pts) {
+PtGpuGeometry uploadPtGeometry(vk::Context& ctx, const pathtrace::PathTraceScene& pts, bool wide) {
     PtGpuGeometry g;
     std::vector<gpu::GpuPtGeometry> table;
     std::vector<uint32_t> blasOf(pts.geometries.size(), 0);
@@ -49,6 +50,11 @@ PtGpuGeometry uploadPtGeometry(vk::Context& ctx, const pathtrace::PathTraceScene
         blasOf[i] = uint32_t(g.blases.size());
         g.blases.push_back(std::make_unique<GpuBlas>(ctx, BlasData{nodes, refs, geo.positions, stack}, "pt blas " + n));
         blasPointers.push_back(g.blases.back().get());
+        if (wide) {
+            const bvh::Bvh8 w = bvh::buildBvh8(nodes, refs);
+            g.wideStackSize = std::max(g.wideStackSize, w.stackSize);
+            g.wideBlases.push_back(std::make_unique<GpuWideBlas>(ctx, w, *g.blases.back(), "pt wide blas " + n));
+        }
     }
     if (g.blases.empty()) throw std::runtime_error("path tracer: the scene has no triangles to trace");
     std::vector<gpu::GpuBvhInstance> bvhInstances;
@@ -69,12 +75,20 @@ PtGpuGeometry uploadPtGeometry(vk::Context& ctx, const pathtrace::PathTraceScene
     g.tlasStackSize = std::max(1u, bvh::requiredStackSize(pts.tlas.nodes));
     g.tlas = std::make_unique<GpuTlas>(
         ctx, TlasData{nodes, pts.tlas.instanceOrder, bvhInstances, blasPointers, g.tlasStackSize}, "pt tlas");
+    if (wide) {
+        std::vector<const GpuWideBlas*> widePointers;
+        for (const auto& w : g.wideBlases) widePointers.push_back(w.get());
+        g.wideTlas = std::make_unique<GpuWideTlas>(ctx, nodes, pts.tlas.instanceOrder, bvhInstances, widePointers,
+                                                   g.tlasStackSize, "pt wide tlas");
+    }
     g.geometryTable = upload(ctx, table, "pt geometries");
     g.instanceTable = upload(ctx, g.instances, "pt instances");
     return g;
 }
 
 void destroyPtGeometry(vk::Context& ctx, PtGpuGeometry& g) {
+    g.wideTlas.reset();
+    g.wideBlases.clear();
     g.tlas.reset();
     g.blases.clear();
     for (vk::Buffer& b : g.buffers) ctx.destroyDeferred(b);

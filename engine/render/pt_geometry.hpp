@@ -9,6 +9,7 @@
 
 #include "pathtrace/pt_scene.hpp"
 #include "render/bvh_gpu.hpp"
+#include "render/bvh_wide_gpu.hpp"
 #include "shared/pt_wavefront.h"
 #include "vk/resources.hpp"
 
@@ -22,15 +23,19 @@ struct PtGpuGeometry {
     std::vector<gpu::GpuPtTraceInstance> instances;  // per PathTraceScene instance
     std::vector<std::unique_ptr<GpuBlas>> blases;    // per non-empty geometry
     std::unique_ptr<GpuTlas> tlas;
+    std::vector<std::unique_ptr<GpuWideBlas>> wideBlases;  // wide: the 8-wide copy of each BLAS (same order)
+    std::unique_ptr<GpuWideTlas> wideTlas;                 // wide: the same TLAS over wideBlases
     std::vector<vk::Buffer> buffers;                 // shading data per geometry + the tables below
     vk::Buffer geometryTable;                        // GpuPtGeometry[]
     vk::Buffer instanceTable;                        // GpuPtTraceInstance[]
     uint32_t blasStackSize = 1;
     uint32_t tlasStackSize = 1;
+    uint32_t wideStackSize = 1;                            // wide: the largest Bvh8::stackSize
 };
 
-// Throws std::runtime_error for a scene without any triangle.
-PtGpuGeometry uploadPtGeometry(vk::Context& ctx, const pathtrace::PathTraceScene& pts);
+// Throws std::runtime_error for a scene without any triangle. `wide` also uploads the 8-wide BVHs (the default BVH
+// rung's); the binary ones are always uploaded (they own the vertex positions both read).
+PtGpuGeometry uploadPtGeometry(vk::Context& ctx, const pathtrace::PathTraceScene& pts, bool wide);
 void destroyPtGeometry(vk::Context& ctx, PtGpuGeometry& geometry);
 
 }  // namespace idk::render

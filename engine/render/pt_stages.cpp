@@ -121,6 +121,12 @@ void addPtSample(const PtStageContext& s, uint32_t sampleIndex, PtStop stop) {
     const std::string tag = " s" + std::to_string(sampleIndex);
     const uint32_t pixels = f.width * f.height;
     const bool rq = s.config.rayQuery;
+    const ShaderId traceShader = rq ? ShaderId::pathtrace_trace_rq_comp
+                                 : s.config.wideBvh ? ShaderId::pathtrace_trace_bvh_wide_comp
+                                                    : ShaderId::pathtrace_trace_bvh_comp;
+    const ShaderId shadowShader = rq ? ShaderId::pathtrace_shadow_rq_comp
+                                  : s.config.wideBvh ? ShaderId::pathtrace_shadow_bvh_wide_comp
+                                                     : ShaderId::pathtrace_shadow_bvh_comp;
 
     gpu::GpuPtStagePush camera = basePush(s);
     camera.sampleIndex = sampleIndex;
@@ -162,10 +168,8 @@ void addPtSample(const PtStageContext& s, uint32_t sampleIndex, PtStop stop) {
         std::vector<BufferUse> traceUses = {{&f.queue[in], Access::StorageRead}, {inArgs, Access::IndirectRead},
                                             {&f.paths, Access::StorageRead}, {&f.hits, Access::StorageWrite}};
         if (s.config.sort) traceUses.push_back({&f.keys, Access::StorageWrite});
-        addPass(s, "pt_trace" + btag, traceUses, {}, [s, trace, inArgs, rq](VkCommandBuffer cmd) {
-            bindAndPush(s, cmd,
-                        pipeline(s, rq ? ShaderId::pathtrace_trace_rq_comp : ShaderId::pathtrace_trace_bvh_comp, true, kLinear),
-                        trace);
+        addPass(s, "pt_trace" + btag, traceUses, {}, [s, trace, inArgs, traceShader](VkCommandBuffer cmd) {
+            bindAndPush(s, cmd, pipeline(s, traceShader, true, kLinear), trace);
             vkCmdDispatchIndirect(cmd, inArgs->buffer, 0);
         });
         if (s.config.sort) {
@@ -205,11 +209,8 @@ void addPtSample(const PtStageContext& s, uint32_t sampleIndex, PtStop stop) {
         addPass(s, "pt_shadow" + btag,
                 {{&f.shadow[in], Access::StorageRead}, {shadowArgs, Access::IndirectRead},
                  {&f.shadowRays, Access::StorageRead}, {&f.paths, Access::StorageReadWrite}},
-                {}, [s, push, shadowArgs, rq](VkCommandBuffer cmd) {
-                    bindAndPush(s, cmd,
-                                pipeline(s, rq ? ShaderId::pathtrace_shadow_rq_comp : ShaderId::pathtrace_shadow_bvh_comp,
-                                         true, kLinear),
-                                push);
+                {}, [s, push, shadowArgs, shadowShader](VkCommandBuffer cmd) {
+                    bindAndPush(s, cmd, pipeline(s, shadowShader, true, kLinear), push);
                     vkCmdDispatchIndirect(cmd, shadowArgs->buffer, 0);
                 });
     }

@@ -17,6 +17,7 @@ namespace idk::render {
 
 struct PtStageConfig {
     bool rayQuery = false;
+    bool wideBvh = false;  // BVH rung: the 8-wide compressed walk (trace/shadow_bvh_wide) instead of the binary one
     bool sort = false;
     bool hasAlpha = false;
     bool nee = true;

@@ -10,4 +10,5 @@ layout(constant_id = kSpecPtStackSize) const uint kPtStackSize = 32u;
 layout(constant_id = kSpecPtTlasStackSize) const uint kPtTlasStackSize = 32u;
 #define BVH_STACK_SIZE kPtStackSize
 #define BVH_TLAS_STACK_SIZE kPtTlasStackSize
+#define BVH_WIDE_STACK_SIZE kPtStackSize
 #endif

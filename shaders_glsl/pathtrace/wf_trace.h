@@ -1,5 +1,6 @@
 // wf_trace.h (GLSL include): the two traversal rungs behind one interface, wfTraceClosest / wfOccluded.
-// Without PT_RAY_QUERY: our BVH (include/bvh_traverse.glsl, TLAS + BLAS by device address); an alpha-tested
+// Without PT_RAY_QUERY: our BVH (include/bvh_traverse.glsl, TLAS + BLAS by device address; with PT_BVH_WIDE the
+// 8-wide compressed BLASes of include/bvh_traverse_wide.glsl under the same binary TLAS); an alpha-tested
 // surface is passed by restarting the closest-hit query just past it. With PT_RAY_QUERY: VK_KHR_ray_query over the
 // driver's acceleration structures (engine/vk/acceleration_structure.cpp); alpha is tested on candidates and
 // confirmed. Both report the nearest surface that is not alpha-transparent, with the same hit record.
@@ -10,8 +11,14 @@
 
 #ifdef PT_RAY_QUERY
 #extension GL_EXT_ray_query : require
+#elif defined(PT_BVH_WIDE)
+#include "bvh_traverse_wide.glsl"
+#define WF_BVH_CLOSEST_TLAS bvhClosestHitTlasWide
+#define WF_BVH_ANY_TLAS bvhAnyHitTlasWide
 #else
 #include "bvh_traverse.glsl"
+#define WF_BVH_CLOSEST_TLAS bvhClosestHitTlas
+#define WF_BVH_ANY_TLAS bvhAnyHitTlas
 #endif
 
 // True when the surface at `hit` is opaque for this ray: MASK compares alpha with the cutoff, BLEND keeps the
@@ -95,7 +102,7 @@ GpuPtHit wfTraceClosest(GpuPtSceneDesc s, vec3 origin, vec3 direction, float tMa
     ray.tMin = 0.0;
     ray.tMax = tMax;
     for (uint k = 0u; k <= kPtMaxAlphaSkips; ++k) {
-        GpuPtHit h = wfBvhHit(bvhClosestHitTlas(tlas, ray));
+        GpuPtHit h = wfBvhHit(WF_BVH_CLOSEST_TLAS(tlas, ray));
         if (h.triangle == kPtInvalid || kPtHasAlpha == 0u || wfSurfaceOpaque(s, h, salt)) return h;
         ray.tMin = h.t;  // open interval: continue just past the transparent surface
     }
@@ -109,7 +116,7 @@ bool wfOccluded(GpuPtSceneDesc s, vec3 origin, vec3 direction, float tMax, uint 
         ray.direction = direction;
         ray.tMin = 0.0;
         ray.tMax = tMax;
-        return (bvhAnyHitTlas(BvhTlasDescRef(s.tlas).d, ray).flags & kBvhHitFlagHit) != 0u;
+        return (WF_BVH_ANY_TLAS(BvhTlasDescRef(s.tlas).d, ray).flags & kBvhHitFlagHit) != 0u;
     }
     return wfTraceClosest(s, origin, direction, tMax, salt).triangle != kPtInvalid;
 }

@@ -4,7 +4,8 @@
 //   filter over the path states), each once, and the indirect dispatch size is ceil(count / group size);
 // * ray sorting permutes the queue (the same set as without sorting) into non-decreasing key order, the keys
 //   equal the CPU's (material, direction octant) of each hit, and dead slots sort last;
-// * both traversal rungs (our GLSL BVH, VK_KHR_ray_query) return the CPU BVH's closest hits for the primary rays.
+// * every traversal rung (our GLSL BVH, 8-wide and binary, VK_KHR_ray_query) returns the CPU BVH's closest hits for the
+//   primary rays.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -146,19 +147,20 @@ TEST_F(PtWavefrontTest, TraversalRungsReturnTheCpuHits) {
     for (const bool spheres : {false, true}) {
         const scene::Scene scene = spheres ? sphereScene() : app::loadDefaultScene();
         const pathtrace::PathTraceScene pts = pathtrace::buildPathTraceScene(scene, nullptr, 1.0f);
-        for (const bool rq : {false, true}) {
+        for (const render::PtTraversal rung :
+             {render::PtTraversal::Bvh, render::PtTraversal::Bvh2, render::PtTraversal::RayQuery}) {
+            const bool rq = rung == render::PtTraversal::RayQuery;
             if (rq && !rayQuery()) {
                 std::printf("device lacks VK_KHR_ray_query: ray-query rung skipped\n");
                 continue;
             }
-            const std::string what = std::string(spheres ? "spheres" : "Cornell") + (rq ? " rayquery" : " bvh");
+            const std::string what = std::string(spheres ? "spheres " : "Cornell ") + render::traversalName(rung);
             for (uint32_t bounce : {0u, 1u}) {
-                const render::PtCapture c =
-                    capture(scene, pts, rq ? render::PtTraversal::RayQuery : render::PtTraversal::Bvh, false, bounce);
+                const render::PtCapture c = capture(scene, pts, rung, false, bounce);
                 const HitAgreement a = compareWithCpu(pts, c);
                 ASSERT_GT(a.rays, 500u) << what;
                 EXPECT_GT(a.hits, a.rays / 8) << what << ": the view must hit geometry";
-                // Our BVH ports the CPU traversal operation for operation: identical. The driver's structures use
+                // Our BVH (both walks) ports the CPU traversal operation for operation: identical. The driver's structures use
                 // their own (watertight but differently rounded) test: a few edge rays may pick a neighbour.
                 const double tolerance = rq ? 0.002 : 0.0;
                 EXPECT_GE(double(a.sameTriangle), double(a.rays) * (1.0 - tolerance)) << what << " bounce " << bounce;

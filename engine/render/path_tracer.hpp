@@ -31,8 +31,8 @@ struct PathTraceScene;
 namespace idk::render {
 
 enum class PtTraversal : uint8_t {
-    Auto,      // the "ray traversal" capability ladder's rung (ray query when the device has it, not with --fallback),
-               // except on a CPU device (lavapipe), whose ray query is ~35x slower than our BVH: Bvh there
+    Auto,      // the "ray traversal" capability ladder's rung (ray query when the device has it, not with --fallback
+               // or on a CPU device such as lavapipe, whose software ray query is far slower than our BVH)
     Bvh,       // our GLSL BVH (engine/bvh trees, include/bvh_traverse.glsl): the portable rung
     RayQuery,  // VK_KHR_ray_query over driver acceleration structures
 };

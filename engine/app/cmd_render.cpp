@@ -68,9 +68,10 @@ const char* const kRenderHelp =
     "  --video OUT.mp4  encode the frames with ffmpeg (H.264, yuv420p, the capture's frame rate); odd sizes are\n"
     "                   padded to even with a black column/row; on any error no video is left behind\n"
     "  --frames a:b     only frames a..b-1 (counted from 0; 'a:' to the end), to split a long video across machines\n"
-    "  --pathtrace      path-trace every frame (--spp, --seed, --denoise, ... as below; each frame equals a still\n"
-    "                   path-traced at its camera, --time and --seed); --out F.exr|F.png also writes F_0000.exr, ...\n"
-    "                   per frame (with or without --video)\n";
+    "  --pathtrace      path-trace every frame (--spp, --seed, --denoise, ... as below): frame i equals the still\n"
+    "                   `--pathtrace --time T --camera eye=...:target=...` of record i with the same --seed;\n"
+    "                   --out F.exr|F.png also writes F_0000.exr, ... per frame (with or without --video)\n"
+    "\n";
 
 namespace {
 

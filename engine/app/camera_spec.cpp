@@ -1,6 +1,7 @@
 // camera_spec.cpp: parsing and placement of the command-line cameras (camera_spec.hpp).
 #include "app/camera_spec.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -193,6 +194,13 @@ std::vector<scene::CameraView> camerasFromCli(const core::CliArgs& args, const s
         return {scene::cameraView(scene.cameras[size_t(n)])};
     }
     return {scene::defaultCamera(scene)};
+}
+
+std::filesystem::path turntablePath(const std::filesystem::path& out, size_t index, size_t count) {
+    const size_t digits = std::max<size_t>(3, std::to_string(count - 1).size());
+    std::string number = std::to_string(index);
+    number.insert(0, digits - number.size(), '0');
+    return out.parent_path() / (out.stem().string() + "_" + number + out.extension().string());
 }
 
 nlohmann::json cameraJson(const scene::CameraView& v) {

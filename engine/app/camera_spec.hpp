@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -50,6 +51,9 @@ scene::CameraView orbitCamera(const OrbitSpec& spec, const scene::Aabb& bounds, 
 // The views `idk render` draws per its options: one (--camera, --orbit, --camera-index, else the scene's default
 // camera) or --orbit-frames N. Throws core::CliError on conflicting or malformed options.
 std::vector<scene::CameraView> camerasFromCli(const core::CliArgs& args, const scene::Scene& scene);
+
+// --orbit-frames: F.png -> F_000.png (at least 3 digits, more when `count` needs them).
+std::filesystem::path turntablePath(const std::filesystem::path& out, size_t index, size_t count);
 
 // position, forward, up, yfov (degrees), znear, zfar: `idk render --json`'s "camera".
 nlohmann::json cameraJson(const scene::CameraView& view);

@@ -55,6 +55,7 @@ const char* const kRenderHelp =
     "                   without any of the three: the file's first camera, else the auto-fit view of the bounds\n"
     "  --orbit-frames N turntable: N views with theta stepping 360/N degrees from --orbit's (default theta=0,phi=90);\n"
     "                   --out F.png writes F_000.png, F_001.png, ...; --video OUT.mp4 [--fps R] one video instead\n"
+    "                   (rasterized, or path-traced with --pathtrace: every view with the same --seed)\n"
     "  --background sky|transparent  transparent: PNG alpha = geometry coverage (1 surface, 0 sky), as the EXR's\n"
     "                   alpha always is (pbr shading, rasterizer only); sky (default): opaque PNG\n"
     "  --no-validation  do not load the Vulkan validation layer\n"
@@ -93,14 +94,6 @@ nlohmann::json statsJson(const render::FrameResult& frame, const vk::Context& ct
     j["deviceMemoryObjects"] = memory.deviceMemoryCount;
     j["reservedBlockBytes"] = memory.blockBytes;
     return j;
-}
-
-// --orbit-frames: F.png -> F_000.png (at least 3 digits, more when N needs them).
-std::filesystem::path numberedPath(const std::filesystem::path& out, size_t index, size_t count) {
-    const size_t digits = std::max<size_t>(3, std::to_string(count - 1).size());
-    std::string number = std::to_string(index);
-    number.insert(0, digits - number.size(), '0');
-    return out.parent_path() / (out.stem().string() + "_" + number + out.extension().string());
 }
 
 // --time T [--animation N]: scene::evaluateAnimations before the scene is uploaded (its pose is the first frame's).
@@ -184,10 +177,7 @@ int runRender(const std::vector<std::string>& argv, std::vector<vk::Ladder>* run
     posePerOptions(args, scene);
     if (replay) return runRenderReplay(args, scene, settings, width, height);
     const std::vector<scene::CameraView> views = camerasFromCli(args, scene);  // usage errors before Vulkan too
-    if (args.has("--pathtrace")) {
-        if (views.size() > 1) throw core::CliError("--orbit-frames with --pathtrace: use --orbit per frame");
-        return runRenderPathTrace(args, scene, settings, width, height, views.front());
-    }
+    if (args.has("--pathtrace")) return runRenderPathTrace(args, scene, settings, width, height, views, fps);
 
     std::unique_ptr<vk::Context> ctx = createContext(contextDescFromCli(args));
     vk::ShaderLibrary shaders(*ctx);
@@ -213,7 +203,7 @@ int runRender(const std::vector<std::string>& argv, std::vector<vk::Ladder>* run
                 renderer.settings().output = render::OutputKind::Display;
                 for (size_t i = 3; i < frame.image.pixels.size(); i += 4) frame.image.pixels[i] = hdr.image.pixels[i];
             }
-            core::writeImage(views.size() > 1 ? numberedPath(*out, k, views.size()) : std::filesystem::path(*out),
+            core::writeImage(views.size() > 1 ? turntablePath(*out, k, views.size()) : std::filesystem::path(*out),
                              frame.image);
         }
         if (video) {
@@ -248,8 +238,8 @@ int runRender(const std::vector<std::string>& argv, std::vector<vk::Ladder>* run
         return 1;
     }
     const std::string written = orbitVideo        ? *args.get("--video")
-                                : views.size() > 1 ? numberedPath(*out, 0, views.size()).string() + " .. " +
-                                                         numberedPath(*out, views.size() - 1, views.size()).string()
+                                : views.size() > 1 ? turntablePath(*out, 0, views.size()).string() + " .. " +
+                                                         turntablePath(*out, views.size() - 1, views.size()).string()
                                                    : *out;
     std::fprintf(stderr, "idk render: wrote %s (%ux%u)\n", written.c_str(), width, height);
     return 0;

@@ -18,6 +18,7 @@
 #include "app/ladder_report.hpp"
 #include "core/image_file.hpp"
 #include "render/path_tracer.hpp"
+#include "tools/video_writer.hpp"
 #include "shared/agx.h"
 #include "vk/context.hpp"
 #include "vk/shader_library.hpp"
@@ -117,8 +118,9 @@ PathTraceCli pathTraceFromCli(const core::CliArgs& args, const render::RenderSet
 }
 
 int runRenderPathTrace(const core::CliArgs& args, const scene::Scene& scene, const render::RenderSettings& settings,
-                       uint32_t width, uint32_t height, const scene::CameraView& camera) {
-    const std::string out = *args.get("--out");
+                       uint32_t width, uint32_t height, const std::vector<scene::CameraView>& views, double fps) {
+    const std::optional<std::string> video = args.get("--video");
+    const std::string out = video ? *video : *args.get("--out");
     const PathTraceCli cli = pathTraceFromCli(args, settings);
     const render::PathTraceSettings& pt = cli.settings;
     const render::PathTracerOptions& options = cli.options;
@@ -128,19 +130,32 @@ int runRenderPathTrace(const core::CliArgs& args, const scene::Scene& scene, con
     render::PathTraceResult result;
     {
         render::PathTracer tracer(*ctx, shaders, scene, options);
+        std::optional<tools::VideoWriter> writer;
+        if (video) writer.emplace(*video, width, height, tools::VideoOptions{.fps = fps});
         const bool terminal = isatty(fileno(stderr)) != 0;
         auto progress = [](uint32_t done, uint32_t total) { drawProgressBar(done, total, "spp"); };
-        result = tracer.render(camera, width, height, pt,
-                               terminal ? render::PathTracer::Progress(progress) : render::PathTracer::Progress());
+        for (size_t k = 0; k < views.size(); ++k) {
+            result = tracer.render(views[k], width, height, pt,
+                                   terminal ? render::PathTracer::Progress(progress) : render::PathTracer::Progress());
+            const core::ImageRgba32f& image = options.denoise && result.didDenoise ? result.denoised : result.image;
+            if (writer) {
+                writer->addFrame(displayBytes(image, settings.exposure));
+                continue;
+            }
+            const std::filesystem::path path = views.size() > 1 ? turntablePath(out, k, views.size()) : std::filesystem::path(out);
+            core::writeImage(path, path.extension() == ".png" ? displayImage(image, settings.exposure) : image);
+        }
+        if (writer) {
+            if (ctx->validationErrors() != 0) writer->abort();
+            else writer->finish();
+        }
     }
-    core::ImageRgba32f image = options.denoise && result.didDenoise ? result.denoised : result.image;
-    if (std::filesystem::path(out).extension() == ".png") image = displayImage(std::move(image), settings.exposure);
-    core::writeImage(out, image);
 
     if (args.has("--json") || args.has("--stats")) {
         nlohmann::json j;
         j["device"] = ctx->info().name;
-        j["camera"] = cameraJson(camera);
+        j["camera"] = cameraJson(views.back());
+        j["frames"] = views.size();
         j["rungs"] = laddersJson(ctx->consultedLadders());
         nlohmann::json p;
         p["spp"] = pt.spp;

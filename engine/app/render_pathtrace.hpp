@@ -16,9 +16,10 @@ namespace idk::app {
 // The path-tracing options (flag names as `idk render --help` lists them).
 extern const char* const kPathTraceHelp;
 
-// Renders `scene` from `camera` with the GPU wavefront path tracer and writes --out. Returns the exit code.
+// Renders `scene` from each of `views` with the GPU wavefront path tracer (one tracer for all of them) and writes
+// --out (numbered F_000.exr, ... for several views) or, with --video, one video at `fps`. Returns the exit code.
 int runRenderPathTrace(const core::CliArgs& args, const scene::Scene& scene, const render::RenderSettings& settings,
-                       uint32_t width, uint32_t height, const scene::CameraView& camera);
+                       uint32_t width, uint32_t height, const std::vector<scene::CameraView>& views, double fps);
 
 // The path-tracing options shared by stills and --replay --pathtrace: settings, tracer options and the context
 // description (--traversal bvh|rayquery forces the "ray-traversal" ladder's rung, so the ladder names what ran).

@@ -285,6 +285,13 @@ PY
       || fail "--frames 2:4 failed"
     [ "$(ls "$tmp/part")" = "$(printf 'f_0002.exr\nf_0003.exr')" ] || fail "--frames 2:4 wrote: $(ls "$tmp/part")"
     "$idk" compare "$tmp/part/f_0003.exr" "$tmp/frames/f_0003.exr" --fail-above 0 >/dev/null || fail "split run differs"
+    # A path-traced turntable: view 1 of 2 is the still at theta + 180 degrees; --video makes a 2-frame video.
+    "$idk" render "${pt[@]}" --orbit theta=10,phi=80 --orbit-frames 2 --out "$tmp/turn.exr" 2>/dev/null || fail "PT turntable"
+    "$idk" render "${pt[@]}" --orbit theta=190,phi=80 --out "$tmp/turn_still.exr" 2>/dev/null || fail "PT orbit still"
+    "$idk" compare "$tmp/turn_001.exr" "$tmp/turn_still.exr" --fail-above 0 >/dev/null || fail "PT turntable view 1 != still"
+    "$idk" render "${pt[@]}" --orbit-frames 2 --video "$tmp/turn.mp4" 2>/dev/null || fail "PT turntable video"
+    [ "$(ffprobe -v error -count_frames -show_entries stream=nb_read_frames -of csv=p=0 "$tmp/turn.mp4")" = 2 ] \
+      || fail "PT turntable video frame count"
     ;;
   rungs_agree)
     # Issue 20: `idk info --json` and `idk render --json` name the same rung, mechanism and reason for every ladder

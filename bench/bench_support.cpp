@@ -1,6 +1,8 @@
 // bench_support.cpp: the shared device and the helpers declared in bench_support.hpp.
 #include "bench_support.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <chrono>
 #include <cstdlib>
 #include <random>
@@ -54,11 +56,15 @@ void createDevice() {
     benchmark::AddCustomContext("uploads", gContext->desc().forceStaging || !info.uma ? "staging" : "mapped");
     benchmark::AddCustomContext("validation", "off");
     std::string ladders;
+    nlohmann::json table = nlohmann::json::array();
     for (const vk::Ladder& l : gContext->ladders()) {
         if (!ladders.empty()) ladders += "; ";
         ladders += l.feature + ": " + vk::rungName(l.chosen) + " (" + l.chosenMechanism + ")";
+        table.push_back({{"id", l.id}, {"feature", l.feature}, {"chosen", vk::rungName(l.chosen)},
+                         {"mechanism", l.chosenMechanism}, {"reason", l.reason}});
     }
     benchmark::AddCustomContext("ladders", ladders);
+    benchmark::AddCustomContext("ladders_json", table.dump());  // with the reasons `idk info` prints
 }
 
 void destroyDevice() {
@@ -109,6 +115,13 @@ void setRow(benchmark::State& state, const RowInfo& row) {
                         ";rung=" + row.rung + ";role=" + row.role + ";time=" + row.time;
     if (!row.peer.empty()) label += ";peer=" + row.peer;
     state.SetLabel(label);
+}
+
+std::string rungsThatRan(const std::vector<vk::Ladder>& consulted) {
+    std::string text;
+    for (const vk::Ladder& l : consulted)
+        text += (text.empty() ? "" : ", ") + l.id + "=" + vk::rungName(l.chosen) + " (" + l.chosenMechanism + ")";
+    return text.empty() ? "- (no capability ladder consulted)" : text;
 }
 
 std::filesystem::path sharedScene(const std::string& name) {

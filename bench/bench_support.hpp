@@ -75,6 +75,10 @@ struct RowInfo {
 };
 void setRow(benchmark::State& state, const RowInfo& row);
 
+// The capability rungs code consulted (vk::Context::consultedLadders), for RowInfo::rung: "id=rung (mechanism)"
+// joined by ", ", or "- (no capability ladder consulted)". Clear the context's list before the measured work.
+std::string rungsThatRan(const std::vector<vk::Ladder>& consulted);
+
 // <repo>/../shared/scenes/<name>/glTF-Binary/<name>.glb
 std::filesystem::path sharedScene(const std::string& name);
 

@@ -3,6 +3,7 @@
 // Renderer::renderOffscreen (build + compile the frame graph, record, submit, wait, read back, unpack), with the
 // GPU time of each pass from FrameResult::passTimes as counters ("gpu_ms" total, "pass_ms.<name>" each).
 // BM_IdkRenderCommand: the whole command, cold: device, shaders, scene load and upload, one frame, PNG write.
+// Each row's rung column lists the capability ladders the render consulted (the rungs that ran).
 #include <filesystem>
 #include <map>
 #include <string>
@@ -24,6 +25,7 @@ void BM_RenderCornellBox(benchmark::State& state) {
     scene::CameraView camera = scene::defaultCamera(scene);
     double gpuMs = 0.0;
     std::map<std::string, double> passMs;
+    context()->clearConsultedLadders();
     {
         render::Renderer renderer(*context(), *shaders());
         renderer.setScene(scene);
@@ -42,7 +44,7 @@ void BM_RenderCornellBox(benchmark::State& state) {
     for (const auto& [name, ms] : passMs) state.counters["pass_ms." + name] = ms / iterations;
     std::string dims = std::to_string(size) + "x" + std::to_string(size);
     setRow(state, {"render", "Cornell box (embedded)", dims + ", 1 frame, warm renderer, readback included",
-                   "- (Lambert raster: no ladder)", "", "ours", "real"});
+                   rungsThatRan(context()->consultedLadders()), "", "ours", "real"});
 }
 BENCHMARK(BM_RenderCornellBox)->Arg(256)->UseRealTime()->MinTime(0.5)->Unit(benchmark::kMillisecond);
 
@@ -51,8 +53,9 @@ void BM_IdkRenderCommand(benchmark::State& state) {
     std::string size = std::to_string(state.range(0));
     std::filesystem::path out = std::filesystem::temp_directory_path() / "idk_bench_render.png";
     const std::vector<std::string> args = {"--out", out.string(), "--size", size + "x" + size, "--no-validation"};
+    std::vector<vk::Ladder> ran;  // the command's own context's consulted ladders
     for (auto _ : state) {
-        if (app::runRender(args) != 0) {
+        if (app::runRender(args, &ran) != 0) {
             state.SkipWithError("idk render failed");
             break;
         }
@@ -61,7 +64,7 @@ void BM_IdkRenderCommand(benchmark::State& state) {
     setRow(state, {"render", "Cornell box (embedded)",
                    size + "x" + size + ", cold `idk render --out F.png --no-validation` in-process: device, shaders, "
                                       "scene, 1 frame, PNG",
-                   "- (Lambert raster: no ladder)", "", "ours", "real"});
+                   rungsThatRan(ran), "", "ours", "real"});
 }
 BENCHMARK(BM_IdkRenderCommand)->Arg(256)->UseRealTime()->Iterations(3)->Unit(benchmark::kMillisecond);
 

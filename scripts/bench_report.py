@@ -207,11 +207,20 @@ def header(data, results, errors, plots_note):
         cv, name = max(spreads)
         lines.append(f"| noise | largest coefficient of variation over the repetitions: {cv * 100:.1f} % "
                      f"(`{name}`) |")
-    lines += ["", "## Capability ladder rungs on this device", "", "| feature | rung (mechanism) |", "|---|---|"]
-    for part in ctx.get("ladders", "").split("; "):
-        if ": " in part:
-            feature, rung = part.split(": ", 1)
-            lines.append(f"| {md_escape(feature)} | {md_escape(rung)} |")
+    lines += ["", "## Capability ladder rungs on this device", ""]
+    if ctx.get("ladders_json"):
+        # The ladder table with its reasons, as `idk info` prints it; each row's "capability rung" column lists the
+        # ladders that row's code consulted (what ran), e.g. the path tracer's traversal.
+        lines += ["| ladder | feature | rung (mechanism) | why |", "|---|---|---|---|"]
+        for l in json.loads(ctx["ladders_json"]):
+            lines.append(f"| `{l['id']}` | {md_escape(l['feature'])} | {md_escape(l['chosen'])} "
+                         f"({md_escape(l['mechanism'])}) | {md_escape(l['reason'])} |")
+    else:  # results recorded before the ladders carried their reasons
+        lines += ["| feature | rung (mechanism) |", "|---|---|"]
+        for part in ctx.get("ladders", "").split("; "):
+            if ": " in part:
+                feature, rung = part.split(": ", 1)
+                lines.append(f"| {md_escape(feature)} | {md_escape(rung)} |")
     lines += ["", f"Reproduce everything: `make bench`. Each row's last column reproduces that row and its peer "
               "(in the Markdown source a `|` inside it is written `\\|`). "
               "Set `VK_ICD_FILENAMES=/usr/share/vulkan/icd.d/lvp_icd.json` for lavapipe, as `scripts/bench.sh` "

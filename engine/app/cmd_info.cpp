@@ -1,5 +1,6 @@
 // cmd_info.cpp: `idk info [--json]`: device, driver, API version, the limits that matter to the engine and
-// the capability-ladder table (which rung each optional feature uses on this device, and why).
+// the capability-ladder table (which rung each optional feature uses on this device, and why; the same objects
+// `idk render --json` reports for the rungs that ran) and the ladder/rung names --rung accepts.
 // Shader features: the optional arithmetic types the shaders could use and whether they do (shaderFloat64: unused,
 // every shader is single precision, the BVH traversal included; tests/unit/shader/spirv_capabilities_test.cpp).
 #include <nlohmann/json.hpp>
@@ -9,16 +10,19 @@
 
 #include "app/cli_context.hpp"
 #include "app/commands.hpp"
+#include "app/ladder_report.hpp"
 #include "core/cli.hpp"
 #include "vk/context.hpp"
 
 namespace idk::app {
 
 const char* const kInfoHelp =
-    "usage: idk info [--json] [--no-validation] [--fallback]\n"
+    "usage: idk info [--json] [--no-validation] [--fallback] [--rung LADDER=RUNG ...]\n"
     "  --json           machine-readable output\n"
     "  --no-validation  do not load the Vulkan validation layer\n"
-    "  --fallback       show the ladders as they are when every feature is forced to its portable rung\n";
+    "  --fallback       show the ladders as they are when every feature is forced to its portable rung\n"
+    "  --rung L=R       show them with ladder L forced to rung R (repeatable; exit 2 naming the valid ladders\n"
+    "                   and rungs when L or R is unknown or the device cannot run R)\n";
 
 namespace {
 
@@ -76,21 +80,7 @@ nlohmann::json describe(const vk::Context& ctx) {
                    {"timestampPeriodNs", d.timestampPeriodNs},
                    {"bindlessSampledImages", d.maxSampledImagesUpdateAfterBind},
                    {"bindlessStorageBuffers", d.maxStorageBuffersUpdateAfterBind}};
-    nlohmann::json ladders = nlohmann::json::array();
-    for (const vk::Ladder& l : ctx.ladders()) {
-        nlohmann::json rungs = nlohmann::json::array();
-        for (const vk::RungOption& o : l.options) {
-            rungs.push_back({{"rung", vk::rungName(o.rung)},
-                             {"mechanism", o.mechanism},
-                             {"available", o.available},
-                             {"note", o.note}});
-        }
-        ladders.push_back({{"feature", l.feature},
-                           {"chosen", vk::rungName(l.chosen)},
-                           {"mechanism", l.chosenMechanism},
-                           {"rungs", rungs}});
-    }
-    j["ladders"] = ladders;
+    j["ladders"] = laddersJson(ctx.ladders());
     return j;
 }
 
@@ -109,29 +99,35 @@ void printText(const nlohmann::json& j) {
     }
     std::printf("\nlimits:\n");
     for (const auto& [key, value] : j["limits"].items()) std::printf("  %-32s %s\n", key.c_str(), value.dump().c_str());
-    std::printf("\ncapability ladders:\n  %-44s %-11s %s\n", "feature", "rung", "mechanism");
+    std::printf("\ncapability ladders (--rung LADDER=RUNG forces one):\n  %-20s %-44s %-11s %s\n", "ladder",
+                "feature", "rung", "mechanism");
     for (const auto& l : j["ladders"]) {
-        std::printf("  %-44s %-11s %s\n", l["feature"].get<std::string>().c_str(),
+        std::printf("  %-20s %-44s %-11s %s\n", l["id"].get<std::string>().c_str(), l["feature"].get<std::string>().c_str(),
                     l["chosen"].get<std::string>().c_str(), l["mechanism"].get<std::string>().c_str());
+        const std::string reason = l["reason"].get<std::string>();
+        std::printf("      why: %s\n", reason.c_str());
         for (const auto& r : l["rungs"]) {
-            if (!r["available"].get<bool>())
-                std::printf("  %-44s   not %s: %s\n", "", r["rung"].get<std::string>().c_str(),
-                            r["note"].get<std::string>().c_str());
+            const std::string note = r["note"].get<std::string>();
+            if (!r["available"].get<bool>() && reason.find(note) == std::string::npos)
+                std::printf("      not %s: %s\n", r["rung"].get<std::string>().c_str(), note.c_str());
         }
     }
+    std::printf("\nrung names per ladder:\n");
+    for (const std::string& line : vk::ladderRungList()) std::printf("  %s\n", line.c_str());
 }
 
 }  // namespace
 
 int runInfo(const std::vector<std::string>& argv) {
-    core::CliArgs args = core::parseCli(argv, {{"--json", "--no-validation", "--fallback", "--help"}, {}});
+    core::CliArgs args = core::parseCli(argv, {{"--json", "--no-validation", "--fallback", "--help"}, {"--rung"}});
     if (args.has("--help")) {
         std::fputs(kInfoHelp, stdout);
         return 0;
     }
     if (!args.positional.empty()) throw core::CliError("unexpected argument '" + args.positional[0] + "'");
-    vk::Context ctx(contextDescFromCli(args));
-    nlohmann::json j = describe(ctx);
+    std::unique_ptr<vk::Context> ctx = createContext(contextDescFromCli(args));
+    nlohmann::json j = describe(*ctx);
+    j["rungNames"] = vk::ladderRungList();
     if (args.has("--json"))
         std::cout << j.dump(2) << "\n";
     else

@@ -1,8 +1,11 @@
 // cmd_render.cpp: `idk render [SCENE] --out F.png|.exr`: loads a glTF scene (default: the embedded Cornell
 // box), renders one frame headless (deferred PBR by default, --shading lambert for the foundation's pass) and
 // writes the image: .png gets the AgX-tonemapped sRGB frame, .exr the linear radiance before tonemapping.
-// --time T [--animation N] poses the scene first (deterministic). --stats lists the passes that ran, their GPU
-// times, their indirect draws and GPU memory by category.
+// --time T [--animation N] poses the scene first (deterministic). --camera/--orbit/--camera-index place the camera
+// (app/camera_spec.hpp), --orbit-frames N renders a turntable (N images, or one video with --video), --background
+// transparent gives the PNG an alpha channel = geometry coverage (the EXR's alpha). --stats lists the passes that
+// ran, their GPU times, their indirect draws and GPU memory by category; --json also the camera and the capability
+// rungs the frame ran (the objects `idk info --json` prints).
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -11,9 +14,11 @@
 #include <fstream>
 #include <iostream>
 
+#include "app/camera_spec.hpp"
 #include "app/cli_context.hpp"
 #include "app/commands.hpp"
 #include "app/default_scene.hpp"
+#include "app/ladder_report.hpp"
 #include "app/render_pathtrace.hpp"
 #include "app/render_replay.hpp"
 #include "core/cli.hpp"
@@ -21,6 +26,7 @@
 #include "render/scene_textures.hpp"
 #include "scene/animation.hpp"
 #include "scene/gltf_loader.hpp"
+#include "tools/video_writer.hpp"
 
 namespace idk::app {
 
@@ -41,21 +47,41 @@ const char* const kRenderHelp =
     "  --stats          print the passes that ran, their GPU times and GPU memory by category\n"
     "  --json           print the stats as JSON (implies --stats)\n"
     "  --graph FILE     write the frame's render graph: .dot (graphviz) or any other name (text)\n"
+    "  --camera eye=X,Y,Z:target=X,Y,Z[:up=X,Y,Z][:yfov=DEG]  look from eye at target (up default +Y, yfov 45)\n"
+    "  --orbit theta=DEG,phi=DEG[,radius=R][,target=X,Y,Z][,yfov=DEG]  orbit camera (Khronos render-fidelity\n"
+    "                   convention: theta = azimuth around +Y from +Z, phi = polar angle from +Y; without radius\n"
+    "                   or target the scene's bounding sphere is fitted into the view, as the default camera)\n"
+    "  --camera-index N the file's camera N (0-based, cameras placed by nodes of the default scene)\n"
+    "                   without any of the three: the file's first camera, else the auto-fit view of the bounds\n"
+    "  --orbit-frames N turntable: N views with theta stepping 360/N degrees from --orbit's (default theta=0,phi=90);\n"
+    "                   --out F.png writes F_000.png, F_001.png, ...; --video OUT.mp4 [--fps R] one video instead\n"
+    "                   (rasterized, or path-traced with --pathtrace: every view with the same --seed)\n"
+    "  --background sky|transparent  transparent: PNG alpha = geometry coverage (1 surface, 0 sky), as the EXR's\n"
+    "                   alpha always is (pbr shading, rasterizer only); sky (default): opaque PNG\n"
     "  --no-validation  do not load the Vulkan validation layer\n"
     "  --fallback       take the portable rung of every capability ladder (as `idk info --fallback` shows)\n"
+    "  --rung L=R       force capability ladder L to rung R (repeatable; `idk info` lists them; exit 2 when the\n"
+    "                   name is unknown or the device cannot run it)\n"
     "\n"
     "usage: idk render [SCENE] --replay F.idkcap --video OUT.mp4 [--frames a:b] [--size WxH] [options]\n"
     "  --replay F       render every frame of a camera capture (the viewer's Ctrl+R) at its recorded camera and\n"
     "                   scene time, with the same renderer and options as a still image\n"
     "  --video OUT.mp4  encode the frames with ffmpeg (H.264, yuv420p, the capture's frame rate); odd sizes are\n"
     "                   padded to even with a black column/row; on any error no video is left behind\n"
-    "  --frames a:b     only frames a..b-1 (counted from 0; 'a:' to the end), to split a long video across machines\n";
+    "  --frames a:b     only frames a..b-1 (counted from 0; 'a:' to the end), to split a long video across machines\n"
+    "  --pathtrace      path-trace every frame (--spp, --seed, --denoise, ... as below): frame i equals the still\n"
+    "                   `--pathtrace --time T --camera eye=...:target=...` of record i with the same --seed;\n"
+    "                   --out F.exr|F.png also writes F_0000.exr, ... per frame (with or without --video)\n"
+    "\n";
 
 namespace {
 
-nlohmann::json statsJson(const render::FrameResult& frame, const vk::Context& ctx, const vk::MemoryStats& memory) {
+nlohmann::json statsJson(const render::FrameResult& frame, const vk::Context& ctx, const vk::MemoryStats& memory,
+                         const scene::CameraView& camera) {
     nlohmann::json j;
     j["device"] = ctx.info().name;
+    j["camera"] = cameraJson(camera);
+    j["rungs"] = laddersJson(ctx.consultedLadders());
     j["passes"] = frame.passesRun;
     nlohmann::json times = nlohmann::json::object();
     for (const vk::ScopeTiming& t : frame.passTimes) times[t.name] = t.milliseconds;
@@ -89,12 +115,16 @@ void posePerOptions(const core::CliArgs& args, scene::Scene& scene) {
 
 }  // namespace
 
-int runRender(const std::vector<std::string>& argv) {
+int runRender(const std::vector<std::string>& argv) { return runRender(argv, nullptr); }
+
+int runRender(const std::vector<std::string>& argv, std::vector<vk::Ladder>* rungsThatRan) {
     core::CliArgs args =
         core::parseCli(argv, {{"--stats", "--json", "--no-validation", "--fallback", "--help", "--pathtrace", "--denoise"},
                                   {"--out", "--size", "--graph", "--shading", "--exposure", "--environment",
                                    "--env-intensity", "--time", "--animation", "--replay", "--video", "--frames",
-                                   "--spp", "--max-depth", "--seed", "--light-sampling", "--sort", "--traversal"}});
+                                   "--spp", "--max-depth", "--seed", "--light-sampling", "--sort", "--traversal",
+                                   "--camera", "--orbit", "--camera-index", "--orbit-frames", "--background", "--fps",
+                                   "--rung"}});
     if (args.has("--help")) {
         std::fputs(kRenderHelp, stdout);
         std::fputs(kPathTraceHelp, stdout);
@@ -102,44 +132,87 @@ int runRender(const std::vector<std::string>& argv) {
     }
     if (args.positional.size() > 1) throw core::CliError("more than one scene given");
     std::optional<std::string> out = args.get("--out");
-    if (!out && !args.get("--replay")) throw core::CliError("--out FILE is required");
+    const bool replay = args.get("--replay").has_value();
+    const bool orbitVideo = !replay && args.get("--video").has_value();
+    if (orbitVideo && !args.get("--orbit-frames")) throw core::CliError("--video needs --replay F or --orbit-frames N");
+    if (!replay && !orbitVideo && !out) throw core::CliError("--out FILE is required");
+    if (orbitVideo && out) throw core::CliError("--orbit-frames with --video writes the video only: drop --out");
     auto [width, height] = core::parseSize(args.get("--size", "256x256"));
     std::string extension = std::filesystem::path(out.value_or("replay.png")).extension().string();
     if (extension != ".png" && extension != ".exr") {
         throw core::CliError("--out '" + *out + "': the file must end in .png or .exr");
     }
+    const std::string background = args.get("--background", "sky");
+    if (background != "sky" && background != "transparent")
+        throw core::CliError("--background '" + background + "': use sky or transparent");
+    const bool transparent = background == "transparent";
+    if (transparent && (args.has("--pathtrace") || replay || orbitVideo))
+        throw core::CliError("--background transparent: only for rasterized images (not --pathtrace, --replay, --video)");
 
     render::RenderSettings settings;
     std::string shading = args.get("--shading", "pbr");
     if (shading != "pbr" && shading != "lambert")
         throw core::CliError("--shading '" + shading + "': use pbr or lambert");
     settings.shading = shading == "pbr" ? render::Shading::Pbr : render::Shading::Lambert;
+    if (orbitVideo && settings.shading != render::Shading::Pbr)
+        throw core::CliError("--video encodes the display image of --shading pbr, not lambert");
+    if (transparent && settings.shading != render::Shading::Pbr)
+        throw core::CliError("--background transparent needs --shading pbr (lambert has no coverage)");
     settings.output = extension == ".exr" ? render::OutputKind::Hdr : render::OutputKind::Display;
     settings.exposure = float(core::parseNumber("--exposure", args.get("--exposure", "1")));
     settings.environmentIntensity = float(core::parseNumber("--env-intensity", args.get("--env-intensity", "1")));
     if (std::optional<std::string> env = args.get("--environment"))
         settings.environment = *env == "none" ? std::filesystem::path() : std::filesystem::path(*env);
+    double fps = 30.0;
+    if (std::optional<std::string> f = args.get("--fps")) {
+        fps = core::parseNumber("--fps", *f);
+        if (!(fps > 0.0 && fps <= 1000.0)) throw core::CliError("--fps '" + *f + "': give a rate in (0, 1000] Hz");
+    }
+    if (orbitVideo && std::filesystem::path(*args.get("--video")).extension() != ".mp4")
+        throw core::CliError("--video '" + *args.get("--video") + "': the file must end in .mp4");
 
     // Load first: a bad scene path fails fast, before any Vulkan work.
     scene::Scene scene = args.positional.empty() ? loadDefaultScene() : scene::loadGltf(args.positional[0]);
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "idk render: warning: %s\n", w.c_str());
     posePerOptions(args, scene);
-    if (args.get("--replay")) return runRenderReplay(args, scene, settings, width, height);
-    if (args.has("--pathtrace")) return runRenderPathTrace(args, scene, settings, width, height);
+    if (replay) return runRenderReplay(args, scene, settings, width, height);
+    const std::vector<scene::CameraView> views = camerasFromCli(args, scene);  // usage errors before Vulkan too
+    if (args.has("--pathtrace")) return runRenderPathTrace(args, scene, settings, width, height, views, fps);
 
-    vk::Context ctx(contextDescFromCli(args));
-    vk::ShaderLibrary shaders(ctx);
+    std::unique_ptr<vk::Context> ctx = createContext(contextDescFromCli(args));
+    vk::ShaderLibrary shaders(*ctx);
     render::FrameResult frame;
     vk::MemoryStats memory;
     {
-        render::Renderer renderer(ctx, shaders, settings);
+        render::Renderer renderer(*ctx, shaders, settings);
         renderer.setScene(scene);
-        render::SceneTextureStream textures(ctx, renderer, scene);
+        render::SceneTextureStream textures(*ctx, renderer, scene);
         textures.finishSynchronously();  // a single image wants every texture, not placeholders
-        frame = renderer.renderOffscreen(scene::defaultCamera(scene), width, height);
-        memory = ctx.allocator().stats();  // while the scene and the graph's resources are alive
+        std::optional<tools::VideoWriter> video;
+        if (orbitVideo) video.emplace(*args.get("--video"), width, height, tools::VideoOptions{.fps = fps});
+        for (size_t k = 0; k < views.size(); ++k) {
+            frame = renderer.renderOffscreen(views[k], width, height);
+            if (video) {
+                video->addFrame(frame.display);
+                continue;
+            }
+            if (transparent && settings.output == render::OutputKind::Display) {
+                // The same frame as linear HDR: its alpha is the geometry coverage the EXR stores.
+                renderer.settings().output = render::OutputKind::Hdr;
+                const render::FrameResult hdr = renderer.renderOffscreen(views[k], width, height);
+                renderer.settings().output = render::OutputKind::Display;
+                for (size_t i = 3; i < frame.image.pixels.size(); i += 4) frame.image.pixels[i] = hdr.image.pixels[i];
+            }
+            core::writeImage(views.size() > 1 ? turntablePath(*out, k, views.size()) : std::filesystem::path(*out),
+                             frame.image);
+        }
+        if (video) {
+            if (ctx->validationErrors() != 0) video->abort();
+            else video->finish();
+        }
+        memory = ctx->allocator().stats();  // while the scene and the graph's resources are alive
     }
-    core::writeImage(*out, frame.image);
+    if (rungsThatRan) *rungsThatRan = ctx->consultedLadders();
     if (std::optional<std::string> graphFile = args.get("--graph")) {
         std::ofstream file(*graphFile);
         file << (std::filesystem::path(*graphFile).extension() == ".dot" ? frame.graphDot : frame.graphText);
@@ -147,7 +220,7 @@ int runRender(const std::vector<std::string>& argv) {
     }
 
     if (args.has("--json")) {
-        std::cout << statsJson(frame, ctx, memory).dump(2) << "\n";
+        std::cout << statsJson(frame, *ctx, memory, views.back()).dump(2) << "\n";
     } else if (args.has("--stats")) {
         std::printf("passes:\n");
         for (const vk::ScopeTiming& t : frame.passTimes) std::printf("  %-24s %8.3f ms\n", t.name.c_str(), t.milliseconds);
@@ -156,12 +229,19 @@ int runRender(const std::vector<std::string>& argv) {
         std::printf("GPU memory by category:\n");
         for (const auto& [category, bytes] : memory.bytesByCategory)
             std::printf("  %-24s %10.1f KiB\n", category.c_str(), double(bytes) / 1024.0);
+        std::printf("capability rungs that ran:\n");
+        for (const vk::Ladder& l : ctx->consultedLadders())
+            std::printf("  %-20s %-11s %s\n", l.id.c_str(), vk::rungName(l.chosen), l.reason.c_str());
     }
-    if (ctx.validationErrors() != 0) {
-        std::fprintf(stderr, "idk render: %u Vulkan validation error(s)\n", ctx.validationErrors());
+    if (ctx->validationErrors() != 0) {
+        std::fprintf(stderr, "idk render: %u Vulkan validation error(s)\n", ctx->validationErrors());
         return 1;
     }
-    std::fprintf(stderr, "idk render: wrote %s (%ux%u)\n", out->c_str(), width, height);
+    const std::string written = orbitVideo        ? *args.get("--video")
+                                : views.size() > 1 ? turntablePath(*out, 0, views.size()).string() + " .. " +
+                                                         turntablePath(*out, views.size() - 1, views.size()).string()
+                                                   : *out;
+    std::fprintf(stderr, "idk render: wrote %s (%ux%u)\n", written.c_str(), width, height);
     return 0;
 }
 

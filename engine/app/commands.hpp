@@ -3,10 +3,15 @@
 #include <string>
 #include <vector>
 
+#include "vk/features.hpp"
+
 namespace idk::app {
 
 int runInfo(const std::vector<std::string>& args);
 int runRender(const std::vector<std::string>& args);
+// The same; for a rasterized render *rungsThatRan gets the capability ladders it consulted (benchmarks label
+// their rows with them; path-traced and replay renders leave it unchanged).
+int runRender(const std::vector<std::string>& args, std::vector<vk::Ladder>* rungsThatRan);
 int runBvh(const std::vector<std::string>& args);
 int runCompare(const std::vector<std::string>& args);
 

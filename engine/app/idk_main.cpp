@@ -19,7 +19,7 @@ const char* const kHelp =
     "  info     the Vulkan device, its limits and the capability ladders (--json for machines)\n"
     "  render   render a glTF scene (or the embedded Cornell box) to a PNG or EXR image\n"
     "  bvh      build the BVH of a scene and print its statistics (SAH, EPO, depth, stack, build time)\n"
-    "  compare  error metrics of an image against a reference (RMSE, relative MSE, max, NaN count)\n"
+    "  compare  error metrics of an image against a reference (RMSE, relative MSE, PSNR, FLIP) and CI gates\n"
     "  help     this text; `idk <command> --help` describes one command\n";
 
 }  // namespace

@@ -21,4 +21,16 @@ struct ImageDifference {
 // a and b must have the same size (throws std::invalid_argument otherwise).
 ImageDifference compareImages(const core::ImageRgba32f& a, const core::ImageRgba32f& b);
 
+// PSNR in dB with peak 1 over the RGB channels compared: -10 log10(rmse^2); +infinity for identical images.
+double psnr(const ImageDifference& d);
+
+// The diff image of `idk compare --diff`: magenta (1, 0, 1) where any RGBA channel differs by more than `epsilon`
+// (NaN against a number counts as a difference, NaN against NaN not), elsewhere the reference as a dimmed grey
+// (a quarter of its luminance) so the changes stand out; alpha 1. changedPixels counts the magenta ones.
+struct DiffImage {
+    core::ImageRgba32f image;
+    size_t changedPixels = 0;
+};
+DiffImage diffImage(const core::ImageRgba32f& a, const core::ImageRgba32f& b, float epsilon);
+
 }  // namespace idk::app

@@ -13,8 +13,12 @@
 #include <cstdio>
 #include <iostream>
 
+#include "app/camera_spec.hpp"
 #include "app/cli_context.hpp"
+#include "app/ladder_report.hpp"
+#include "core/image_file.hpp"
 #include "render/path_tracer.hpp"
+#include "tools/video_writer.hpp"
 #include "shared/agx.h"
 #include "vk/context.hpp"
 #include "vk/shader_library.hpp"
@@ -29,11 +33,13 @@ const char* const kPathTraceHelp =
     "  --seed S         random seed (default 0; the same seed gives the same image)\n"
     "  --light-sampling nee-mis|bsdf  next-event estimation + MIS (default) or BSDF sampling only (the original's)\n"
     "  --sort on|off    sort rays by material and direction before shading (default off)\n"
-    "  --traversal auto|bvh|bvh2|rayquery  auto: VK_KHR_ray_query on a GPU that has it; bvh (our BVH, 8-wide\n"
-    "                   compressed nodes) with --fallback and on CPU devices such as lavapipe, whose ray query is far\n"
-    "                   slower; bvh2: our binary BVH walk (same hits as bvh)\n"
+    "  --traversal auto|bvh|bvh2|rayquery  auto: the ray-traversal ladder's rung (`idk info`: VK_KHR_ray_query on a\n"
+    "                   GPU that has it; our BVH with --fallback and on CPU devices such as lavapipe, whose ray query\n"
+    "                   is far slower); bvh (8-wide compressed nodes) / rayquery force the rung (as --rung\n"
+    "                   ray-traversal=fallback|native); bvh2: the portable rung with the binary walk (same hits)\n"
     "  --denoise        also run the edge-aware denoiser (albedo/normal/depth guided) and write its output\n"
-    "  --environment, --env-intensity, --exposure (.png only), --size, --json, --no-validation, --fallback as above\n";
+    "  --camera, --orbit, --camera-index, --environment, --env-intensity, --exposure (.png only), --size, --json,\n"
+    "  --no-validation, --fallback, --rung as above; --json adds the camera and the rungs that ran\n";
 
 namespace {
 
@@ -55,72 +61,110 @@ std::string oneOf(const core::CliArgs& args, const char* flag, const char* fallb
     throw core::CliError(std::string(flag) + " '" + v + "': use " + list);
 }
 
-void drawProgress(uint32_t done, uint32_t total) {
+}  // namespace
+
+void drawProgressBar(uint64_t done, uint64_t total, const char* unit) {
     constexpr int kWidth = 40;
-    const int filled = total ? int(kWidth * uint64_t(done) / total) : kWidth;
-    std::fprintf(stderr, "\r[%.*s%*s] %u/%u spp", filled, "########################################", kWidth - filled, "",
-                 done, total);
+    const int filled = total ? int(kWidth * done / total) : kWidth;
+    std::fprintf(stderr, "\r[%.*s%*s] %llu/%llu %s", filled, "########################################", kWidth - filled,
+                 "", static_cast<unsigned long long>(done), static_cast<unsigned long long>(total), unit);
     if (done == total) std::fputc('\n', stderr);
     std::fflush(stderr);
 }
 
-}  // namespace
+core::ImageRgba32f displayImage(core::ImageRgba32f image, float exposure) {
+    // The raster's display transform (shared/agx.h, as the tonemap pass): exposure, AgX to display-linear;
+    // writeImage applies the sRGB encoding.
+    for (size_t i = 0; i < image.pixels.size(); i += 4) {
+        const glm::vec3 radiance(image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]);
+        const glm::vec3 display = gpu::agx(radiance * exposure);
+        for (int c = 0; c < 3; ++c) image.pixels[i + c] = display[c];
+    }
+    return image;
+}
 
-int runRenderPathTrace(const core::CliArgs& args, const scene::Scene& scene, const render::RenderSettings& settings,
-                       uint32_t width, uint32_t height) {
-    const std::string out = *args.get("--out");
-    render::PathTraceSettings pt;
-    pt.spp = parseCount(args, "--spp", "16", 1);
-    pt.maxDepth = parseCount(args, "--max-depth", "8", 1);
-    pt.seed = parseCount(args, "--seed", "0", 0);
-    const std::string lightSampling = oneOf(args, "--light-sampling", "nee-mis", {"nee-mis", "bsdf"});
-    pt.nee = lightSampling == "nee-mis";
+std::vector<uint8_t> displayBytes(const core::ImageRgba32f& image, float exposure) {
+    const core::ImageRgba32f display = displayImage(image, exposure);
+    std::vector<uint8_t> bytes(display.pixels.size());
+    for (size_t i = 0; i < bytes.size(); ++i)
+        bytes[i] = i % 4 == 3 ? 255 : uint8_t(std::lround(core::linearToSrgb(display.pixels[i]) * 255.0f));
+    return bytes;
+}
+
+PathTraceCli pathTraceFromCli(const core::CliArgs& args, const render::RenderSettings& settings) {
+    PathTraceCli p;
+    p.settings.spp = parseCount(args, "--spp", "16", 1);
+    p.settings.maxDepth = parseCount(args, "--max-depth", "8", 1);
+    p.settings.seed = parseCount(args, "--seed", "0", 0);
+    p.lightSampling = oneOf(args, "--light-sampling", "nee-mis", {"nee-mis", "bsdf"});
+    p.settings.nee = p.lightSampling == "nee-mis";
     const std::string sort = oneOf(args, "--sort", "off", {"on", "off"});
     const std::string traversal = oneOf(args, "--traversal", "auto", {"auto", "bvh", "bvh2", "rayquery"});
     if (traversal == "rayquery" && args.has("--fallback"))
         throw core::CliError("--traversal rayquery contradicts --fallback (which takes our BVH, the portable rung)");
+    p.contextDesc = contextDescFromCli(args);
+    if (traversal != "auto") {
+        for (const vk::RungForce& f : p.contextDesc.forcedRungs)
+            if (f.ladder == "ray-traversal")
+                throw core::CliError("--traversal " + traversal + " and --rung ray-traversal=...: give one of them");
+        // The tracer follows the ladder (PtTraversal::Auto), so the ladder reports the traversal that ran.
+        p.contextDesc.forcedRungs.push_back({"ray-traversal", traversal == "rayquery" ? vk::Rung::Native : vk::Rung::Fallback});
+    }
+    p.options.traversal = traversal == "bvh2" ? render::PtTraversal::Bvh2 : render::PtTraversal::Auto;
+    p.options.sortRays = sort == "on";
+    p.options.denoise = args.has("--denoise");
+    p.options.environment = settings.environment;
+    p.options.environmentIntensity = settings.environmentIntensity;
+    return p;
+}
 
-    render::PathTracerOptions options;
-    options.traversal = traversal == "bvh"        ? render::PtTraversal::Bvh
-                        : traversal == "bvh2"     ? render::PtTraversal::Bvh2
-                        : traversal == "rayquery" ? render::PtTraversal::RayQuery
-                                                  : render::PtTraversal::Auto;
-    options.sortRays = sort == "on";
-    options.denoise = args.has("--denoise");
-    options.environment = settings.environment;
-    options.environmentIntensity = settings.environmentIntensity;
+int runRenderPathTrace(const core::CliArgs& args, const scene::Scene& scene, const render::RenderSettings& settings,
+                       uint32_t width, uint32_t height, const std::vector<scene::CameraView>& views, double fps) {
+    const std::optional<std::string> video = args.get("--video");
+    const std::string out = video ? *video : *args.get("--out");
+    const PathTraceCli cli = pathTraceFromCli(args, settings);
+    const render::PathTraceSettings& pt = cli.settings;
+    const render::PathTracerOptions& options = cli.options;
 
-    vk::Context ctx(contextDescFromCli(args));
-    vk::ShaderLibrary shaders(ctx);
+    std::unique_ptr<vk::Context> ctx = createContext(cli.contextDesc);
+    vk::ShaderLibrary shaders(*ctx);
     render::PathTraceResult result;
     {
-        render::PathTracer tracer(ctx, shaders, scene, options);
+        render::PathTracer tracer(*ctx, shaders, scene, options);
+        std::optional<tools::VideoWriter> writer;
+        if (video) writer.emplace(*video, width, height, tools::VideoOptions{.fps = fps});
         const bool terminal = isatty(fileno(stderr)) != 0;
-        result = tracer.render(scene::defaultCamera(scene), width, height, pt,
-                               terminal ? render::PathTracer::Progress(drawProgress) : render::PathTracer::Progress());
-    }
-    core::ImageRgba32f image = options.denoise && result.didDenoise ? result.denoised : result.image;
-    if (std::filesystem::path(out).extension() == ".png") {
-        // The raster's display transform (shared/agx.h, as the tonemap pass): exposure, AgX to display-linear;
-        // writeImage applies the sRGB encoding.
-        for (size_t i = 0; i < image.pixels.size(); i += 4) {
-            const glm::vec3 radiance(image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]);
-            const glm::vec3 display = gpu::agx(radiance * settings.exposure);
-            for (int c = 0; c < 3; ++c) image.pixels[i + c] = display[c];
+        auto progress = [](uint32_t done, uint32_t total) { drawProgressBar(done, total, "spp"); };
+        for (size_t k = 0; k < views.size(); ++k) {
+            result = tracer.render(views[k], width, height, pt,
+                                   terminal ? render::PathTracer::Progress(progress) : render::PathTracer::Progress());
+            const core::ImageRgba32f& image = options.denoise && result.didDenoise ? result.denoised : result.image;
+            if (writer) {
+                writer->addFrame(displayBytes(image, settings.exposure));
+                continue;
+            }
+            const std::filesystem::path path = views.size() > 1 ? turntablePath(out, k, views.size()) : std::filesystem::path(out);
+            core::writeImage(path, path.extension() == ".png" ? displayImage(image, settings.exposure) : image);
+        }
+        if (writer) {
+            if (ctx->validationErrors() != 0) writer->abort();
+            else writer->finish();
         }
     }
-    core::writeImage(out, image);
 
     if (args.has("--json") || args.has("--stats")) {
         nlohmann::json j;
-        j["device"] = ctx.info().name;
+        j["device"] = ctx->info().name;
+        j["camera"] = cameraJson(views.back());
+        j["frames"] = views.size();
+        j["rungs"] = laddersJson(ctx->consultedLadders());
         nlohmann::json p;
         p["spp"] = pt.spp;
         p["maxDepth"] = pt.maxDepth;
         p["seed"] = pt.seed;
         p["traversal"] = render::traversalName(result.traversal);
         p["sort"] = options.sortRays;
-        p["lightSampling"] = lightSampling;
+        p["lightSampling"] = cli.lightSampling;
         p["denoised"] = result.didDenoise;
         p["wallMilliseconds"] = result.wallMilliseconds;
         p["gpuMilliseconds"] = result.gpuMilliseconds;
@@ -132,8 +176,8 @@ int runRenderPathTrace(const core::CliArgs& args, const scene::Scene& scene, con
         j["pathtrace"] = p;
         std::cout << j.dump(2) << "\n";
     }
-    if (ctx.validationErrors() != 0) {
-        std::fprintf(stderr, "idk render: %u Vulkan validation error(s)\n", ctx.validationErrors());
+    if (ctx->validationErrors() != 0) {
+        std::fprintf(stderr, "idk render: %u Vulkan validation error(s)\n", ctx->validationErrors());
         return 1;
     }
     std::fprintf(stderr, "idk render: wrote %s (%ux%u, %u spp, %s traversal)\n", out.c_str(), width, height, pt.spp,

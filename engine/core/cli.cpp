@@ -16,6 +16,13 @@ std::string CliArgs::get(const std::string& option, const std::string& fallback)
     return get(option).value_or(fallback);
 }
 
+std::vector<std::string> CliArgs::getAll(const std::string& option) const {
+    std::vector<std::string> values;
+    for (const auto& [name, value] : occurrences)
+        if (name == option) values.push_back(value);
+    return values;
+}
+
 CliArgs parseCli(const std::vector<std::string>& args, const CliSpec& spec) {
     CliArgs out;
     for (size_t i = 0; i < args.size(); ++i) {
@@ -41,6 +48,7 @@ CliArgs parseCli(const std::vector<std::string>& args, const CliSpec& spec) {
                 value = args[++i];
             }
             out.options[name] = value;
+            out.occurrences.emplace_back(name, value);
         } else {
             throw CliError("unknown option '" + name + "'");
         }

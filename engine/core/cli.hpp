@@ -23,11 +23,13 @@ struct CliSpec {
 struct CliArgs {
     std::vector<std::string> positional;
     std::set<std::string> flags;
-    std::map<std::string, std::string> options;
+    std::map<std::string, std::string> options;  // the last value of each option
+    std::vector<std::pair<std::string, std::string>> occurrences;  // every option and value, in order
 
     bool has(const std::string& flag) const { return flags.count(flag) != 0; }
     std::optional<std::string> get(const std::string& option) const;
     std::string get(const std::string& option, const std::string& fallback) const;
+    std::vector<std::string> getAll(const std::string& option) const;  // a repeatable option's values, in order
 };
 
 CliArgs parseCli(const std::vector<std::string>& args, const CliSpec& spec);

@@ -55,11 +55,11 @@ vk::Buffer hostBuffer(vk::Context& ctx, size_t bytes, const std::string& name) {
 PtTraversal resolveTraversal(const vk::Context& ctx, PtTraversal requested) {
     if (requested == PtTraversal::RayQuery && !vk::rayQuerySupported(ctx))
         throw std::runtime_error("--traversal rayquery: " + ctx.info().name + " lacks VK_KHR_ray_query");
+    // The ladder carries the CPU-device preference (lavapipe's software ray query yields to our BVH) and --rung;
+    // it is consulted whatever was requested, so it reports itself as a rung that ran.
+    const vk::Rung rung = ctx.ladder("ray traversal").chosen;
     if (requested != PtTraversal::Auto) return requested;
-    if (ctx.ladder("ray traversal").chosen != vk::Rung::Native) return PtTraversal::Bvh;
-    // A CPU implementation's ray query (lavapipe) is no hardware path: measured 2 spp of TransmissionTest at
-    // 128x128 in 21.4 s against 0.62 s with our BVH, so auto keeps the portable rung there.
-    return ctx.info().type == VK_PHYSICAL_DEVICE_TYPE_CPU ? PtTraversal::Bvh : PtTraversal::RayQuery;
+    return rung == vk::Rung::Native ? PtTraversal::RayQuery : PtTraversal::Bvh;
 }
 
 core::ImageRgba32f toImage(const std::vector<uint8_t>& bytes, VkFormat format, uint32_t w, uint32_t h) {

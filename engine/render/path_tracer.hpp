@@ -31,11 +31,11 @@ struct PathTraceScene;
 namespace idk::render {
 
 enum class PtTraversal : uint8_t {
-    Auto,      // the "ray traversal" capability ladder's rung (ray query when the device has it, not with --fallback),
-               // except on a CPU device (lavapipe), whose ray query is ~35x slower than our BVH: Bvh there
+    Auto,      // the "ray traversal" capability ladder's rung (ray query when the device has it, not with --fallback
+               // or on a CPU device such as lavapipe, whose software ray query is far slower than our BVH)
     Bvh,       // our GLSL BVH, 8-wide compressed (engine/bvh trees collapsed by bvh/wide8.hpp,
                // include/bvh_traverse_wide.glsl): the portable rung
-    Bvh2,      // our GLSL BVH, binary (include/bvh_traverse.glsl); same hits as Bvh
+    Bvh2,      // the portable rung's binary walk (include/bvh_traverse.glsl); same hits as Bvh
     RayQuery,  // VK_KHR_ray_query over driver acceleration structures
 };
 const char* traversalName(PtTraversal traversal);  // "auto", "bvh", "bvh2", "rayquery"

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/cli.hpp"
+#include "vk/features.hpp"
 
 namespace idk::viewer {
 
@@ -25,6 +26,7 @@ const char* const kViewerHelp =
     "  --sync-textures   load every texture before the first frame (as idk render) instead of streaming\n"
     "  --no-validation   do not load the Vulkan validation layer\n"
     "  --fallback        take the portable rung of every capability ladder\n"
+    "  --rung L=R        force capability ladder L to rung R (repeatable; `idk info` lists them)\n"
     "controls: W/A/S/D move, Space up, Shift faster, E GUI/FPS mode, T pause time, right-click select (GUI) or\n"
     "  shoot a light (FPS), Ctrl+R record, Ctrl+Space replay, G hide GUI, V vsync, F11 fullscreen, 1 recompile\n"
     "  shaders, Esc exit. Without a display use `idk render SCENE --out F.png`.\n";
@@ -32,7 +34,7 @@ const char* const kViewerHelp =
 ViewerOptions parseViewerOptions(const std::vector<std::string>& argv) {
     core::CliArgs args = core::parseCli(
         argv, {{"--no-ui", "--watch", "--no-vsync", "--sync-textures", "--no-validation", "--fallback", "--help"},
-               {"--size", "--frames", "--screenshot", "--script", "--shader-dir", "--capture", "--fixed-dt"}});
+               {"--size", "--frames", "--screenshot", "--script", "--shader-dir", "--capture", "--fixed-dt", "--rung"}});
     ViewerOptions o;
     o.help = args.has("--help");
     if (args.positional.size() > 1) throw core::CliError("more than one scene given");
@@ -65,6 +67,14 @@ ViewerOptions parseViewerOptions(const std::vector<std::string>& argv) {
     o.syncTextures = args.has("--sync-textures");
     o.validation = !args.has("--no-validation");
     o.fallback = args.has("--fallback");
+    for (const std::string& spec : args.getAll("--rung")) {
+        try {
+            vk::parseRungForce(spec);  // names checked here; what the device can run, once it is open
+        } catch (const std::invalid_argument& e) {
+            throw core::CliError(e.what());
+        }
+        o.rungs.push_back(spec);
+    }
     return o;
 }
 

@@ -26,6 +26,7 @@ struct ViewerOptions {
     bool syncTextures = false;                        // load every texture before the first frame
     bool validation = true;
     bool fallback = false;
+    std::vector<std::string> rungs;                   // --rung LADDER=RUNG (repeatable), checked by parseViewerOptions
     bool help = false;
 };
 

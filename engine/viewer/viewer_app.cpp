@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "app/cli_context.hpp"
 #include "app/default_scene.hpp"
 #include "core/cli.hpp"
 #include "core/image_file.hpp"
@@ -31,9 +32,11 @@ Viewer::Viewer(const ViewerOptions& opts) : options(opts) {
     vk::ContextDesc desc;
     desc.validation = desc.validation && options.validation;
     desc.forceFallbackRungs = options.fallback;
+    for (const std::string& spec : options.rungs) desc.forcedRungs.push_back(vk::parseRungForce(spec));
     desc.instanceExtensions = Window::requiredInstanceExtensions();
     desc.presentation = true;
     ctx = std::make_unique<vk::Context>(desc);
+    app::checkForcedRungs(*ctx);  // a rung this device cannot run: exit 2
     surface = window->createSurface(ctx->instance());
     vk::SwapchainDesc sc;
     sc.surface = surface;

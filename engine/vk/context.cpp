@@ -357,7 +357,8 @@ void Context::createDevice() {
     caps_.externalMemoryFd = contains(exts, VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME);
     caps_.shaderFloat16 = supported.v12.shaderFloat16;
     caps_.storage16Bit = supported.v11.storageBuffer16BitAccess;
-    ladders_ = buildLadders(caps_, desc_.forceFallbackRungs);
+    caps_.cpuDevice = info_.type == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    ladders_ = buildLadders(caps_, LadderChoice{desc_.forceFallbackRungs, desc_.forcedRungs}, &forcedRungError_);
 
     // Queue: one family with graphics + compute (every desktop GPU and lavapipe have it), with timestamps.
     uint32_t familyCount = 0;
@@ -478,9 +479,25 @@ void Context::createDevice() {
 }
 
 const Ladder& Context::ladder(const std::string& feature) const {
-    for (const Ladder& l : ladders_)
-        if (l.feature == feature) return l;
+    for (size_t i = 0; i < ladders_.size(); ++i) {
+        if (ladders_[i].feature != feature && ladders_[i].id != feature) continue;
+        std::lock_guard lock(consultedMutex_);
+        if (std::find(consulted_.begin(), consulted_.end(), i) == consulted_.end()) consulted_.push_back(i);
+        return ladders_[i];
+    }
     throw std::logic_error("unknown capability ladder '" + feature + "'");
+}
+
+void Context::clearConsultedLadders() {
+    std::lock_guard lock(consultedMutex_);
+    consulted_.clear();
+}
+
+std::vector<Ladder> Context::consultedLadders() const {
+    std::lock_guard lock(consultedMutex_);
+    std::vector<Ladder> out;
+    for (size_t i : consulted_) out.push_back(ladders_[i]);
+    return out;
 }
 
 std::vector<std::string> Context::validationMessages() const {

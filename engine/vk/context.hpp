@@ -27,6 +27,7 @@ struct ContextDesc {
     bool syncValidation = IDK_DEFAULT_SYNC_VALIDATION;  // VkValidationFeaturesEXT synchronization checks
     bool forceStaging = IDK_DEFAULT_FORCE_STAGING;      // never map GPU-only memory, even on UMA (lavapipe)
     bool forceFallbackRungs = false;                    // choose the portable rung on every ladder
+    std::vector<RungForce> forcedRungs;                 // --rung LADDER=RUNG (wins over forceFallbackRungs)
     std::vector<const char*> instanceExtensions;        // window-system extensions; empty = headless
     bool presentation = false;                          // require VK_KHR_swapchain
     std::string deviceNameFilter;                       // substring; also env IDK_DEVICE
@@ -72,7 +73,14 @@ public:
     const DeviceInfo& info() const noexcept { return info_; }
     const DeviceCapabilities& capabilities() const noexcept { return caps_; }
     const std::vector<Ladder>& ladders() const noexcept { return ladders_; }
-    const Ladder& ladder(const std::string& feature) const;  // throws if unknown
+    // By feature name or id; throws if unknown. Records the ladder as consulted: the code asking is about to run
+    // its chosen rung, so consultedLadders() lists the rungs that ran (`idk render --json`, benchmark labels).
+    const Ladder& ladder(const std::string& feature) const;
+    std::vector<Ladder> consultedLadders() const;  // in first-use order
+    void clearConsultedLadders();                  // a benchmark sharing the context starts its own list
+    // Why a desc.forcedRungs entry could not be taken (the device lacks it); empty when all were. Callers that
+    // forced rungs check it and refuse to run (the CLI exits 2).
+    const std::string& forcedRungError() const noexcept { return forcedRungError_; }
     const ContextDesc& desc() const noexcept { return desc_; }
     MemoryAllocator& allocator() noexcept { return *allocator_; }
     BindlessTable& bindless() noexcept { return *bindless_; }
@@ -126,6 +134,9 @@ private:
     DeviceInfo info_;
     DeviceCapabilities caps_;
     std::vector<Ladder> ladders_;
+    std::string forcedRungError_;
+    mutable std::mutex consultedMutex_;
+    mutable std::vector<size_t> consulted_;  // indices into ladders_
     std::vector<const char*> enabledDeviceExtensions_;
     std::unique_ptr<ValidationLog> validation_;
     std::unique_ptr<MemoryAllocator> allocator_;

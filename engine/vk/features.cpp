@@ -1,7 +1,11 @@
 // features.cpp: the capability-ladder table. Each ladder lists its rungs best-first; the first available one
-// is chosen. The GL-interop rung needs both VK_KHR_external_memory_fd and an OpenGL context exposing the NV
-// extension the pass uses; the feature that owns that pass probes GL, so here it reports what it needs.
+// is chosen, except that a CPU device's ray query (lavapipe emulates it in software) yields to our BVH, and the
+// user's --fallback / --rung LADDER=RUNG override the choice. The GL-interop rung needs both
+// VK_KHR_external_memory_fd and an OpenGL context exposing the NV extension the pass uses; the feature that owns
+// that pass probes GL, so here it reports what it needs.
 #include "vk/features.hpp"
+
+#include <stdexcept>
 
 namespace idk::vk {
 
@@ -14,60 +18,140 @@ const char* rungName(Rung rung) {
     return "?";
 }
 
-namespace {
-
-Ladder choose(std::string feature, std::vector<RungOption> options, bool forceFallback) {
-    Ladder ladder{std::move(feature), std::move(options), Rung::Fallback, {}};
-    for (const RungOption& option : ladder.options) {
-        bool isLast = &option == &ladder.options.back();
-        if ((option.available && !forceFallback) || isLast) {
-            ladder.chosen = option.rung;
-            ladder.chosenMechanism = option.mechanism;
-            break;
-        }
-    }
-    return ladder;
+std::optional<Rung> rungFromName(const std::string& name) {
+    for (Rung r : {Rung::Native, Rung::GlInterop, Rung::Fallback})
+        if (name == rungName(r)) return r;
+    return std::nullopt;
 }
+
+namespace {
 
 std::string missing(bool available, const char* what) { return available ? "" : std::string("device lacks ") + what; }
 
-}  // namespace
-
-std::vector<Ladder> buildLadders(const DeviceCapabilities& c, bool forceFallback) {
+// The table, rungs best first, nothing chosen yet.
+std::vector<Ladder> ladderTable(const DeviceCapabilities& c) {
+    auto ladder = [](const char* id, const char* feature, std::vector<RungOption> options) {
+        return Ladder{id, feature, std::move(options), Rung::Fallback, {}, {}};
+    };
     std::vector<Ladder> ladders;
-    ladders.push_back(choose("mesh shading",
+    ladders.push_back(ladder("mesh-shading", "mesh shading",
         {{Rung::Native, "VK_EXT_mesh_shader", c.meshShaderExt, missing(c.meshShaderExt, "VK_EXT_mesh_shader")},
-         {Rung::Fallback, "multi-draw-indirect with count", true, ""}},
-        forceFallback));
-    ladders.push_back(choose("variable-rate shading",
+         {Rung::Fallback, "multi-draw-indirect with count", true, ""}}));
+    ladders.push_back(ladder("vrs", "variable-rate shading",
         {{Rung::Native, "VK_KHR_fragment_shading_rate", c.fragmentShadingRate,
           missing(c.fragmentShadingRate, "VK_KHR_fragment_shading_rate")},
-         {Rung::Fallback, "compute-side coarse shading", true, ""}},
-        forceFallback));
-    ladders.push_back(choose("voxel radiance atomics (VXGI)",
+         {Rung::Fallback, "compute-side coarse shading", true, ""}}));
+    ladders.push_back(ladder("vxgi-atomics", "voxel radiance atomics (VXGI)",
         {{Rung::Native, "float32 image atomic add", c.imageFloat32AtomicAdd,
           missing(c.imageFloat32AtomicAdd, "shaderImageFloat32AtomicAdd")},
          {Rung::GlInterop, "GL_NV_shader_atomic_fp16_vector via GL_EXT_memory_object_fd", false,
           c.externalMemoryFd ? "needs an OpenGL context with GL_NV_shader_atomic_fp16_vector"
                              : "device lacks VK_KHR_external_memory_fd"},
-         {Rung::Fallback, "three r32ui images + merge", true, ""}},
-        forceFallback));
-    ladders.push_back(choose("conservative rasterization (voxelization)",
+         {Rung::Fallback, "three r32ui images + merge", true, ""}}));
+    ladders.push_back(ladder("conservative-raster", "conservative rasterization (voxelization)",
         {{Rung::Native, "VK_EXT_conservative_rasterization", c.conservativeRasterization,
           missing(c.conservativeRasterization, "VK_EXT_conservative_rasterization")},
          {Rung::Fallback, "geometry-shader triangle dilation", c.geometryShader,
-          missing(c.geometryShader, "geometryShader")}},
-        forceFallback));
-    ladders.push_back(choose("point-shadow cube faces",
+          missing(c.geometryShader, "geometryShader")}}));
+    ladders.push_back(ladder("point-shadow-faces", "point-shadow cube faces",
         {{Rung::Native, "vertex-shader gl_Layer (one instanced draw)", c.shaderOutputLayer,
           missing(c.shaderOutputLayer, "shaderOutputLayer")},
-         {Rung::Fallback, "six draws, one per face", true, ""}},
-        forceFallback));
-    ladders.push_back(choose("ray traversal",
+         {Rung::Fallback, "six draws, one per face", true, ""}}));
+    ladders.push_back(ladder("ray-traversal", "ray traversal",
         {{Rung::Native, "VK_KHR_ray_query", c.rayQuery, missing(c.rayQuery, "VK_KHR_ray_query")},
-         {Rung::Fallback, "compute BVH traversal", true, ""}},
-        forceFallback));
+         {Rung::Fallback, "compute BVH traversal", true, ""}}));
     return ladders;
+}
+
+void take(Ladder& ladder, const RungOption& option, std::string reason) {
+    ladder.chosen = option.rung;
+    ladder.chosenMechanism = option.mechanism;
+    ladder.reason = std::move(reason);
+}
+
+// The first available rung (the last one when none is, so there is always a choice); the reason names what the
+// better rungs lack.
+void chooseBest(Ladder& ladder, const DeviceCapabilities& c) {
+    std::string lacks;
+    for (const RungOption& option : ladder.options) {
+        const bool isLast = &option == &ladder.options.back();
+        if (option.available || isLast) {
+            take(ladder, option, lacks.empty() ? "best rung the device has" : lacks);
+            if (!option.available) ladder.reason += "; " + option.note + " (taken anyway: last rung)";
+            break;
+        }
+        lacks += (lacks.empty() ? "" : "; ") + option.note;
+    }
+    // Lavapipe's ray query walks its acceleration structures in emulated shader code: measured 53x slower than
+    // our BVH on TransmissionTest (0.8x on the Cornell box and DamagedHelmet, BENCHMARKS.md "our BVH / ray
+    // query"). A real GPU's native ray query is hardware and keeps the native rung.
+    if (ladder.id == "ray-traversal" && c.cpuDevice && ladder.chosen == Rung::Native) {
+        take(ladder, ladder.options.back(),
+             "CPU device: its ray query is software; our BVH was 53x faster on TransmissionTest "
+             "(BENCHMARKS.md, our BVH / ray query)");
+    }
+}
+
+}  // namespace
+
+std::vector<Ladder> buildLadders(const DeviceCapabilities& caps, const LadderChoice& choice, std::string* error) {
+    std::vector<Ladder> ladders = ladderTable(caps);
+    for (Ladder& ladder : ladders) {
+        chooseBest(ladder, caps);
+        if (choice.forceFallback && ladder.chosen != ladder.options.back().rung)
+            take(ladder, ladder.options.back(), "--fallback: the portable rung");
+    }
+    for (const RungForce& force : choice.forced) {
+        for (Ladder& ladder : ladders) {
+            if (ladder.id != force.ladder) continue;
+            const RungOption* option = nullptr;
+            for (const RungOption& o : ladder.options)
+                if (o.rung == force.rung) option = &o;
+            const std::string spec = "--rung " + ladder.id + "=" + rungName(force.rung);
+            if (option == nullptr || !option->available) {
+                std::string runnable;
+                for (const RungOption& o : ladder.options)
+                    if (o.available) runnable += (runnable.empty() ? "" : "|") + std::string(rungName(o.rung));
+                if (error && error->empty())
+                    *error = spec + ": " + (option ? option->note : std::string("the ladder has no such rung")) +
+                             " (rungs this device can run: " + ladder.id + "=" + runnable + ")";
+                continue;
+            }
+            take(ladder, *option, "forced by " + spec);
+        }
+    }
+    return ladders;
+}
+
+std::vector<std::string> ladderRungList() {
+    std::vector<std::string> list;
+    for (const Ladder& ladder : ladderTable(DeviceCapabilities{})) {
+        std::string line = ladder.id + ": ";
+        for (const RungOption& o : ladder.options) line += std::string(&o == &ladder.options.front() ? "" : "|") + rungName(o.rung);
+        list.push_back(line);
+    }
+    return list;
+}
+
+RungForce parseRungForce(const std::string& spec) {
+    auto invalid = [&](const std::string& why) {
+        std::string names;
+        for (const std::string& l : ladderRungList()) names += (names.empty() ? "" : ", ") + l;
+        return std::invalid_argument("--rung '" + spec + "': " + why + " (give LADDER=RUNG; ladders and rungs: " +
+                                     names + ")");
+    };
+    const size_t eq = spec.find('=');
+    if (eq == std::string::npos) throw invalid("no '='");
+    const std::string id = spec.substr(0, eq), rungText = spec.substr(eq + 1);
+    for (const Ladder& ladder : ladderTable(DeviceCapabilities{})) {
+        if (ladder.id != id) continue;
+        const std::optional<Rung> rung = rungFromName(rungText);
+        bool onLadder = false;
+        for (const RungOption& o : ladder.options) onLadder = onLadder || (rung && o.rung == *rung);
+        if (!onLadder) throw invalid("ladder '" + id + "' has no rung '" + rungText + "'");
+        return RungForce{id, *rung};
+    }
+    throw invalid("unknown ladder '" + id + "'");
 }
 
 }  // namespace idk::vk

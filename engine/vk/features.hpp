@@ -1,10 +1,12 @@
 // features.hpp: what the device can do beyond the Vulkan 1.3 baseline, and the capability ladders (DESIGN.md)
 // that pick, for each optional feature, the best rung the device supports: native Vulkan, GL interop, or a
-// portable fallback that computes the same result.
+// portable fallback that computes the same result. Each ladder carries its chosen rung and the reason for it
+// (`idk info` and `idk render --json` print both); `--rung LADDER=RUNG` forces one ladder's rung.
 #pragma once
 #include <volk.h>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,10 +32,12 @@ struct DeviceCapabilities {
     uint32_t subgroupSize = 0;            // never assume 32: lavapipe reports 8
     uint32_t minSubgroupSize = 0;
     uint32_t maxSubgroupSize = 0;
+    bool cpuDevice = false;               // VK_PHYSICAL_DEVICE_TYPE_CPU (lavapipe): "native" runs in software
 };
 
 enum class Rung : uint8_t { Native, GlInterop, Fallback };
-const char* rungName(Rung rung);
+const char* rungName(Rung rung);                          // "native", "gl-interop", "fallback"
+std::optional<Rung> rungFromName(const std::string& name);  // inverse of rungName
 
 struct RungOption {
     Rung rung;
@@ -44,14 +48,38 @@ struct RungOption {
 
 // One optional feature and the rung chosen for this device.
 struct Ladder {
+    std::string id;                   // command-line name, e.g. "mesh-shading" (--rung mesh-shading=fallback)
     std::string feature;              // e.g. "mesh shading"
     std::vector<RungOption> options;  // best first
     Rung chosen;
     std::string chosenMechanism;
+    std::string reason;               // why this rung, e.g. "device lacks VK_EXT_mesh_shader"
 };
 
-// Builds the ladder table for the features known so far. forceFallback picks the last rung everywhere
-// (conformance tests use it to check that rungs agree on the same input).
-std::vector<Ladder> buildLadders(const DeviceCapabilities& caps, bool forceFallback = false);
+// A rung forced by the user (--rung LADDER=RUNG).
+struct RungForce {
+    std::string ladder;  // Ladder::id
+    Rung rung;
+};
+
+struct LadderChoice {
+    bool forceFallback = false;     // the last rung everywhere (--fallback; conformance tests compare rungs)
+    std::vector<RungForce> forced;  // override forceFallback for the ladders they name
+};
+
+// Builds the ladder table for the features known so far: the first available rung, except where a CPU device's
+// "native" mechanism is a software emulation slower than our portable rung (the reason says so). A forced rung
+// the device cannot run is not taken: the ladder keeps its own choice and *error says why (empty when all
+// forcings hold), so a caller can refuse to run.
+std::vector<Ladder> buildLadders(const DeviceCapabilities& caps, const LadderChoice& choice, std::string* error);
+inline std::vector<Ladder> buildLadders(const DeviceCapabilities& caps, bool forceFallback = false) {
+    return buildLadders(caps, LadderChoice{forceFallback, {}}, nullptr);
+}
+
+// Every ladder id and the rung names of each ("mesh-shading: native|fallback"), for messages and `idk info`;
+// independent of the device. Throws std::invalid_argument for an unknown ladder or rung name in `spec`
+// ("LADDER=RUNG"), listing the valid names.
+std::vector<std::string> ladderRungList();
+RungForce parseRungForce(const std::string& spec);
 
 }  // namespace idk::vk

@@ -100,6 +100,247 @@ PY
     [ "$count" -ge 20 ] || fail "found only $count shared scenes"
     echo "rendered $count shared scenes"
     ;;
+  camera_flags)
+    # Issue 20: an --orbit render equals the render of the same glTF with that camera added to the file (computed
+    # here from the Khronos render-fidelity convention: theta = azimuth around +Y from +Z, phi = polar angle from
+    # +Y), and so does --camera with the same eye and target. The asset is copied with its .bin and texture (URIs
+    # stay inside the scene's folder).
+    shared="${IDK_SHARED_DIR:-$(cd "$(dirname "$0")/../../.." && pwd)/shared}"
+    src="$shared/scenes/Duck/glTF-Quantized"
+    cp "$src/Duck.gltf" "$src/Duck.bin" "$src/DuckCM.png" "$tmp/" || fail "missing test input $src"
+    orbit="theta=30,phi=60,radius=3.5,target=0,0.7,0"
+    "$idk" render "$tmp/Duck.gltf" --orbit "$orbit" --size 96x64 --out "$tmp/orbit.png" --json >"$tmp/orbit.json" \
+      2>"$tmp/err" || fail "orbit render failed: $(cat "$tmp/err")"
+    python3 - "$tmp/Duck.gltf" "$tmp/orbit.json" "$tmp/with_camera.gltf" "$tmp/lookat.txt" <<'PY' || fail "camera file"
+import json, math, sys
+src, rendered, out, lookat = sys.argv[1:5]
+theta, phi, radius, target = math.radians(30), math.radians(60), 3.5, (0.0, 0.7, 0.0)
+d = (math.sin(phi) * math.sin(theta), math.cos(phi), math.sin(phi) * math.cos(theta))
+eye = [t + radius * c for t, c in zip(target, d)]
+cam = json.load(open(rendered))["camera"]
+assert all(abs(a - b) < 1e-5 for a, b in zip(cam["position"], eye)), (cam["position"], eye)
+# Camera axes: +Z = d (the camera looks down -Z), +Y = world up made orthogonal, +X = Y x Z.
+z = d
+y = [u - z[1] * c for u, c in zip((0.0, 1.0, 0.0), z)]
+n = math.sqrt(sum(c * c for c in y)); y = [c / n for c in y]
+x = [y[1] * z[2] - y[2] * z[1], y[2] * z[0] - y[0] * z[2], y[0] * z[1] - y[1] * z[0]]
+m = [[x[0], y[0], z[0]], [x[1], y[1], z[1]], [x[2], y[2], z[2]]]  # rows of the rotation matrix
+w = math.sqrt(1.0 + m[0][0] + m[1][1] + m[2][2]) / 2.0
+q = [(m[2][1] - m[1][2]) / (4 * w), (m[0][2] - m[2][0]) / (4 * w), (m[1][0] - m[0][1]) / (4 * w), w]
+g = json.load(open(src))
+g.setdefault("cameras", []).append({"type": "perspective", "perspective": {
+    "yfov": math.radians(45), "znear": cam["znear"], "zfar": cam["zfar"]}})
+g["nodes"].append({"camera": len(g["cameras"]) - 1, "translation": eye, "rotation": q})
+g["scenes"][g.get("scene", 0)]["nodes"].append(len(g["nodes"]) - 1)
+json.dump(g, open(out, "w"))
+open(lookat, "w").write("eye=%r,%r,%r:target=%r,%r,%r" % tuple(eye + list(target)))
+PY
+    # The file's own camera comes first in node order (index 0); the added one is index 1.
+    "$idk" render "$tmp/with_camera.gltf" --camera-index 1 --size 96x64 --out "$tmp/file.png" 2>"$tmp/err" \
+      || fail "--camera-index render failed: $(cat "$tmp/err")"
+    "$idk" compare "$tmp/orbit.png" "$tmp/file.png" --fail-above 0 --diff "$tmp/d1.png" >"$tmp/cmp" \
+      || fail "orbit vs file camera differ: $(cat "$tmp/cmp")"
+    "$idk" render "$tmp/Duck.gltf" --camera "$(cat "$tmp/lookat.txt")" --size 96x64 --out "$tmp/lookat.png" 2>/dev/null \
+      || fail "--camera render failed"
+    "$idk" compare "$tmp/lookat.png" "$tmp/file.png" --fail-above 0 >"$tmp/cmp" \
+      || fail "--camera vs file camera differ: $(cat "$tmp/cmp")"
+    # The image shows the duck (not an empty or uniform frame): it differs from the file's own camera's view.
+    "$idk" render "$tmp/with_camera.gltf" --camera-index 0 --size 96x64 --out "$tmp/own.png" 2>/dev/null || fail "index 0"
+    "$idk" compare "$tmp/own.png" "$tmp/file.png" --fail-above 0.01 >/dev/null && fail "camera 0 and 1 look the same"
+    # Usage errors name the flag and exit 2.
+    for bad in "--orbit theta=0" "--orbit theta=0,phi=200" "--camera eye=0,0,1" "--camera-index 5" \
+        "--camera eye=0,0,1:target=0,0,0:up=0,0,1" "--orbit-frames 0"; do
+      # shellcheck disable=SC2086
+      "$idk" render "$tmp/with_camera.gltf" $bad --size 8x8 --out "$tmp/x.png" 2>"$tmp/err"
+      [ $? -eq 2 ] || fail "'$bad' should exit 2"
+      grep -q -- "${bad%% *}" "$tmp/err" || fail "'$bad': message does not name the flag: $(cat "$tmp/err")"
+    done
+    # A turntable: 4 images, the first equal to the orbit's theta; with --video one 4-frame video.
+    "$idk" render "$tmp/Duck.gltf" --orbit "$orbit" --orbit-frames 4 --size 96x64 --out "$tmp/turn.png" 2>/dev/null \
+      || fail "--orbit-frames failed"
+    for k in 000 001 002 003; do [ -s "$tmp/turn_$k.png" ] || fail "missing turn_$k.png"; done
+    [ -e "$tmp/turn_004.png" ] && fail "a fifth image"
+    "$idk" compare "$tmp/turn_000.png" "$tmp/orbit.png" --fail-above 0 >/dev/null || fail "turntable frame 0 != --orbit"
+    "$idk" compare "$tmp/turn_001.png" "$tmp/orbit.png" --fail-above 0.01 >/dev/null && fail "frame 1 did not turn"
+    "$idk" render "$tmp/Duck.gltf" --orbit-frames 4 --video "$tmp/turn.mp4" --size 32x32 2>/dev/null || fail "turntable video"
+    [ "$(ffprobe -v error -count_frames -show_entries stream=nb_read_frames -of csv=p=0 "$tmp/turn.mp4")" = "4" ] \
+      || fail "turntable video frame count"
+    ;;
+  background_transparent)
+    # --background transparent: the PNG's alpha equals the EXR's coverage alpha (to 8 bits); without it, opaque.
+    shared="${IDK_SHARED_DIR:-$(cd "$(dirname "$0")/../../.." && pwd)/shared}"
+    scene="$shared/scenes/Duck/glTF-Quantized/Duck.gltf"
+    "$idk" render "$scene" --orbit theta=20,phi=70 --size 80x60 --background transparent --out "$tmp/t.png" 2>/dev/null \
+      || fail "transparent render failed"
+    "$idk" render "$scene" --orbit theta=20,phi=70 --size 80x60 --out "$tmp/t.exr" 2>/dev/null || fail "EXR render failed"
+    "$idk" render "$scene" --orbit theta=20,phi=70 --size 80x60 --out "$tmp/o.png" 2>/dev/null || fail "opaque render failed"
+    oiiotool "$tmp/t.png" --ch R=A,G=A,B=A -d float -o "$tmp/pa.exr" && oiiotool "$tmp/t.exr" --ch R=A,G=A,B=A -o "$tmp/ea.exr" \
+      && oiiotool "$tmp/o.png" --ch R=A,G=A,B=A -d float -o "$tmp/oa.exr" && oiiotool --pattern constant:color=0,0,0 80x60 3 \
+      -d float -o "$tmp/black.exr" && oiiotool --pattern constant:color=1,1,1 80x60 3 -d float -o "$tmp/white.exr" \
+      || fail "oiiotool failed"
+    "$idk" compare "$tmp/pa.exr" "$tmp/ea.exr" --json >"$tmp/alpha.json" || fail "compare failed"
+    "$idk" compare "$tmp/ea.exr" "$tmp/black.exr" --json >"$tmp/cover.json" || fail "compare failed"
+    python3 - "$tmp/alpha.json" "$tmp/cover.json" <<'PY' || fail "alpha: $(cat "$tmp/alpha.json")"
+import json, sys
+a, c = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+assert a["maxError"] <= 0.5 / 255 + 1e-6, a["maxError"]  # 8-bit rounding of the same coverage
+assert 0.05 < c["meanAbsError"] < 0.95, c  # the duck covers part of the frame: both 0 and 1 occur
+PY
+    "$idk" compare "$tmp/oa.exr" "$tmp/white.exr" --fail-above 0 >/dev/null || fail "default PNG is not opaque"
+    "$idk" render "$scene" --background green --size 8x8 --out "$tmp/x.png" 2>/dev/null; [ $? -eq 2 ] || fail "bad --background"
+    "$idk" render "$scene" --background transparent --pathtrace --size 8x8 --out "$tmp/x.png" 2>/dev/null
+    [ $? -eq 2 ] || fail "--background transparent --pathtrace should exit 2 (not supported)"
+    ;;
+  compare_gates)
+    # Issue 20: `idk compare` as a CI gate. The test image is the reference with a 5x3 block recoloured and one
+    # pixel changed by a single 8-bit step: 16 changed pixels at known places.
+    oiiotool --pattern constant:color=0.2,0.4,0.6 24x16 3 -d uint8 -o "$tmp/ref.png" \
+      && oiiotool "$tmp/ref.png" --fill:color=0.8,0.1,0.3 5x3+7+4 --fill:color=0.20392157,0.4,0.6 1x1+20+12 \
+        -o "$tmp/test.png" || fail "oiiotool failed"
+    for metric in rmse relmse psnr flip; do
+      "$idk" compare "$tmp/test.png" "$tmp/ref.png" --metric "$metric" --json >"$tmp/m.json" || fail "$metric: no gate, exit $?"
+      v=$(python3 -c "import json,sys; print(repr(json.load(open(sys.argv[1]))['value']))" "$tmp/m.json")
+      read -r lo hi < <(python3 -c "import sys; v=float(sys.argv[1]); print(v*0.999, v*1.001)" "$v")
+      python3 -c "import sys; v=float(sys.argv[1]); assert v > 0 and v == v, v" "$v" || fail "$metric value $v"
+      if [ "$metric" = psnr ]; then pass="--fail-below $lo"; failing="--fail-below $hi"; else pass="--fail-above $hi"; failing="--fail-above $lo"; fi
+      # shellcheck disable=SC2086
+      "$idk" compare "$tmp/test.png" "$tmp/ref.png" --metric "$metric" $pass >"$tmp/out" || fail "$metric $pass: exit $?: $(cat "$tmp/out")"
+      grep -q "PASS" "$tmp/out" || fail "$metric: no PASS line: $(cat "$tmp/out")"
+      # shellcheck disable=SC2086
+      "$idk" compare "$tmp/test.png" "$tmp/ref.png" --metric "$metric" $failing >"$tmp/out"
+      [ $? -eq 1 ] || fail "$metric $failing should exit 1: $(cat "$tmp/out")"
+      grep -q "FAIL" "$tmp/out" || fail "$metric: no FAIL line: $(cat "$tmp/out")"
+    done
+    # FLIP of black against white is near 1 (0.967 by hand from the paper's constants).
+    oiiotool --pattern constant:color=0,0,0 64x64 3 -d uint8 -o "$tmp/black.png" \
+      && oiiotool --pattern constant:color=1,1,1 64x64 3 -d uint8 -o "$tmp/white.png" || fail "oiiotool failed"
+    "$idk" compare "$tmp/black.png" "$tmp/white.png" --metric flip --fail-below 0.95 >/dev/null \
+      || fail "FLIP black vs white: $("$idk" compare "$tmp/black.png" "$tmp/white.png" --metric flip)"
+    # Identical images pass the strictest gates: rmse 0, PSNR infinite, FLIP 0.
+    "$idk" compare "$tmp/ref.png" "$tmp/ref.png" --fail-above 0 >/dev/null || fail "identical: rmse gate"
+    "$idk" compare "$tmp/ref.png" "$tmp/ref.png" --metric psnr --fail-below 1000 >/dev/null || fail "identical: psnr gate"
+    "$idk" compare "$tmp/ref.png" "$tmp/ref.png" --metric flip --fail-above 0 >/dev/null || fail "identical: flip gate"
+    # The diff image marks exactly the 16 changed pixels (magenta), and nothing else.
+    "$idk" compare "$tmp/test.png" "$tmp/ref.png" --diff "$tmp/diff.png" --json >"$tmp/d.json" || fail "--diff failed"
+    oiiotool --dumpdata "$tmp/diff.png" >"$tmp/diff.txt" || fail "cannot read the diff image"
+    python3 - "$tmp/diff.txt" "$tmp/d.json" <<'PY' || fail "diff image is wrong"
+import json, re, sys
+marked = {(int(x), int(y)) for x, y, r, g, b in re.findall(r"Pixel \((\d+), (\d+)\): (\d+) (\d+) (\d+)", open(sys.argv[1]).read())
+          if (r, g, b) == ("255", "0", "255")}
+expected = {(x, y) for x in range(7, 12) for y in range(4, 7)} | {(20, 12)}
+assert marked == expected, (sorted(marked ^ expected))
+assert json.load(open(sys.argv[2]))["diff"]["changedPixels"] == 16
+PY
+    # EXR: differences up to 1e-6 are float noise, larger ones are marked.
+    oiiotool --pattern constant:color=0.5,0.5,0.5 16x16 3 -d float -o "$tmp/ref.exr" \
+      && oiiotool "$tmp/ref.exr" --fill:color=0.5000001,0.5,0.5 1x1+3+2 --fill:color=0.5001,0.5,0.5 2x2+10+10 \
+        -d float -o "$tmp/test.exr" || fail "oiiotool failed"
+    "$idk" compare "$tmp/test.exr" "$tmp/ref.exr" --diff "$tmp/diffe.png" --json >"$tmp/e.json" || fail "EXR diff failed"
+    python3 -c "import json,sys; assert json.load(open(sys.argv[1]))['diff']['changedPixels'] == 4" "$tmp/e.json" \
+      || fail "EXR diff: $(cat "$tmp/e.json")"
+    # Refusals: another size (exit 1, both files and sizes named), usage errors (exit 2).
+    oiiotool --pattern constant:color=0,0,0 24x15 3 -d uint8 -o "$tmp/small.png" || fail "oiiotool failed"
+    "$idk" compare "$tmp/test.png" "$tmp/small.png" 2>"$tmp/err" >/dev/null
+    [ $? -eq 1 ] || fail "size mismatch should exit 1"
+    grep -q "test.png (24x16) vs .*small.png (24x15): image sizes differ" "$tmp/err" || fail "size message: $(cat "$tmp/err")"
+    "$idk" compare "$tmp/test.png" "$tmp/ref.png" --fail-above 1 --fail-below 0 2>/dev/null; [ $? -eq 2 ] || fail "two gates"
+    "$idk" compare "$tmp/test.png" "$tmp/ref.png" --metric ssim 2>/dev/null; [ $? -eq 2 ] || fail "unknown metric"
+    "$idk" compare "$tmp/test.png" "$tmp/ref.png" --fail-above x 2>/dev/null; [ $? -eq 2 ] || fail "bad threshold"
+    ;;
+  pt_replay)
+    # Issue 20: `--replay --pathtrace`: a 6-record capture over an animated scene; the video has 6 frames and each
+    # frame (also written as EXR by --out) equals a still path-traced at the record's camera and scene time with the
+    # same seed. The records look straight down -Z (yaw = pitch = 0) from positions that are exact binary
+    # fractions, so the still's `--camera eye=P:target=P-Z` gives the very same floats.
+    shared="${IDK_SHARED_DIR:-$(cd "$(dirname "$0")/../../.." && pwd)/shared}"
+    scene="$shared/scenes/InterpolationTest/glTF-Binary/InterpolationTest.glb"
+    [ -f "$scene" ] || fail "missing test input $scene"
+    python3 - "$tmp/cap.idkcap" "$tmp/stills.txt" <<'PY' || fail "cannot write the test capture"
+import math, struct, sys
+yfov = struct.unpack("<f", struct.pack("<f", math.radians(45)))[0]
+rows, stills = [], []
+for i in range(6):
+    p = (-0.5 + 0.25 * i, 3.0, 17.5 - 0.5 * i)
+    rows.append(struct.pack("<d3f3fdI", i / 30, *p, 0.0, 0.0, yfov, 0.25 * i, 0))
+    stills.append("%r eye=%r,%r,%r:target=%r,%r,%r:yfov=45" % (0.25 * i, *p, p[0], p[1], p[2] - 1))
+open(sys.argv[1], "wb").write(b"IDKCAPT\0" + struct.pack("<IIfIQ", 1, 44, 30.0, 0, 6) + b"".join(rows))
+open(sys.argv[2], "w").write("\n".join(stills) + "\n")
+PY
+    pt=(--pathtrace --spp 2 --max-depth 3 --seed 7 --size 40x24 --no-validation)
+    "$idk" render "$scene" --replay "$tmp/cap.idkcap" "${pt[@]}" --video "$tmp/pt.mp4" --out "$tmp/frames/f.exr" \
+      2>"$tmp/err" || fail "path-traced replay failed: $(cat "$tmp/err")"
+    grep -q $'\r' "$tmp/err" && fail "progress bar on a non-terminal stderr"
+    [ "$(ffprobe -v error -select_streams v:0 -count_frames -show_entries stream=nb_read_frames -of csv=p=0 "$tmp/pt.mp4")" = 6 ] \
+      || fail "ffprobe does not count 6 frames"
+    i=0
+    while read -r time camera; do
+      "$idk" render "$scene" "${pt[@]}" --time "$time" --camera "$camera" --out "$tmp/still_$i.exr" 2>/dev/null \
+        || fail "still $i failed"
+      "$idk" compare "$tmp/frames/f_000$i.exr" "$tmp/still_$i.exr" --fail-above 0 >"$tmp/cmp" \
+        || fail "frame $i differs from its still: $(cat "$tmp/cmp")"
+      i=$((i + 1))
+    done <"$tmp/stills.txt"
+    [ "$i" -eq 6 ] || fail "only $i stills"
+    # Not trivially equal: the frames differ among themselves (camera and animation moved).
+    "$idk" compare "$tmp/frames/f_0000.exr" "$tmp/frames/f_0005.exr" --fail-above 0 >/dev/null && fail "frames 0 and 5 equal"
+    # --frames 2:4 renders just those two, the same as in the whole run.
+    "$idk" render "$scene" --replay "$tmp/cap.idkcap" "${pt[@]}" --frames 2:4 --out "$tmp/part/f.exr" 2>/dev/null \
+      || fail "--frames 2:4 failed"
+    [ "$(ls "$tmp/part")" = "$(printf 'f_0002.exr\nf_0003.exr')" ] || fail "--frames 2:4 wrote: $(ls "$tmp/part")"
+    "$idk" compare "$tmp/part/f_0003.exr" "$tmp/frames/f_0003.exr" --fail-above 0 >/dev/null || fail "split run differs"
+    # A path-traced turntable: view 1 of 2 is the still at theta + 180 degrees; --video makes a 2-frame video.
+    "$idk" render "${pt[@]}" --orbit theta=10,phi=80 --orbit-frames 2 --out "$tmp/turn.exr" 2>/dev/null || fail "PT turntable"
+    "$idk" render "${pt[@]}" --orbit theta=190,phi=80 --out "$tmp/turn_still.exr" 2>/dev/null || fail "PT orbit still"
+    "$idk" compare "$tmp/turn_001.exr" "$tmp/turn_still.exr" --fail-above 0 >/dev/null || fail "PT turntable view 1 != still"
+    "$idk" render "${pt[@]}" --orbit-frames 2 --video "$tmp/turn.mp4" 2>/dev/null || fail "PT turntable video"
+    [ "$(ffprobe -v error -count_frames -show_entries stream=nb_read_frames -of csv=p=0 "$tmp/turn.mp4")" = 2 ] \
+      || fail "PT turntable video frame count"
+    ;;
+  rungs_agree)
+    # Issue 20: `idk info --json` and `idk render --json` name the same rung, mechanism and reason for every ladder
+    # the render consulted (the rungs that ran), with and without --rung forcing; the path tracer's traversal is the
+    # ray-traversal ladder's rung.
+    check() {  # INFO.json RENDER.json [EXPECTED_TRAVERSAL]
+      python3 - "$@" <<'PY'
+import json, sys
+info = {l["id"]: l for l in json.load(open(sys.argv[1]))["ladders"]}
+render = json.load(open(sys.argv[2]))
+assert render["rungs"], "no rung reported"
+for rung in render["rungs"]:
+    assert rung == info[rung["id"]], (rung, info[rung["id"]])
+if "pathtrace" in render:
+    rt = next(r for r in render["rungs"] if r["id"] == "ray-traversal")
+    ran = render["pathtrace"]["traversal"]
+    assert ran == ("rayquery" if rt["chosen"] == "native" else "bvh"), (ran, rt)
+    if len(sys.argv) > 3: assert ran == sys.argv[3], ran
+PY
+    }
+    "$idk" info --json --no-validation >"$tmp/info.json" || fail "idk info failed"
+    "$idk" render --json --size 32x32 --out "$tmp/r.png" >"$tmp/r.json" 2>/dev/null || fail "raster render failed"
+    check "$tmp/info.json" "$tmp/r.json" || fail "raster rungs disagree: $(cat "$tmp/r.json")"
+    pt=(--pathtrace --spp 1 --max-depth 2 --size 16x16 --json)
+    "$idk" render "${pt[@]}" --out "$tmp/p.exr" >"$tmp/p.json" 2>/dev/null || fail "path tracer failed"
+    check "$tmp/info.json" "$tmp/p.json" || fail "path-tracer rungs disagree: $(cat "$tmp/p.json")"
+    "$idk" render "${pt[@]}" --traversal bvh --out "$tmp/p.exr" >"$tmp/pb.json" 2>/dev/null || fail "--traversal bvh"
+    "$idk" info --json --no-validation --rung ray-traversal=fallback >"$tmp/info_b.json" || fail "info --rung"
+    check "$tmp/info_b.json" "$tmp/pb.json" bvh || fail "--traversal bvh disagrees: $(cat "$tmp/pb.json")"
+    if python3 -c "import json,sys; l=[l for l in json.load(open(sys.argv[1]))['ladders'] if l['id']=='ray-traversal'][0]; sys.exit(0 if l['rungs'][0]['available'] else 1)" "$tmp/info.json"; then
+      "$idk" info --json --no-validation --rung ray-traversal=native >"$tmp/info_n.json" || fail "info --rung native"
+      "$idk" render "${pt[@]}" --rung ray-traversal=native --out "$tmp/p.exr" >"$tmp/pn.json" 2>/dev/null || fail "--rung native"
+      check "$tmp/info_n.json" "$tmp/pn.json" rayquery || fail "forced native disagrees: $(cat "$tmp/pn.json")"
+    else
+      "$idk" render "${pt[@]}" --rung ray-traversal=native --out "$tmp/p.exr" >/dev/null 2>&1
+      [ $? -eq 2 ] || fail "forcing ray query on a device without it should exit 2"
+    fi
+    # Usage errors: exit 2 with the valid names.
+    "$idk" info --rung warp=native 2>"$tmp/err"; [ $? -eq 2 ] || fail "unknown ladder should exit 2"
+    grep -q "ray-traversal: native|fallback" "$tmp/err" || fail "no ladder list: $(cat "$tmp/err")"
+    "$idk" render --rung ray-traversal=fast --size 8x8 --out "$tmp/x.png" 2>"$tmp/err"; [ $? -eq 2 ] || fail "unknown rung"
+    grep -q "vxgi-atomics: native|gl-interop|fallback" "$tmp/err" || fail "no rung list: $(cat "$tmp/err")"
+    "$idk" info --rung vxgi-atomics=gl-interop 2>"$tmp/err"; [ $? -eq 2 ] || fail "an unavailable rung should exit 2"
+    grep -q "rungs this device can run: vxgi-atomics=" "$tmp/err" || fail "no runnable list: $(cat "$tmp/err")"
+    "$idk" info | grep -q "ray-traversal: native|fallback" || fail "idk info does not list the rung names"
+    ;;
   replay_video | replay_frames | replay_corrupt)
     # Issue 6: camera capture -> `idk render --replay --video`. The capture is written here from the documented
     # layout (engine/tools/camera_capture.hpp), independently of the engine: 10 records at 30 Hz walking into the

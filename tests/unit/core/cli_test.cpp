@@ -19,6 +19,14 @@ TEST(Cli, ParsesPositionalFlagsAndOptions) {
     EXPECT_EQ(a.get("--missing", "fallback"), "fallback");
 }
 
+TEST(Cli, RepeatedOptionsKeepEveryValueInOrder) {
+    CliArgs a = parseCli({"--out", "a", "--size=1x1", "--out=b", "--out", "c"}, kSpec);
+    EXPECT_EQ(a.getAll("--out"), (std::vector<std::string>{"a", "b", "c"}));
+    EXPECT_EQ(a.get("--out").value(), "c");  // get: the last one
+    EXPECT_EQ(a.getAll("--size"), std::vector<std::string>{"1x1"});
+    EXPECT_TRUE(a.getAll("--missing").empty());
+}
+
 TEST(Cli, RejectsUnknownOptionsAndMissingValues) {
     EXPECT_THROW(parseCli({"--bogus"}, kSpec), CliError);
     EXPECT_THROW(parseCli({"-x"}, kSpec), CliError);

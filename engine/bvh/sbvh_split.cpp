@@ -147,7 +147,7 @@ void findSpatialSplit(std::span<const Ref> refs, std::span<const Triangle> trian
             if (uint64_t(count) + rightCount - n > budget) continue;  // straddlers add one reference each
             const float cost = acc.halfArea() * float(count) + rightBoxes[j].halfArea() * float(rightCount);
             if (cost < best.cost) {
-                best = {cost, axis, planes[j], count, rightCount, acc, rightBoxes[j]};
+                best = {cost, axis, planes[j]};
             }
         }
     }

@@ -35,11 +35,9 @@ struct ObjectSplit {
 };
 
 struct SpatialSplit {
-    float cost = kInfinity;
+    float cost = kInfinity;  // estimated from the bins
     int axis = -1;
     float position = 0.0f;
-    uint32_t leftCount = 0, rightCount = 0;  // straddling references counted on both sides
-    Box left, right;
 };
 
 // Sweeps one axis' sorted array; updates `best` when a cheaper (or as cheap and more balanced) split is found.

@@ -74,8 +74,10 @@ void findSpatialSplit(std::span<const Ref> refs, std::span<const Triangle> trian
         const float scale = float(binCount) / extent;
         const int last = int(binCount) - 1;
         // The bin b with planes[b] <= x < planes[b + 1] (clamped to the node).
+        // Clamped in float first: a chopped triangle's vertices may lie far outside the node (float -> int overflow).
+        auto estimate = [&](float x) { return int(std::clamp((x - lo) * scale, 0.0f, float(last))); };
         auto binOf = [&](float x) {
-            int b = std::clamp(int((x - lo) * scale), 0, last);
+            int b = estimate(x);
             while (b > 0 && x < planes[b]) --b;
             while (b < last && x >= planes[b + 1]) ++b;
             return b;
@@ -85,7 +87,7 @@ void findSpatialSplit(std::span<const Ref> refs, std::span<const Triangle> trian
             // (a zero-width reference on a plane stays in the bin right of it). The estimate from the scale is
             // corrected against the planes themselves, so the classification matches the partition exactly.
             const int b0 = binOf(r.box.min[axis]);
-            int b1 = std::clamp(int((r.box.max[axis] - lo) * scale), 0, last);
+            int b1 = estimate(r.box.max[axis]);
             while (b1 > 0 && r.box.max[axis] <= planes[b1]) --b1;
             while (b1 < last && r.box.max[axis] > planes[b1 + 1]) ++b1;
             b1 = std::max(b0, b1);

@@ -100,6 +100,8 @@ TEST(BvhSpatial, TinyAndDegenerateInputs) {
         odd.push_back({p, p + glm::vec3(3.0f, 1.0f, 2.0f), p + glm::vec3(6.0f, 2.0f, 4.0f)});
     }
     for (int i = 0; i < 20; ++i) odd.push_back({{0, 0, 0}, {50, 0, 0}, {0, 50, 50}});
+    // A triangle far larger than the rest: chopped references whose vertices lie far outside their nodes.
+    odd.push_back({{-1.0e30f, -1.0e30f, 1.0f}, {1.0e30f, -1.0e30f, 2.0f}, {0.0f, 1.0e30f, 3.0f}});
     const Blas blas = buildBlas(odd, spatial());
     EXPECT_TRUE(checkBlas(blas, odd, 8, true));
     EXPECT_EQ(uncoveredPoints(blas, odd, 16), 0u);

@@ -132,7 +132,7 @@ int runBvh(const std::vector<std::string>& argv) {
     if (!(split >= 0.0 && split <= 64.0)) throw core::CliError("--split-factor must be in [0, 64]");
     options.splitFactor = float(split);
     options.spatialSplits = args.has("--spatial-splits");
-    if (args.has("--split-budget") && !options.spatialSplits) throw core::CliError("--split-budget needs --spatial-splits");
+    if (args.get("--split-budget") && !options.spatialSplits) throw core::CliError("--split-budget needs --spatial-splits");
     const double budget = core::parseNumber("--split-budget", args.get("--split-budget", "2"));
     if (!(budget >= 1.0 && budget <= 16.0)) throw core::CliError("--split-budget must be in [1, 16]");
     options.splitBudget = float(budget);

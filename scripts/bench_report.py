@@ -200,6 +200,10 @@ def header(data, results, errors, plots_note):
                         + " / ".join(f"{x:.2f}" for x in ctx.get("load_avg", []))),
             ("build", f"idk {ctx.get('idk_build_type', '?')}; Google Benchmark library reports itself as "
                       f"{ctx.get('library_build_type', '?')} (affects only the harness)")]
+    # Rows re-measured in a later run and merged in (scripts/bench_merge.py): when, which rows, load at its start.
+    for rerun in ctx.get("reruns", []):
+        rows.append(("re-run", f"{rerun.get('date', '?')}: {rerun.get('filter', '?')}, load average at start "
+                               + " / ".join(f"{x:.2f}" for x in rerun.get("load_avg", []))))
     for key, value in rows:
         lines.append(f"| {key} | {md_escape(str(value))} |")
     spreads = [(r.cv, r.name) for r in results if r.cv is not None]
@@ -328,8 +332,12 @@ def bvh_section(results, exe):
     def builder(r):
         kind = r.name.split("/")[2]
         if r.name.startswith("BM_BvhBuild/"):
+            if kind == "spatial":
+                return "ours, spatial splits (SBVH, budget 2x)"
             return "ours, split factor " + kind.replace("split_", "")
         if r.name.startswith("BM_EmbreeBuild/"):
+            if kind == "high_exact":
+                return "Embree high (spatial splits, exact triangle clipping)"
             return "Embree " + kind + (" (spatial splits)" if kind == "high" else "")
         if r.name.startswith("BM_BvhTraceCpu/"):
             return f"ours CPU, {kind} rays"
@@ -346,7 +354,8 @@ def bvh_section(results, exe):
         return f"ours GLSL on {device}, {kind} rays{suffix}"
 
     table_lines = ["| " + " | ".join(BVH_COLUMNS) + " |", "|" + "---|" * len(BVH_COLUMNS)]
-    summary = {"sah": [], "build": [], "cpu": [], "gpu": []}
+    summary = {"build": [], "cpu": [], "gpu": []}
+    issue19 = []  # one row per scene: the spatial builder and the best of ours against Embree medium / high
     for scene in scenes:
         input_text = next((r.info.get("input", scene) for r in rows if r.name.split("/")[1] == scene), scene)
         medium = get(f"BM_EmbreeBuild/{scene}/medium")
@@ -391,13 +400,12 @@ def bvh_section(results, exe):
             first = False
             table_lines.append("| " + " | ".join(cells) + " |")
 
-        ours_builds = [get(f"BM_BvhBuild/{scene}/split_{f}") for f in ("0", "0.3", "1")]
+        ours_builds = [get(f"BM_BvhBuild/{scene}/{k}") for k in ("split_0", "split_0.3", "split_1", "spatial")]
         ours_builds = [b for b in ours_builds if b and b.counters.get("sah")]
+        spatial = get(f"BM_BvhBuild/{scene}/spatial")
         if ours_builds and high and high.counters.get("sah"):
             best = min(ours_builds, key=lambda b: b.counters["sah"])
-            met = best.counters["sah"] <= high.counters["sah"]
-            summary["sah"].append((scene, met, f"{scene}: best ours {best.counters['sah']:.2f} "
-                                   f"({builder(best)}) vs Embree high {high.counters['sah']:.2f}"))
+            issue19.append((scene, spatial, best, medium, high, get(f"BM_EmbreeBuild/{scene}/high_exact")))
         split0 = get(f"BM_BvhBuild/{scene}/split_0")
         if split0 and medium:
             ratio = split0.ms / medium.ms
@@ -419,8 +427,10 @@ def bvh_section(results, exe):
 
     lines = ["## BVH", "",
              "`bench/bvh_bench.cpp`: our SweepSAH builder (`engine/bvh`, leaves of at most 8 triangles, every hardware "
-             "thread) at split factors 0, 0.3 and 1.0 against Embree 3's `rtcBuildBVH` (low, medium, and high with "
-             "spatial splits; same leaf size and SAH costs, its nodes converted into our tree shape through the "
+             "thread) at split factors 0, 0.3 and 1.0 and our spatial-split builder (`engine/bvh/sbvh.hpp`, SBVH with "
+             "at most 2 references per triangle) against Embree 3's `rtcBuildBVH` (low, medium, and high with "
+             "spatial splits and room for 2 references per triangle, its split callback chopping with our padded "
+             "`splitTriangle`, and once more with the exact clipping our spatial splits use; same leaf size and SAH costs, its nodes converted into our tree shape through the "
              "create-node / set-bounds callbacks, so SAH and EPO are computed by our `computeSah` / `computeEpo` on "
              "both). Build time is wall time around the build only. CPU traversal: closest hit, one ray at a time on "
              "one thread (ours over the split-0.3 BLAS, Embree `rtcIntersect1` on an `RTC_SCENE_FLAG_ROBUST` "
@@ -433,9 +443,9 @@ def bvh_section(results, exe):
              "the driver's acceleration structure (peer of the wide row). The ~1M-triangle MetalRoughSpheres runs 3 repetitions instead "
              "of 5. Ratios: build ours / Embree-medium time, SAH ours / Embree-high SAH, throughput ours / peer.", ""]
     lines += table_lines + [""]
+    lines += issue19_lines(issue19, builder)
     lines += ["### Issue 4 targets on this run", ""]
-    titles = {"sah": "SAH at or below Embree-high's on every scene (best of our three split factors)",
-              "build": "build time within 1.5x of Embree-medium's (split factor 0)",
+    titles = {"build": "build time within 1.5x of Embree-medium's (split factor 0)",
               "cpu": "CPU traversal at least 0.5x Embree's single-ray rate",
               "gpu": "GLSL traversal (the faster of binary and 8-wide) at least 1.0x the device's ray query (issue 19)"}
     for key, title in titles.items():
@@ -447,12 +457,49 @@ def bvh_section(results, exe):
         lines.append(f"- **{title}: {verdict}.** " + "; ".join(
             text + (" (met)" if ok else " (**missed**)") for _, ok, text in items) + ".")
     lines += ["", "Reading the targets: build times are wall-clock medians on a 2-core machine that other processes "
-              "share (see the load average above); both builders use both cores, and the ratio moves by +-0.3 between "
-              "runs. Throughputs are thread CPU time, steadier. Our SAH misses come from Embree-high's spatial splits "
-              "(SBVH) on meshes with long thin or rotated triangles; pre-splitting (split factor 0.3 / 1.0) closes "
-              "most of the gap on BrainStem and ToyCar but not on the rotated atrium. The CPU traversal walks a "
-              "4-wide SSE copy of the binary BLAS (`engine/bvh/wide.hpp`), single ray, exact double-precision "
-              "watertight triangle test; Embree dispatches at run time to wider nodes and the widest SIMD kernels the CPU has.", ""]
+              "share (see the load average above, and the re-run row for the build rows); both builders use both "
+              "cores, and the ratios move by +-0.3 between runs. Throughputs are thread CPU time, steadier. SAH: the "
+              "spatial-split builder (per node the full object sweep against a binned spatial split, 16 bins, searched "
+              "where the object split's children overlap by more than 1e-5 of the root area, at most 2 references per "
+              "triangle: the room Embree-high gets) is below Embree-high's SAH on every scene when Embree chops "
+              "through our padded `splitTriangle`. Given the same exact clipping, Embree-high's SAH moves by 0.1% or "
+              "less except on the rotated atrium (28.09 -> 26.58), where ours stays 3.1% above (27.41): exact "
+              "clipping in our bins does not close it (tried: 27.54), a larger budget does (3x, 32 bins: 26.20), so "
+              "Embree spends the same room better there. On the axis-aligned atrium spatial splits raise the SAH "
+              "over the plain sweep (30.15 vs 28.55: the split choice is greedy, and chopped references cost again "
+              "in every later level), still below Embree-high's 31.23. The CPU traversal walks a 4-wide SSE copy of "
+              "the binary BLAS (`engine/bvh/wide.hpp`), single ray; Embree dispatches at run time to wider nodes and "
+              "the widest SIMD kernels the CPU has.", ""]
+    return lines
+
+
+def issue19_lines(rows, builder):
+    """Issue 19's tree-quality target: SAH at or below Embree-high's on every scene, with the spatial builder's build
+    time against Embree-medium's and Embree-high's (wall-clock medians of the same run)."""
+    if not rows:
+        return []
+    lines = ["### Issue 19 targets on this run", "",
+             "| scene | ours spatial SAH | Embree high SAH (splitTriangle / exact clipping) | spatial / high SAH | "
+             "at or below? | best of ours | spatial build | / Embree medium | / Embree high |", "|" + "---|" * 9]
+    met = 0
+    for scene, spatial, best, medium, high, exact in rows:
+        # The stricter of Embree-high's two SAHs (its split callback with our padded splitTriangle or exact clipping).
+        sahs = [high.counters["sah"]] + ([exact.counters["sah"]] if exact and exact.counters.get("sah") else [])
+        high_sah = min(sahs)
+        sah = spatial.counters.get("sah") if spatial else None
+        ok = sah is not None and sah <= high_sah
+        met += 1 if ok else 0
+        cells = [scene, "-" if sah is None else f"{sah:.2f}", " / ".join(f"{v:.2f}" for v in sahs),
+                 "-" if sah is None else f"{sah / high_sah:.3f}x", "yes" if ok else "**no**",
+                 f"{best.counters['sah']:.2f} ({builder(best)})",
+                 fmt_ms(spatial.ms) if spatial else "-",
+                 f"{spatial.ms / medium.ms:.2f}x" if spatial and medium and medium.ms > 0 else "-",
+                 f"{spatial.ms / high.ms:.2f}x" if spatial and high.ms > 0 else "-"]
+        lines.append("| " + " | ".join(md_escape(c) for c in cells) + " |")
+    verdict = "met" if met == len(rows) else f"missed on {len(rows) - met} of {len(rows)}"
+    lines += ["", f"SAH of the spatial-split builder at or below Embree-high's (the lower of its two) on every scene: "
+              f"**{verdict}**. Build ratios: ours spatial / Embree's wall-clock median of the same run (Embree high "
+              "with the splitTriangle callback, its faster variant).", ""]
     return lines
 
 

@@ -1,6 +1,6 @@
-// cmd_bvh.cpp: `idk bvh SCENE [--split-factor X] [--json]`: builds the BLAS of a scene (every instanced triangle of a
-// glTF file in world space, or a bunny.bin-style raw triangle file) with the SweepSAH builder and pre-splitting
-// (engine/bvh) and prints its statistics: triangles, fragments, references, nodes, leaves, SAH, EPO, depth, the
+// cmd_bvh.cpp: `idk bvh SCENE [--split-factor X] [--spatial-splits [--split-budget X]] [--json]`: builds the BLAS of
+// a scene (every instanced triangle of a glTF file in world space, or a bunny.bin-style raw triangle file) with the
+// SweepSAH builder and pre-splitting, or the spatial-split builder (engine/bvh) and prints its statistics: triangles, fragments, references, nodes, leaves, SAH, EPO, depth, the
 // traversal stack it needs and the build time. The counterpart of IDKEngine's BVH debug UI (BLAS.cs statistics).
 #include <nlohmann/json.hpp>
 
@@ -28,11 +28,15 @@
 namespace idk::app {
 
 const char* const kBvhHelp =
-    "usage: idk bvh SCENE [--split-factor X] [--json] [--no-epo]\n"
+    "usage: idk bvh SCENE [--split-factor X] [--spatial-splits [--split-budget X]] [--json] [--no-epo]\n"
     "  SCENE            .gltf/.glb (all instanced triangles in world space) or a raw triangle file (.bin:\n"
     "                   int32 count, then 3 vertices of 4 float32 per triangle, like ../shared/scenes/bunny/bunny.bin)\n"
     "  --split-factor X pre-splitting: up to X times more fragments for large triangles (default 0 = off;\n"
     "                   IDKEngine uses 0.3)\n"
+    "  --spatial-splits the spatial-split builder (SBVH) instead of SweepSAH alone: triangles straddling a node are\n"
+    "                   chopped where that lowers the SAH\n"
+    "  --split-budget X with --spatial-splits: at most X references per triangle (fragment) in all (default 2,\n"
+    "                   in [1, 16]; 1 = no spatial split)\n"
     "  --json           machine-readable output\n"
     "  --no-epo         skip the end-point overlap metric (exact, and slow on millions of triangles)\n"
     "Prints triangles, fragments after pre-splitting, triangle references in the leaves, nodes, leaves, SAH (traversal\n"
@@ -116,7 +120,7 @@ std::vector<bvh::Triangle> loadTriangles(const std::filesystem::path& path, std:
 }  // namespace
 
 int runBvh(const std::vector<std::string>& argv) {
-    const core::CliArgs args = core::parseCli(argv, {{"--json", "--no-epo", "--help"}, {"--split-factor"}});
+    const core::CliArgs args = core::parseCli(argv, {{"--json", "--no-epo", "--help", "--spatial-splits"}, {"--split-factor", "--split-budget"}});
     if (args.has("--help")) {
         std::fputs(kBvhHelp, stdout);
         return 0;
@@ -127,6 +131,11 @@ int runBvh(const std::vector<std::string>& argv) {
     const double split = core::parseNumber("--split-factor", args.get("--split-factor", "0"));
     if (!(split >= 0.0 && split <= 64.0)) throw core::CliError("--split-factor must be in [0, 64]");
     options.splitFactor = float(split);
+    options.spatialSplits = args.has("--spatial-splits");
+    if (args.get("--split-budget") && !options.spatialSplits) throw core::CliError("--split-budget needs --spatial-splits");
+    const double budget = core::parseNumber("--split-budget", args.get("--split-budget", "2"));
+    if (!(budget >= 1.0 && budget <= 16.0)) throw core::CliError("--split-budget must be in [1, 16]");
+    options.splitBudget = float(budget);
     const std::filesystem::path path = args.positional[0];
 
     Progress progress;
@@ -152,6 +161,9 @@ int runBvh(const std::vector<std::string>& argv) {
         j["scene"] = path.string();
         j["kind"] = kind;
         j["splitFactor"] = options.splitFactor;
+        j["spatialSplits"] = options.spatialSplits;
+        j["splitBudget"] = options.spatialSplits ? nlohmann::json(options.splitBudget) : nlohmann::json(nullptr);
+        j["spatialSplitNodes"] = s.spatialSplits;
         j["maxLeafSize"] = options.maxLeafSize;
         j["triangles"] = s.triangleCount;
         j["skippedTriangles"] = s.skippedTriangles;
@@ -174,6 +186,9 @@ int runBvh(const std::vector<std::string>& argv) {
     std::printf("triangles:      %u", s.triangleCount);
     if (s.skippedTriangles) std::printf(" (%u with non-finite vertices skipped)", s.skippedTriangles);
     std::printf("\nsplit factor:   %g\n", double(options.splitFactor));
+    if (options.spatialSplits) {
+        std::printf("spatial splits: %u nodes (reference budget %gx)\n", s.spatialSplits, double(options.splitBudget));
+    }
     std::printf("fragments:      %u (after pre-splitting)\n", s.fragmentCount);
     std::printf("references:     %u (triangle references in the leaves, de-duplicated)\n", s.referenceCount);
     std::printf("nodes:          %u\n", s.nodeCount);

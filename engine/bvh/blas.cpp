@@ -1,9 +1,10 @@
-// blas.cpp: buildBlas (pre-split -> SweepSAH box tree -> optional stack-size optimisation -> de-duplicated leaf
-// references in depth-first order) and the stack-size optimisation itself.
+// blas.cpp: buildBlas (pre-split -> SweepSAH box tree or spatial-split tree -> optional stack-size optimisation ->
+// de-duplicated leaf references in depth-first order) and the stack-size optimisation itself.
 #include "bvh/blas.hpp"
 
 #include "bvh/metrics.hpp"
 #include "bvh/presplit.hpp"
+#include "bvh/sbvh.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -108,7 +109,17 @@ Blas buildBlas(std::span<const Triangle> triangles, const BuildOptions& options)
     treeOptions.primitiveCost = options.triangleCost;
     treeOptions.threadCount = options.threadCount;
     treeOptions.parallelThreshold = options.parallelThreshold;
-    BoxTree tree = buildBoxTree(fragments.boxes, treeOptions);
+    BoxTree tree;
+    if (options.spatialSplits) {
+        SpatialTreeOptions spatialOptions;
+        spatialOptions.tree = treeOptions;
+        spatialOptions.referenceBudget = options.splitBudget;
+        SpatialTree spatial = buildSpatialTree(triangles, fragments, spatialOptions);
+        tree = std::move(spatial.tree);
+        stats.spatialSplits = spatial.spatialSplits;
+    } else {
+        tree = buildBoxTree(fragments.boxes, treeOptions);
+    }
     if (options.optimizeStackSize) stats.collapsedPairs = optimizeStackSize(tree, options);
 
     // Leaf references in depth-first order (left first), fragments of one triangle merged within each leaf.

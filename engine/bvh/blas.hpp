@@ -17,6 +17,9 @@ namespace idk::bvh {
 
 struct BuildOptions {
     float splitFactor = 0.0f;        // pre-splitting: up to this fraction of extra fragments (0 = off; IDKEngine 0.3)
+    // Spatial splits (SBVH, sbvh.hpp) instead of the SweepSAH box tree: at most splitBudget references per fragment.
+    bool spatialSplits = false;
+    float splitBudget = 2.0f;    // as the room the benchmark gives Embree-high's spatial splits
     uint32_t maxLeafSize = 8;        // readme results: "I forced a maximum primitive count of 8 per leaf"
     float triangleCost = kTriangleCost;
     uint32_t threadCount = 0;        // 0: hardware concurrency
@@ -39,6 +42,7 @@ struct BuildStats {
     uint32_t maxDepth = 0;           // root = depth 0
     uint32_t requiredStackSize = 0;  // see requiredStackSize() in metrics.hpp
     uint32_t collapsedPairs = 0;     // by the stack-size optimisation
+    uint32_t spatialSplits = 0;      // nodes split by a spatial split (spatialSplits option)
     float sah = 0.0f;                // computeSah() of the final nodes
     double presplitMs = 0.0;
     double buildMs = 0.0;            // whole buildBlas, pre-splitting included

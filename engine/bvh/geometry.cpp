@@ -85,4 +85,33 @@ double clippedTriangleArea(const Triangle& tri, const Box& box) {
     return 0.5 * glm::length(sum);
 }
 
+Box clippedTriangleBox(const Triangle& tri, const Box& box) {
+    const Box triBox = tri.box();
+    if (box.isEmpty() || !box.overlaps(triBox)) return Box::empty();
+    if (box.contains(triBox)) return triBox;
+    // Unlike the area, a degenerate (segment or point) polygon still has a box: clip whatever vertices remain.
+    Polygon poly{glm::dvec3(tri.v0), glm::dvec3(tri.v1), glm::dvec3(tri.v2)};
+    Polygon scratch{};
+    int n = 3;
+    for (int axis = 0; axis < 3 && n > 0; ++axis) {
+        n = clipPolygon(poly, n, scratch, axis, box.min[axis], 1.0);
+        if (n == 0) break;
+        n = clipPolygon(scratch, n, poly, axis, box.max[axis], -1.0);
+    }
+    Box out;
+    for (int i = 0; i < n; ++i) {
+        for (int axis = 0; axis < 3; ++axis) {
+            // Round outwards by one float step past the nearest float: covers the double rounding of the crossing.
+            const double x = poly[i][axis];
+            const float lo = std::nextafter(float(x), -kInfinity);
+            const float hi = std::nextafter(float(x), kInfinity);
+            out.min[axis] = std::min(out.min[axis], lo);
+            out.max[axis] = std::max(out.max[axis], hi);
+        }
+    }
+    if (out.isEmpty()) return out;
+    out.clip(box);  // the exact part lies inside `box`
+    return out;
+}
+
 }  // namespace idk::bvh

@@ -86,4 +86,9 @@ void splitTriangle(const Triangle& tri, int axis, float position, const Box& cli
 // computed in double precision.
 double clippedTriangleArea(const Triangle& tri, const Box& box);
 
+// Tight box of the part of `tri` inside `box` (the same polygon clipping, then rounded outwards to float and
+// clamped to `box`), so it always holds the exact part. Empty when the triangle misses the box. Used for the
+// chopped references of spatial splits (sbvh.hpp), where it is tighter than splitTriangle's padded boxes.
+Box clippedTriangleBox(const Triangle& tri, const Box& box);
+
 }  // namespace idk::bvh

@@ -84,6 +84,18 @@ PY
     grep -q "/no/such/scene.glb" "$tmp/err" || fail "error does not name the glTF: $(cat "$tmp/err")"
     "$idk" bvh "$bunny" --split-factor -1 2>/dev/null >/dev/null; [ $? -eq 2 ] || fail "negative split factor should exit 2"
     "$idk" bvh --help | grep -q -- "--split-factor" || fail "bvh --help does not describe --split-factor"
+    # Spatial splits: more references than triangles (chopped ones), within the budget, and a lower SAH than above.
+    "$idk" bvh "$bunny" --spatial-splits --split-budget 1.5 --no-epo --json >"$tmp/sbvh.json" || fail "idk bvh --spatial-splits failed"
+    python3 - "$tmp/bvh.json" "$tmp/sbvh.json" <<'PY' || fail "bad spatial-split JSON: $(cat "$tmp/sbvh.json")"
+import json, sys
+plain, spatial = (json.load(open(p)) for p in sys.argv[1:3])
+assert spatial["spatialSplits"] is True and spatial["splitBudget"] == 1.5 and spatial["spatialSplitNodes"] > 0
+assert 69630 < spatial["references"] <= 1.5 * 69630 and spatial["epo"] is None
+assert spatial["sah"] < plain["sah"]
+PY
+    "$idk" bvh "$bunny" --split-budget 2 2>/dev/null >/dev/null; [ $? -eq 2 ] || fail "--split-budget without --spatial-splits should exit 2"
+    "$idk" bvh "$bunny" --spatial-splits --split-budget 0.5 2>/dev/null >/dev/null; [ $? -eq 2 ] || fail "budget below 1 should exit 2"
+    "$idk" bvh --help | grep -q -- "--spatial-splits" || fail "bvh --help does not describe --spatial-splits"
     ;;
   all_shared_scenes)
     # Issue 3's bar: every shared asset renders (or fails with one line naming the file and the cause).

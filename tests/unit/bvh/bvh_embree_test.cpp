@@ -167,6 +167,8 @@ TEST(BvhEmbree, RotatedAtriumAgreesWithEmbreeRobustOn200kRays) {
     expectAgreement("rotated atrium", compareWithEmbree(buildBlas(tris), embree, rays), 200000);
     expectAgreement("rotated atrium, split 1.0",
                     compareWithEmbree(buildBlas(tris, BuildOptions{.splitFactor = 1.0f}), embree, rays), 200000);
+    expectAgreement("rotated atrium, spatial splits",
+                    compareWithEmbree(buildBlas(tris, BuildOptions{.spatialSplits = true}), embree, rays), 200000);
 }
 
 // --- Embree's own builder (rtcBuildBVH), only to put its SAH next to ours. ---

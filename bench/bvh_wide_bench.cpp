@@ -84,7 +84,7 @@ void BM_BvhTraceGpuWide(benchmark::State& state, const char* scene, bool diffuse
                    {"bvh", s.input,
                     std::string("ours: GLSL closest hit, 8-wide compressed BVH (include/bvh_traverse_wide.glsl), ") +
                         rayKind(diffuse) + " rays, one dispatch, " + s.blasText,
-                    ctx.info().name + ", shaderFloat64",
+                    ctx.info().name,
                     std::string("BM_BvhTraceGpuRayQuery/") + scene + "/" + rayKind(diffuse)},
                    "gpu", rayKind(diffuse));
 }

@@ -345,7 +345,7 @@ def bvh_section(results, exe):
             return f"Embree rtcIntersect1, {kind} rays"
         errors = r.counters.get("mismatches")
         suffix = f" ({fmt_number(errors)} mismatches vs CPU)" if errors is not None else ""
-        device = r.info.get("rung", "?").replace(", shaderFloat64", "").replace(", ray query", "")
+        device = r.info.get("rung", "?").replace(", ray query", "")
         if r.name.startswith("BM_BvhTraceGpuRayQuery/"):  # bench/bvh_wide_bench.cpp: the driver's traversal
             differ = f" ({fmt_number(errors)} hits differ from our CPU's)" if errors is not None else ""
             return f"VK_KHR_ray_query on {device}, {kind} rays{differ}"

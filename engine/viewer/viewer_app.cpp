@@ -30,6 +30,7 @@ Viewer::Viewer(const ViewerOptions& opts) : options(opts) {
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "idk-viewer: warning: %s\n", w.c_str());
 
     createDevice();
+    if (options.memoryLog) memoryLog.emplace(*options.memoryLog, 100);
 
     collision = tools::CollisionWorld::fromScene(scene);
     flyParams = tools::flyParamsForBounds(scene.bounds);
@@ -308,6 +309,7 @@ bool Viewer::runFrame(float dt, float wall, bool& imguiFrame) {
     }
     state.frameMs.push_back(wall * 1000.0f);
     if (state.frameMs.size() > 240) state.frameMs.pop_front();
+    if (memoryLog) memoryLog->sample(state.frame, ctx->allocator());
     ++state.frame;
     return true;
 }

@@ -24,6 +24,7 @@
 #include "viewer/shot_lights.hpp"
 #include "viewer/window.hpp"
 #include "vk/context.hpp"
+#include "vk/memory_log.hpp"
 #include "vk/shader_library.hpp"
 #include "vk/swapchain.hpp"
 
@@ -79,6 +80,7 @@ public:
     std::optional<tools::Capture> replay;
     ShotLights shotLights;
     Input input;
+    std::optional<vk::MemoryLog> memoryLog;
 
     scene::CameraView currentView() const { return tools::toCameraView(camera, lens); }
 

@@ -5,8 +5,9 @@ CONFIG ?= Release
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 SIZE ?= 256x256
+FUZZ_SECONDS ?= 120
 
-.PHONY: setup configure build run test test-asan bench clean
+.PHONY: setup configure build run test test-asan bench fuzz clean
 
 setup:
 	@bash scripts/setup.sh
@@ -22,7 +23,9 @@ run: build
 	@$(BUILD)/bin/idk render --size $(SIZE) --out out/default.png
 	@echo "out/default.png"
 
+# The fuzz harnesses (ctest label fuzz) run from build-fuzz/, a clang build shared by both test passes.
 test: build
+	@bash scripts/fuzz.sh build
 	@ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) --timeout 900
 
 # AddressSanitizer + UndefinedBehaviorSanitizer build of the whole suite, in its own build folder.
@@ -32,5 +35,9 @@ test-asan:
 bench: build
 	@bash scripts/bench.sh $(BUILD)
 
+# Every libFuzzer harness for FUZZ_SECONDS each, its corpus kept in build-fuzz/corpus/ (scripts/fuzz.sh).
+fuzz: setup
+	@bash scripts/fuzz.sh all $(FUZZ_SECONDS)
+
 clean:
-	@rm -rf $(BUILD) build-asan out
+	@rm -rf $(BUILD) build-asan build-fuzz out

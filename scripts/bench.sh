@@ -32,4 +32,9 @@ echo "bench.sh: benchmarks took $(( $(date +%s) - start )) s"
 if [ "${IDK_BENCH_PATHTRACE:-1}" != 0 ]; then
   bash scripts/bench_pathtrace.sh "$build"
 fi
+# The soak runs (issue 17: 10,000 viewer frames and a 2,000-frame replay with memory sampled; a few minutes;
+# IDK_BENCH_SOAK=0 skips them and keeps the last bench/results/soak.json).
+if [ "${IDK_BENCH_SOAK:-1}" != 0 ]; then
+  bash scripts/soak.sh "$build"
+fi
 python3 scripts/bench_report.py --compact bench/results/latest.json BENCHMARKS.md

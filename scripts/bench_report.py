@@ -569,6 +569,18 @@ def pathtrace_section(results_dir):
         return f.read().rstrip().splitlines() + [""]
 
 
+# ---- Soak section (scripts/soak.sh -> bench/results/soak.json) ---------------------------------------------------
+
+def soak_section(results_dir):
+    """Memory over the soak runs, if scripts/soak.sh has written bench/results/soak.json."""
+    path = os.path.join(results_dir, "soak.json")
+    if not os.path.exists(path):
+        return []
+    import soak_summary  # scripts/soak_summary.py, next to this file
+    with open(path) as f:
+        return soak_summary.section(json.load(f))
+
+
 def main(argv):
     args = [a for a in argv[1:] if not a.startswith("--")]
     if len(args) != 2:
@@ -592,6 +604,7 @@ def main(argv):
         elif group in groups:
             lines += [f"## {group[0].upper() + group[1:]}", ""] + table(groups[group]) + [""]
     lines += pathtrace_section(os.path.dirname(os.path.abspath(results_path)))
+    lines += soak_section(os.path.dirname(os.path.abspath(results_path)))
     with open(out_path, "w") as f:
         f.write("\n".join(lines).rstrip() + "\n")
     print(f"bench_report.py: wrote {out_path} ({sum(len(r) for r in groups.values())} rows)")

@@ -1,5 +1,6 @@
 // idk_main.cpp: the `idk` command line (DESIGN.md "Programs"): dispatches to a subcommand and turns every
-// error into one line on stderr and exit code 1.
+// error into one line on stderr and an exit code: 1 any error, 2 usage, 3 device lost, 4 out of device memory
+// (README "Exit codes"). A failed render writes no output file (images and videos are renamed into place last).
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -7,6 +8,7 @@
 
 #include "app/commands.hpp"
 #include "core/cli.hpp"
+#include "vk/check.hpp"
 
 namespace {
 
@@ -42,6 +44,18 @@ int main(int argc, char** argv) {
     } catch (const idk::core::CliError& e) {
         std::fprintf(stderr, "idk %s: %s (see `idk %s --help`)\n", command.c_str(), e.what(), command.c_str());
         return 2;
+    } catch (const idk::vk::DeviceLostError& e) {
+        std::fprintf(stderr,
+                     "idk %s: device lost: the GPU or its driver failed during the work (VK_ERROR_DEVICE_LOST); "
+                     "nothing was written. Run it again; if it repeats, try --fallback or a smaller --size. (%s)\n",
+                     command.c_str(), e.what());
+        return 3;
+    } catch (const idk::vk::OutOfDeviceMemoryError& e) {
+        std::fprintf(stderr,
+                     "idk %s: out of device memory (VK_ERROR_OUT_OF_DEVICE_MEMORY); nothing was written. Try a "
+                     "smaller --size or a smaller scene. (%s)\n",
+                     command.c_str(), e.what());
+        return 4;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "idk %s: error: %s\n", command.c_str(), e.what());
         return 1;

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <unistd.h>
 
 #include "app/camera_spec.hpp"
@@ -25,6 +26,7 @@
 #include "scene/camera.hpp"
 #include "tools/camera_capture.hpp"
 #include "tools/video_writer.hpp"
+#include "vk/memory_log.hpp"
 
 namespace idk::app {
 
@@ -179,6 +181,7 @@ int runRenderReplay(const core::CliArgs& args, scene::Scene& scene, render::Rend
         tools::VideoWriter writer(*video, width, height, tools::VideoOptions{.fps = capture.rateHz});
         const bool animated = !scene.animations.empty();
         ProgressBar progress(range.end - range.first);
+        std::optional<vk::MemoryLog> memoryLog = vk::MemoryLog::fromEnvironment();  // soak runs (scripts/soak.sh)
         for (uint64_t i = range.first; i < range.end; ++i) {
             const tools::CaptureFrame& frame = capture.frames[i];
             if (animated) {
@@ -187,6 +190,7 @@ int runRenderReplay(const core::CliArgs& args, scene::Scene& scene, render::Rend
             }
             const render::FrameResult result = renderer.renderOffscreen(tools::captureCameraView(frame, lens), width, height);
             writer.addFrame(result.display);
+            if (memoryLog) memoryLog->sample(i - range.first, ctx.allocator());
             progress.update(i + 1 - range.first);
         }
         if (ctx.validationErrors() != 0) {

@@ -47,7 +47,16 @@ PointShadowMaps::PointShadowMaps(vk::Context& ctx, const GpuSceneData& scene, st
     sampler.compare = true;
     sampler.compareOp = VK_COMPARE_OP_LESS_OR_EQUAL;  // lit where reference <= stored depth
     sampler_ = ctx.bindless().addSampler(sampler);
+    try {
+        createCubes(ctx, scene);
+    } catch (...) {  // a failed upload (device lost, out of memory): no destructor runs, so release here
+        release();
+        throw;
+    }
+}
 
+void PointShadowMaps::createCubes(vk::Context& ctx, const GpuSceneData& scene) {
+    const uint32_t resolution = resolution_;
     for (size_t c = 0; c < casters_.size(); ++c) {
         vk::ImageDesc desc;
         desc.format = VK_FORMAT_D32_SFLOAT;
@@ -57,7 +66,7 @@ PointShadowMaps::PointShadowMaps(vk::Context& ctx, const GpuSceneData& scene, st
         desc.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
         desc.name = "point shadow cube " + std::to_string(c);
         desc.category = "shadow maps";
-        Cube cube;
+        Cube& cube = cubes_.emplace_back();  // in the list first, so release() frees what exists if a step throws
         cube.image = ctx.createImage(desc);
         cube.sampled = ctx.bindless().addSampled(cube.image.view);
         VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
@@ -74,7 +83,6 @@ PointShadowMaps::PointShadowMaps(vk::Context& ctx, const GpuSceneData& scene, st
                 vk::check(vkCreateImageView(ctx.device(), &view, nullptr, &cube.faceViews[f]));
             }
         }
-        cubes_.push_back(std::move(cube));
     }
 
     if (layered_ && !scene.draws.empty()) {
@@ -90,7 +98,9 @@ PointShadowMaps::PointShadowMaps(vk::Context& ctx, const GpuSceneData& scene, st
     }
 }
 
-PointShadowMaps::~PointShadowMaps() {
+PointShadowMaps::~PointShadowMaps() { release(); }
+
+void PointShadowMaps::release() {
     ctx_.bindless().release(sampler_);
     for (Cube& c : cubes_) {
         ctx_.bindless().release(c.sampled);

@@ -60,6 +60,8 @@ public:
     Frame beginFrame(graph::RenderGraph& graph, const std::vector<gpu::GpuLight>& lights);
 
 private:
+    void createCubes(vk::Context& ctx, const GpuSceneData& scene);  // the constructor's fallible part
+    void release();
     struct Cube {
         vk::Image image;
         vk::SampledIndex sampled;

@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "core/log.hpp"
+#include "vk/check.hpp"
 #include "shared/deferred_types.h"
 #include "vk/transfer.hpp"
 
@@ -86,6 +87,8 @@ const GpuEnvironment& Renderer::environment() {
     std::filesystem::path file = settings_.environment.value_or(defaultEnvironmentPath());
     try {
         environment_ = createEnvironment(ctx_, file);
+    } catch (const vk::Error&) {
+        throw;  // a device failure (lost, out of memory) is not a bad environment file
     } catch (const std::runtime_error& e) {
         core::logWarning("environment: ", e.what(), "; using a constant grey environment instead");
         environment_ = createEnvironment(ctx_, {});
@@ -275,7 +278,9 @@ FrameResult Renderer::renderOffscreen(const scene::CameraView& camera, uint32_t 
         result.graphDot = graph.toGraphviz();
         graph.execute(cmd);
     } catch (...) {
-        ctx_.waitFor(frames_.end());  // submit what was recorded so the frame slot stays usable
+        // Submit what was recorded so the frame slot stays usable (not after a device loss: the original error
+        // is the one to report, and the context is being torn down).
+        if (!ctx_.deviceLost()) ctx_.waitFor(frames_.end());
         throw;
     }
     ctx_.waitFor(frames_.end());
@@ -363,7 +368,7 @@ FrameInfo Renderer::renderFrame(const scene::CameraView& camera, const FrameTarg
         info.passesRun = graph.executionOrder();
         graph.execute(cmd);
     } catch (...) {
-        lastFrameValue_ = frames_.end();  // submit what was recorded so the frame slot stays usable
+        if (!ctx_.deviceLost()) lastFrameValue_ = frames_.end();  // the frame slot stays usable (see above)
         hasTimings_ = false;
         throw;
     }

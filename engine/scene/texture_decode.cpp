@@ -251,11 +251,9 @@ DecodedTexture placeholderTexture(bool srgb) {
     return t;
 }
 
-DecodedTexture decodeImage(const Image& image, bool srgb, std::string_view labelIn) {
-    std::string label(labelIn);
-    if (label.empty())
-        label = !image.path.empty() ? image.path.string()
-                                    : "embedded image" + (image.name.empty() ? "" : " '" + image.name + "'");
+namespace {
+
+DecodedTexture decodeImageUnguarded(const Image& image, bool srgb, const std::string& label) {
     if (image.status == ImageStatus::Missing) return failed(label, "file not found", srgb, true);
     if (image.status == ImageStatus::UnknownFormat) return failed(label, "not a known image format", srgb, true);
 
@@ -341,6 +339,22 @@ DecodedTexture decodeImage(const Image& image, bool srgb, std::string_view label
     if (in->has_error()) return fail("cannot decode");
     in->close();
     return buildMipChain(std::move(rgba), w, h, srgb);
+}
+
+}  // namespace
+
+DecodedTexture decodeImage(const Image& image, bool srgb, std::string_view labelIn) {
+    std::string label(labelIn);
+    if (label.empty())
+        label = !image.path.empty() ? image.path.string()
+                                    : "embedded image" + (image.name.empty() ? "" : " '" + image.name + "'");
+    // OpenImageIO's readers may throw on hostile headers (its GIF reader throws std::length_error for a huge
+    // logical screen: found by tests/fuzz/fuzz_image.cpp); the contract is a placeholder, never an exception.
+    try {
+        return decodeImageUnguarded(image, srgb, label);
+    } catch (const std::exception& e) {
+        return failed(label, std::string("cannot decode: ") + e.what(), srgb);
+    }
 }
 
 }  // namespace idk::scene

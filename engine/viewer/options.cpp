@@ -27,6 +27,7 @@ const char* const kViewerHelp =
     "  --no-validation   do not load the Vulkan validation layer\n"
     "  --fallback        take the portable rung of every capability ladder\n"
     "  --rung L=R        force capability ladder L to rung R (repeatable; `idk info` lists them)\n"
+    "  --memory-log F    every 100 frames, one JSON line of host RSS and device memory by category (soak runs)\n"
     "controls: W/A/S/D move, Space up, Shift faster, E GUI/FPS mode, T pause time, right-click select (GUI) or\n"
     "  shoot a light (FPS), Ctrl+R record, Ctrl+Space replay, G hide GUI, V vsync, F11 fullscreen, 1 recompile\n"
     "  shaders, Esc exit. Without a display use `idk render SCENE --out F.png`.\n";
@@ -34,7 +35,8 @@ const char* const kViewerHelp =
 ViewerOptions parseViewerOptions(const std::vector<std::string>& argv) {
     core::CliArgs args = core::parseCli(
         argv, {{"--no-ui", "--watch", "--no-vsync", "--sync-textures", "--no-validation", "--fallback", "--help"},
-               {"--size", "--frames", "--screenshot", "--script", "--shader-dir", "--capture", "--fixed-dt", "--rung"}});
+               {"--size", "--frames", "--screenshot", "--script", "--shader-dir", "--capture", "--fixed-dt", "--rung",
+                "--memory-log"}});
     ViewerOptions o;
     o.help = args.has("--help");
     if (args.positional.size() > 1) throw core::CliError("more than one scene given");
@@ -61,6 +63,7 @@ ViewerOptions parseViewerOptions(const std::vector<std::string>& argv) {
         o.shaderDir = *d;
     }
     if (auto f = args.get("--capture")) o.captureFile = *f;
+    if (auto f = args.get("--memory-log")) o.memoryLog = *f;
     o.ui = !args.has("--no-ui");
     o.watch = args.has("--watch");
     o.vsync = !args.has("--no-vsync");

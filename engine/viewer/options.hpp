@@ -19,6 +19,7 @@ struct ViewerOptions {
     std::optional<std::filesystem::path> script;      // timed input script (input_script.hpp)
     std::optional<std::filesystem::path> shaderDir;   // GLSL sources for hot reload (default: the build's)
     std::filesystem::path captureFile = "capture.idkcap";  // Ctrl+R writes, Ctrl+Space replays
+    std::optional<std::filesystem::path> memoryLog;   // --memory-log: vk::MemoryLog every 100 frames
     std::optional<float> fixedDt;                     // seconds per frame instead of the wall clock (tests)
     bool ui = true;                                   // --no-ui: no ImGui at all
     bool watch = false;                               // poll shader sources every frame

@@ -18,6 +18,7 @@
 #include "core/log.hpp"
 #include "scene/animation.hpp"
 #include "scene/gltf_loader.hpp"
+#include "vk/check.hpp"
 
 namespace idk::viewer {
 
@@ -29,28 +30,8 @@ Viewer::Viewer(const ViewerOptions& opts) : options(opts) {
     scene = options.scene ? scene::loadGltf(*options.scene) : app::loadDefaultScene();
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "idk-viewer: warning: %s\n", w.c_str());
 
-    vk::ContextDesc desc;
-    desc.validation = desc.validation && options.validation;
-    desc.forceFallbackRungs = options.fallback;
-    for (const std::string& spec : options.rungs) desc.forcedRungs.push_back(vk::parseRungForce(spec));
-    desc.instanceExtensions = Window::requiredInstanceExtensions();
-    desc.presentation = true;
-    ctx = std::make_unique<vk::Context>(desc);
-    app::checkForcedRungs(*ctx);  // a rung this device cannot run: exit 2
-    surface = window->createSurface(ctx->instance());
-    vk::SwapchainDesc sc;
-    sc.surface = surface;
-    sc.preferredExtent = window->framebufferSize();
-    sc.vsync = options.vsync;
-    swapchain = std::make_unique<vk::Swapchain>(*ctx, sc);
-    shaders = std::make_unique<vk::ShaderLibrary>(*ctx, shaders::kSpirvDir,
-                                                  options.shaderDir.value_or(shaders::kShaderSourceDir));
-    reloader = std::make_unique<ShaderReloader>(*shaders);
-
-    renderer = std::make_unique<render::Renderer>(*ctx, *shaders);
-    renderer->setScene(scene);
-    textures = std::make_unique<render::SceneTextureStream>(*ctx, *renderer, scene);
-    if (options.syncTextures) textures->finishSynchronously();
+    createDevice();
+    if (options.memoryLog) memoryLog.emplace(*options.memoryLog, 100);
 
     collision = tools::CollisionWorld::fromScene(scene);
     flyParams = tools::flyParamsForBounds(scene.bounds);
@@ -72,19 +53,11 @@ Viewer::Viewer(const ViewerOptions& opts) : options(opts) {
 }
 
 Viewer::~Viewer() {
-    if (ctx) ctx->waitIdle();
-    ui.reset();
+    destroyDevice();
     if (imguiReady_) {
         ImGui_ImplGlfw_Shutdown();
         ImGui::DestroyContext();
     }
-    textures.reset();
-    renderer.reset();
-    swapchain.reset();
-    if (surface) vkDestroySurfaceKHR(ctx->instance(), surface, nullptr);
-    reloader.reset();
-    shaders.reset();
-    ctx.reset();
     window.reset();
 }
 
@@ -281,38 +254,75 @@ int Viewer::run() {
         // A fixed step for scripts; the wall clock otherwise, capped so a stall (shader reload) is no jump.
         float dt = options.fixedDt ? *options.fixedDt : std::min(wall, 0.1f);
         input.beginFrame(state.frame, !state.guiMode);
-        if (imguiReady_) {
-            ImGuiIO& io = ImGui::GetIO();
-            // FPS mode: the mouse steers the camera, not the panels.
-            if (state.guiMode) io.ConfigFlags &= ~ImGuiConfigFlags_NoMouse;
-            else io.ConfigFlags |= ImGuiConfigFlags_NoMouse;
-            ImGui_ImplGlfw_NewFrame();
-            ImGui::NewFrame();
-        }
-        handleEvents();
-        if (glm::uvec2 size = input.resizeRequest(); size.x > 0) window->resize(size.x, size.y);
-        if (window->shouldClose()) {
-            if (imguiReady_) ImGui::EndFrame();
-            break;
-        }
-        update(dt);
-        if (imguiReady_) {
-            if (state.guiVisible) drawPanels(*this);
-            ImGui::Render();
-        }
-        if (!renderAndPresent()) {
-            glfwWaitEventsTimeout(0.05);  // minimised: sleep until something happens
+        if (state.deviceFailure) {  // no device: only Enter (retry) and Esc (quit) do anything
+            for (const KeyEvent& e : input.events()) {
+                if (e.down && e.key == GLFW_KEY_ESCAPE) window->requestClose();
+                if (e.down && e.key == GLFW_KEY_ENTER && !window->shouldClose()) retryWithSmallerSettings();
+            }
+            ++state.frame;  // counts loop turns, so scripts and --frames go on while waiting
+            if (state.deviceFailure) glfwWaitEventsTimeout(0.01);
             continue;
         }
-        state.frameMs.push_back(wall * 1000.0f);
-        if (state.frameMs.size() > 240) state.frameMs.pop_front();
-        ++state.frame;
+        bool imguiFrame = false;
+        try {
+            if (!runFrame(dt, wall, imguiFrame)) break;
+        } catch (const vk::DeviceLostError& e) {
+            if (imguiFrame) ImGui::EndFrame();
+            onDeviceFailure("device lost", e, 3);
+        } catch (const vk::OutOfDeviceMemoryError& e) {
+            if (imguiFrame) ImGui::EndFrame();
+            onDeviceFailure("out of device memory", e, 4);
+        }
     }
+    if (state.deviceFailure) {
+        std::fprintf(stderr, "idk-viewer: exiting after %s\n", state.deviceFailure->message.c_str());
+        return state.deviceFailure->exitCode;
+    }
+    return finish();
+}
+
+// One frame: UI, events, update, render and present. False when the window is closing.
+bool Viewer::runFrame(float dt, float wall, bool& imguiFrame) {
+    if (imguiReady_) {
+        ImGuiIO& io = ImGui::GetIO();
+        // FPS mode: the mouse steers the camera, not the panels.
+        if (state.guiMode) io.ConfigFlags &= ~ImGuiConfigFlags_NoMouse;
+        else io.ConfigFlags |= ImGuiConfigFlags_NoMouse;
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        imguiFrame = true;
+    }
+    handleEvents();
+    if (glm::uvec2 size = input.resizeRequest(); size.x > 0) window->resize(size.x, size.y);
+    if (window->shouldClose()) {
+        if (imguiReady_) ImGui::EndFrame();
+        return false;
+    }
+    update(dt);
+    if (imguiReady_) {
+        if (state.guiVisible) drawPanels(*this);
+        ImGui::Render();
+        imguiFrame = false;
+    }
+    if (!renderAndPresent()) {
+        glfwWaitEventsTimeout(0.05);  // minimised: sleep until something happens
+        return true;
+    }
+    state.frameMs.push_back(wall * 1000.0f);
+    if (state.frameMs.size() > 240) state.frameMs.pop_front();
+    if (memoryLog) memoryLog->sample(state.frame, ctx->allocator());
+    ++state.frame;
+    return true;
+}
+
+// After the loop: screenshot, recording, validation report and the final camera line (tests read it).
+int Viewer::finish() {
     ctx->waitIdle();
     if (options.screenshot) writeScreenshot();
     if (recorder.recording()) toggleRecording();  // closing while recording keeps the recording
-    if (ctx->validationErrors() != 0) {
-        std::fprintf(stderr, "idk-viewer: %u Vulkan validation error(s)\n", ctx->validationErrors());
+    if (ctx->validationErrors() + earlierValidationErrors_ != 0) {
+        std::fprintf(stderr, "idk-viewer: %u Vulkan validation error(s)\n",
+                     ctx->validationErrors() + earlierValidationErrors_);
         for (const std::string& m : ctx->validationMessages()) std::fprintf(stderr, "  %s\n", m.c_str());
         return 1;
     }
@@ -346,6 +356,12 @@ int runViewer(const std::vector<std::string>& argv) {
     } catch (const core::CliError& e) {
         std::fprintf(stderr, "idk-viewer: %s\n%s", e.what(), kViewerHelp);
         return 2;
+    } catch (const vk::DeviceLostError& e) {  // while starting: no window worth keeping yet
+        std::fprintf(stderr, "idk-viewer: device lost while starting (%s)\n", e.what());
+        return 3;
+    } catch (const vk::OutOfDeviceMemoryError& e) {
+        std::fprintf(stderr, "idk-viewer: out of device memory while starting (%s)\n", e.what());
+        return 4;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "idk-viewer: %s\n", e.what());
         return 1;

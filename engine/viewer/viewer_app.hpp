@@ -24,6 +24,7 @@
 #include "viewer/shot_lights.hpp"
 #include "viewer/window.hpp"
 #include "vk/context.hpp"
+#include "vk/memory_log.hpp"
 #include "vk/shader_library.hpp"
 #include "vk/swapchain.hpp"
 
@@ -42,6 +43,14 @@ struct ViewerState {
     std::deque<float> frameMs;  // last 240 frame times (CPU wall clock)
     render::FrameInfo lastFrame;
     std::string status;         // last notable event (recording saved, replay started...)
+    // Set while the device has failed (lost, out of memory): nothing renders, the window stays open and offers
+    // a retry with smaller settings (Enter) or quitting (Esc). See device_recovery.cpp.
+    struct DeviceFailure {
+        std::string message;
+        int exitCode = 0;  // what the run returns if it ends in this state: 3 device lost, 4 out of memory
+    };
+    std::optional<DeviceFailure> deviceFailure;
+    uint32_t deviceRetries = 0;
 };
 
 class Viewer {
@@ -71,10 +80,20 @@ public:
     std::optional<tools::Capture> replay;
     ShotLights shotLights;
     Input input;
+    std::optional<vk::MemoryLog> memoryLog;
 
     scene::CameraView currentView() const { return tools::toCameraView(camera, lens); }
 
 private:
+    // device_recovery.cpp: everything that belongs to the VkDevice, created and destroyed together so a failed
+    // device can be replaced while the window, the scene and the UI state stay.
+    void createDevice();
+    void destroyDevice();
+    void onDeviceFailure(const std::string& kind, const std::exception& error, int exitCode);
+    void retryWithSmallerSettings();
+    uint32_t earlierValidationErrors_ = 0;  // counted on devices destroyed by a retry
+    bool runFrame(float dt, float wall, bool& imguiFrame);
+    int finish();
     void handleEvents();
     void handleKey(const KeyEvent& e);
     void toggleRecording();

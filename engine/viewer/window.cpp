@@ -75,6 +75,8 @@ void Window::toggleFullscreen() {
     }
 }
 
+void Window::setTitle(const std::string& title) { glfwSetWindowTitle(window_, title.c_str()); }
+
 void Window::resize(uint32_t width, uint32_t height) { glfwSetWindowSize(window_, int(width), int(height)); }
 
 void Window::setCursorCaptured(bool captured) {

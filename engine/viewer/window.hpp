@@ -33,6 +33,7 @@ public:
     bool shouldClose() const;
     void requestClose();
     void toggleFullscreen();
+    void setTitle(const std::string& title);
     void resize(uint32_t width, uint32_t height);  // asks for a new window size (takes effect once the WM agrees)
     bool fullscreen() const noexcept { return fullscreen_; }
     void setCursorCaptured(bool captured);  // FPS mode: hidden and unbounded (mouse look)

@@ -45,12 +45,18 @@ const char* resultName(VkResult result) {
     }
 }
 
+void throwResult(VkResult result, const std::string& what) {
+    if (result == VK_ERROR_DEVICE_LOST) throw DeviceLostError(result, what);
+    if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY) throw OutOfDeviceMemoryError(result, what);
+    throw Error(result, what);
+}
+
 void check(VkResult result, std::source_location where) {
     if (result >= 0) return;  // SPEC: negative codes are errors, positive ones are status codes
     std::string what = core::concat(where.file_name(), ":", where.line(), ": Vulkan call failed with ",
                                     resultName(result), " in ", where.function_name());
     if (result == VK_ERROR_DEVICE_LOST) what += " (device lost: the GPU reset or the driver crashed)";
-    throw Error(result, what);
+    throwResult(result, what);
 }
 
 }  // namespace idk::vk

@@ -6,12 +6,14 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <stdexcept>
 
 #include "core/log.hpp"
 #include "shared/bindings.h"
 #include "vk/bindless.hpp"
 #include "vk/check.hpp"
+#include "vk/fault_injection.hpp"
 
 namespace idk::vk {
 namespace {
@@ -186,6 +188,7 @@ Context::~Context() {
         vkDeviceWaitIdle(device_);
         for (auto& d : deferred_) d.release();
         deferred_.clear();
+        releaseLeftovers();
         vkDestroyPipelineLayout(device_, pipelineLayout_, nullptr);
         bindless_.reset();
         vkDestroyCommandPool(device_, immediatePool_, nullptr);
@@ -527,7 +530,16 @@ Buffer Context::createBuffer(const BufferDesc& desc) {
     check(vkCreateBuffer(device_, &info, nullptr, &b.buffer));
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(device_, b.buffer, &req);
-    b.allocation = allocator_->allocate(req, desc.memory, ResourceTiling::Linear, desc.category);
+    try {  // out of device memory is an exception a caller may survive: leave nothing behind
+        b.allocation = allocator_->allocate(req, desc.memory, ResourceTiling::Linear, desc.category);
+    } catch (...) {
+        vkDestroyBuffer(device_, b.buffer, nullptr);
+        throw;
+    }
+    {
+        std::lock_guard lock(liveMutex_);
+        liveBuffers_[b.buffer] = b;
+    }
     check(vkBindBufferMemory(device_, b.buffer, b.allocation.memory, b.allocation.offset));
     VkBufferDeviceAddressInfo address{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
     address.buffer = b.buffer;
@@ -551,7 +563,16 @@ Image Context::createImage(const ImageDesc& desc) {
     check(vkCreateImage(device_, &info, nullptr, &img.image));
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(device_, img.image, &req);
-    img.allocation = allocator_->allocate(req, MemoryUsage::GpuOnly, ResourceTiling::Optimal, desc.category);
+    try {
+        img.allocation = allocator_->allocate(req, MemoryUsage::GpuOnly, ResourceTiling::Optimal, desc.category);
+    } catch (...) {
+        vkDestroyImage(device_, img.image, nullptr);
+        throw;
+    }
+    {
+        std::lock_guard lock(liveMutex_);
+        liveImages_[img.image] = img;
+    }
     check(vkBindImageMemory(device_, img.image, img.allocation.memory, img.allocation.offset));
 
     VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
@@ -560,6 +581,10 @@ Image Context::createImage(const ImageDesc& desc) {
     view.format = desc.format;
     view.subresourceRange = {aspectOf(desc.format), 0, desc.mipLevels, 0, desc.layers};
     check(vkCreateImageView(device_, &view, nullptr, &img.view));
+    {
+        std::lock_guard lock(liveMutex_);
+        liveImages_[img.image].view = img.view;
+    }
     setName(img.image, VK_OBJECT_TYPE_IMAGE, desc.name);
     setName(img.view, VK_OBJECT_TYPE_IMAGE_VIEW, desc.name + " view");
     return img;
@@ -567,6 +592,10 @@ Image Context::createImage(const ImageDesc& desc) {
 
 void Context::destroy(Buffer& b) {
     if (!b.buffer) return;
+    {
+        std::lock_guard lock(liveMutex_);
+        liveBuffers_.erase(b.buffer);
+    }
     vkDestroyBuffer(device_, b.buffer, nullptr);
     allocator_->free(b.allocation);
     b = {};
@@ -574,10 +603,30 @@ void Context::destroy(Buffer& b) {
 
 void Context::destroy(Image& img) {
     if (!img.image) return;
+    {
+        std::lock_guard lock(liveMutex_);
+        liveImages_.erase(img.image);
+    }
     vkDestroyImageView(device_, img.view, nullptr);
     vkDestroyImage(device_, img.image, nullptr);
     allocator_->free(img.allocation);
     img = {};
+}
+
+void Context::releaseLeftovers() {
+    std::vector<Buffer> buffers;
+    std::vector<Image> images;
+    for (auto& [handle, b] : liveBuffers_) buffers.push_back(b);
+    for (auto& [handle, img] : liveImages_) images.push_back(img);
+    if ((!buffers.empty() || !images.empty()) && !failed_ && std::uncaught_exceptions() == 0) {
+        std::string names;
+        for (const Buffer& b : buffers) names += (names.empty() ? "" : ", ") + b.name;
+        for (const Image& img : images) names += (names.empty() ? "" : ", ") + img.name;
+        core::logWarning(buffers.size(), " buffer(s) and ", images.size(),
+                         " image(s) were never destroyed; released with the device: ", names);
+    }
+    for (Buffer& b : buffers) destroy(b);
+    for (Image& img : images) destroy(img);
 }
 
 void Context::destroyDeferred(Buffer& b) {
@@ -630,20 +679,36 @@ uint64_t Context::submit(VkCommandBuffer cmd, std::span<const VkSemaphoreSubmitI
     submit.pCommandBufferInfos = &cmdInfo;
     submit.signalSemaphoreInfoCount = static_cast<uint32_t>(allSignals.size());
     submit.pSignalSemaphoreInfos = allSignals.data();
-    check(vkQueueSubmit2(queue_, 1, &submit, VK_NULL_HANDLE));
+    if (lost_) throwResult(VK_ERROR_DEVICE_LOST, "queue submission after the device was lost (VK_ERROR_DEVICE_LOST)");
+    const InjectedFailure injected = nextSubmission();
+    if (injected.result != VK_SUCCESS) {
+        failed_ = true;
+        if (injected.result == VK_ERROR_DEVICE_LOST) lost_ = true;
+        throwResult(injected.result, core::concat("vkQueueSubmit2 failed with ", resultName(injected.result),
+                                                  " (submission ", injected.submission,
+                                                  ", simulated by IDK_TEST_FAIL_SUBMIT)"));
+    }
+    const VkResult result = vkQueueSubmit2(queue_, 1, &submit, VK_NULL_HANDLE);
+    if (result < 0) failed_ = true;
+    if (result == VK_ERROR_DEVICE_LOST) lost_ = true;
+    check(result);
     lastSubmitted_ = value;
     return value;
 }
 
 void Context::waitFor(uint64_t value) {
+    if (lost_) return;  // nothing will ever complete; see deviceLost()
     VkSemaphoreWaitInfo wait{VK_STRUCTURE_TYPE_SEMAPHORE_WAIT_INFO};
     wait.semaphoreCount = 1;
     wait.pSemaphores = &timeline_;
     wait.pValues = &value;
-    check(vkWaitSemaphores(device_, &wait, UINT64_MAX));
+    const VkResult result = vkWaitSemaphores(device_, &wait, UINT64_MAX);
+    if (result == VK_ERROR_DEVICE_LOST) lost_ = failed_ = true;
+    check(result);
 }
 
 uint64_t Context::completedValue() const {
+    if (lost_) return lastSubmitted_;  // treated as complete so deferred releases run during teardown
     uint64_t value = 0;
     check(vkGetSemaphoreCounterValue(device_, timeline_, &value));
     return value;
@@ -675,7 +740,11 @@ void Context::runImmediate(const std::function<void(VkCommandBuffer)>& fn) {
 }
 
 void Context::waitIdle() {
-    check(vkDeviceWaitIdle(device_));
+    if (!lost_) {
+        const VkResult result = vkDeviceWaitIdle(device_);
+        if (result == VK_ERROR_DEVICE_LOST) lost_ = failed_ = true;
+        check(result);
+    }
     collectGarbage();
 }
 

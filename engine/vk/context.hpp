@@ -12,6 +12,7 @@
 #include <mutex>
 #include <span>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "vk/features.hpp"
@@ -92,7 +93,9 @@ public:
     std::vector<std::string> validationMessages() const;
 
     // Resources. Names become debug names. destroy() is immediate (caller guarantees the GPU is done);
-    // destroyDeferred() waits until every submission made so far has completed.
+    // destroyDeferred() waits until every submission made so far has completed. The context keeps a list of the
+    // live buffers and images: whatever an exception unwound past (a staging buffer whose copy failed to submit,
+    // say) is destroyed with the device, silently after a failed submission, else with a warning naming it.
     Buffer createBuffer(const BufferDesc& desc);
     Image createImage(const ImageDesc& desc);
     void destroy(Buffer& buffer);
@@ -112,6 +115,14 @@ public:
     // Records with fn into a one-time command buffer, submits and waits (uploads, readbacks, tests).
     void runImmediate(const std::function<void(VkCommandBuffer)>& fn);
     void waitIdle();
+
+    // Device loss. The first VK_ERROR_DEVICE_LOST seen by submit/waitFor/waitIdle (or reported through markLost()
+    // by a caller that saw it elsewhere, e.g. at present) throws vk::DeviceLostError and marks the context lost:
+    // later submissions throw again, while waits return at once and treat everything as complete, so unwinding can
+    // destroy every object (what the spec asks after a loss) without waiting for work that never finishes. The test
+    // hook IDK_TEST_FAIL_SUBMIT (fault_injection.hpp) makes a chosen submission fail this way.
+    bool deviceLost() const noexcept { return lost_.load(); }
+    void markLost() noexcept { lost_ = failed_ = true; }
 
     void setName(VkObjectType type, uint64_t handle, const std::string& name) const;
     template <class T>
@@ -145,6 +156,12 @@ private:
 
     VkSemaphore timeline_ = VK_NULL_HANDLE;
     uint64_t lastSubmitted_ = 0;
+    std::atomic<bool> lost_{false};
+    std::atomic<bool> failed_{false};  // a submission threw: leftovers at destruction are expected
+    std::mutex liveMutex_;
+    std::unordered_map<VkBuffer, Buffer> liveBuffers_;
+    std::unordered_map<VkImage, Image> liveImages_;
+    void releaseLeftovers();
     std::mutex submitMutex_;
     std::mutex immediateMutex_;  // command pools are externally synchronized
     VkCommandPool immediatePool_ = VK_NULL_HANDLE;

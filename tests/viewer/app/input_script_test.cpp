@@ -47,6 +47,10 @@ TEST(InputScript, ErrorsNameFileLineAndCause) {
     EXPECT_EQ(message("1 mouse 3\n"), "s.txt:1: 'mouse' needs two numbers");
     EXPECT_EQ(message("1 press W now\n"), "s.txt:1: unexpected 'now'");
     EXPECT_EQ(message("1 resize 0 10\n"), "s.txt:1: resize needs a width and height in 1..16384");
+    // Past 2^64 (was std::out_of_range from stoull, found by fuzz_script) and the last uint64 (no frame after it).
+    EXPECT_EQ(message("\n99999999999999999999 down W\n"), "s.txt:2: frame number 99999999999999999999 is too large");
+    EXPECT_EQ(message("18446744073709551615 press W\n"), "s.txt:1: frame number 18446744073709551615 is too large");
+    EXPECT_EQ(parseInputScriptText("18446744073709551614 press W\n", "s.txt").back().frame, 18446744073709551615u);
 }
 
 TEST(CursorRay, CentreFollowsTheViewAndCornersMakeHalfTheFieldOfView) {

@@ -16,6 +16,7 @@
 #include "app/default_scene.hpp"
 #include "app/render_pathtrace.hpp"
 #include "app/render_replay.hpp"
+#include "app/scene_options.hpp"
 #include "core/cli.hpp"
 #include "render/renderer.hpp"
 #include "render/scene_textures.hpp"
@@ -91,12 +92,13 @@ void posePerOptions(const core::CliArgs& args, scene::Scene& scene) {
 
 int runRender(const std::vector<std::string>& argv) {
     core::CliArgs args =
-        core::parseCli(argv, {{"--stats", "--json", "--no-validation", "--fallback", "--help", "--pathtrace", "--denoise"},
+        core::parseCli(argv, withSceneOptions({{"--stats", "--json", "--no-validation", "--fallback", "--help", "--pathtrace", "--denoise"},
                                   {"--out", "--size", "--graph", "--shading", "--exposure", "--environment",
                                    "--env-intensity", "--time", "--animation", "--replay", "--video", "--frames",
-                                   "--spp", "--max-depth", "--seed", "--light-sampling", "--sort", "--traversal"}});
+                                   "--spp", "--max-depth", "--seed", "--light-sampling", "--sort", "--traversal"}}));
     if (args.has("--help")) {
         std::fputs(kRenderHelp, stdout);
+        std::fputs(kSceneOptionsHelp, stdout);
         std::fputs(kPathTraceHelp, stdout);
         return 0;
     }
@@ -121,7 +123,7 @@ int runRender(const std::vector<std::string>& argv) {
         settings.environment = *env == "none" ? std::filesystem::path() : std::filesystem::path(*env);
 
     // Load first: a bad scene path fails fast, before any Vulkan work.
-    scene::Scene scene = args.positional.empty() ? loadDefaultScene() : scene::loadGltf(args.positional[0]);
+    scene::Scene scene = args.positional.empty() ? loadDefaultScene() : scene::loadGltf(args.positional[0], loadOptionsFromCli(args));
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "idk render: warning: %s\n", w.c_str());
     posePerOptions(args, scene);
     if (args.get("--replay")) return runRenderReplay(args, scene, settings, width, height);

@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "scene/asset_uri.hpp"
 #include "scene/gltf_internal.hpp"
 
 namespace idk::scene {
@@ -139,12 +140,72 @@ std::vector<uint8_t> withJson(std::span<const uint8_t> bytes, bool binary, std::
     return out;
 }
 
+// Every external buffer and image URI must stay inside the asset's folder (asset_uri.hpp): checked here, before
+// tinygltf reads a buffer or the image records are made, so a hostile URI is refused before any file is opened.
+void checkUris(const std::filesystem::path& path, const nlohmann::json& json, const LoadOptions& options) {
+    for (const std::string kind : {"buffer", "image"}) {
+        const auto list = json.find(kind + "s");
+        if (list == json.end() || !list->is_array()) continue;
+        for (size_t i = 0; i < list->size(); ++i) {
+            const auto& item = (*list)[i];
+            const auto uri = item.is_object() ? item.find("uri") : item.end();
+            if (uri == item.end() || !uri->is_string() || isDataUri(uri->get<std::string>())) continue;
+            resolveAssetUri(path, uri->get<std::string>(), options.allowExternalUris, kind + " " + str(i));
+        }
+    }
+}
+
+// tinygltf's file system for external buffers. Defence in depth behind checkUris(): every path tinygltf
+// wants to open (it also searches the working directory, "./uri") is confined again, and nothing is expanded
+// or written.
+struct FileAccess {
+    std::filesystem::path folder;
+    std::string baseDir;  // what tinygltf joins URIs onto
+    bool allowExternal = false;
+};
+
+bool fileAllowed(const std::string& file, void* user) {
+    const auto& access = *static_cast<const FileAccess*>(user);
+    std::error_code ec;
+    return std::filesystem::is_regular_file(file, ec) && (access.allowExternal || insideFolder(access.folder, file));
+}
+
+// No `~` or `$VAR` expansion. tinygltf joins even an absolute URI onto the base folder ("base//abs"): an
+// allowed absolute URI is taken as written (a refused one never gets here, see checkUris).
+std::string expandFile(const std::string& file, void* user) {
+    const auto& access = *static_cast<const FileAccess*>(user);
+    const std::string prefix = access.baseDir + "/";
+    if (access.allowExternal && !access.baseDir.empty() && file.size() > prefix.size() &&
+        file.compare(0, prefix.size(), prefix) == 0 && file[prefix.size()] == '/')
+        return file.substr(prefix.size());
+    return file;
+}
+
+bool readAllowedFile(std::vector<unsigned char>* out, std::string* err, const std::string& file, void* user) {
+    if (!fileAllowed(file, user)) {
+        if (err) *err = "not a regular file inside the asset's folder";
+        return false;
+    }
+    try {
+        *out = readWholeFile(file);
+        return true;
+    } catch (const LoadError& e) {
+        if (err) *err = e.cause();
+        return false;
+    }
+}
+
+bool writeNothing(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+    if (err) *err = "the loader never writes files";
+    return false;
+}
+
 // Checks the JSON text before any parser builds a tree from it: nesting deeper than kMaxJsonDepth is rejected
 // (tinygltf converts extras/extensions recursively, so a hostile file could overflow the stack), and a file that
 // requires an extension we do not implement is rejected by name. Returns rewritten file bytes when meshopt
 // fallback buffers or Draco index references had to be replaced for tinygltf (see below), else nothing.
 std::optional<std::vector<uint8_t>> precheckJson(const std::filesystem::path& path, std::span<const uint8_t> bytes,
-                                                 bool binary) {
+                                                 bool binary, const LoadOptions& options) {
     const char* begin = reinterpret_cast<const char*>(bytes.data());
     size_t length = bytes.size();
     if (binary) {  // validateGlb() guarantees chunk 0 exists and fits
@@ -175,6 +236,7 @@ std::optional<std::vector<uint8_t>> precheckJson(const std::filesystem::path& pa
         for (const auto& ext : *it)
             if (ext.is_string() && !isSupportedExtension(ext.get<std::string>()))
                 throw LoadError(path, "requires unsupported extension " + ext.get<std::string>());
+    checkUris(path, json, options);
     auto edited = json;
     const bool fallbacks = replaceFallbackBuffers(edited, binary);
     const bool draco = dropDracoIndices(edited);
@@ -208,7 +270,7 @@ Scene loadGltfFromMemory(std::span<const uint8_t> bytes, const std::filesystem::
     if (bytes.size() > kMaxFileBytes) throw LoadError(path, "larger than 4 GiB");
     const bool binary = bytes.size() >= 4 && readU32(bytes, 0) == kGlbMagic;
     if (binary) validateGlb(path, bytes);
-    const std::optional<std::vector<uint8_t>> rewritten = precheckJson(path, bytes, binary);
+    const std::optional<std::vector<uint8_t>> rewritten = precheckJson(path, bytes, binary, options);
     if (rewritten) bytes = std::span<const uint8_t>(*rewritten);
 
     tinygltf::TinyGLTF parser;
@@ -216,6 +278,8 @@ Scene loadGltfFromMemory(std::span<const uint8_t> bytes, const std::filesystem::
     tinygltf::Model model;
     std::string err, warn;
     const std::string baseDir = path.parent_path().string();
+    FileAccess access{assetFolder(path), baseDir, options.allowExternalUris};
+    parser.SetFsCallbacks({&fileAllowed, &expandFile, &readAllowedFile, &writeNothing, &access});
     bool ok = false;
     try {
         if (binary)

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "scene/asset_uri.hpp"
 #include "scene/gltf_internal.hpp"
 
 namespace idk::scene::gltf {
@@ -70,25 +71,6 @@ float finiteOr(double v, float fallback) {
     return std::isfinite(v) ? float(v) : fallback;
 }
 
-std::string percentDecode(const std::string& uri) {
-    auto hex = [](char c) -> int {
-        if (c >= '0' && c <= '9') return c - '0';
-        if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-        if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-        return -1;
-    };
-    std::string out;
-    for (size_t i = 0; i < uri.size(); ++i) {
-        if (uri[i] == '%' && i + 2 < uri.size() && hex(uri[i + 1]) >= 0 && hex(uri[i + 2]) >= 0) {
-            out += char(hex(uri[i + 1]) * 16 + hex(uri[i + 2]));
-            i += 2;
-        } else {
-            out += uri[i];
-        }
-    }
-    return out;
-}
-
 // Whether the first bytes are an image format a decoder can know (not a guarantee that it decodes).
 bool knownImageSignature(const uint8_t* b, size_t n) {
     auto starts = [&](std::initializer_list<uint8_t> sig) {
@@ -143,10 +125,10 @@ void loadTextures(const Ctx& ctx) {
         } else if (!src.image.empty()) {
             img.encoded = src.image;  // a data URI, kept encoded by the image callback
         } else if (!src.uri.empty()) {
-            if (src.uri.rfind("data:", 0) == 0)
+            if (isDataUri(src.uri))
                 img.status = ImageStatus::UnknownFormat;  // a data URI tinygltf could not decode
             else
-                img.path = ctx.file.parent_path() / percentDecode(src.uri);
+                img.path = resolveAssetUri(ctx.file, src.uri, ctx.options.allowExternalUris, "image " + str(i));
         }
         if (img.status == ImageStatus::Ok)
             checkImage(ctx, img, i);

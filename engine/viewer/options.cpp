@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "app/scene_options.hpp"
 #include "core/cli.hpp"
 
 namespace idk::viewer {
@@ -25,14 +26,16 @@ const char* const kViewerHelp =
     "  --sync-textures   load every texture before the first frame (as idk render) instead of streaming\n"
     "  --no-validation   do not load the Vulkan validation layer\n"
     "  --fallback        take the portable rung of every capability ladder\n"
+    "  --allow-external-uris  let buffer and image URIs point outside the scene's folder (trusted content only)\n"
     "controls: W/A/S/D move, Space up, Shift faster, E GUI/FPS mode, T pause time, right-click select (GUI) or\n"
     "  shoot a light (FPS), Ctrl+R record, Ctrl+Space replay, G hide GUI, V vsync, F11 fullscreen, 1 recompile\n"
     "  shaders, Esc exit. Without a display use `idk render SCENE --out F.png`.\n";
 
 ViewerOptions parseViewerOptions(const std::vector<std::string>& argv) {
     core::CliArgs args = core::parseCli(
-        argv, {{"--no-ui", "--watch", "--no-vsync", "--sync-textures", "--no-validation", "--fallback", "--help"},
-               {"--size", "--frames", "--screenshot", "--script", "--shader-dir", "--capture", "--fixed-dt"}});
+        argv, app::withSceneOptions(
+                  {{"--no-ui", "--watch", "--no-vsync", "--sync-textures", "--no-validation", "--fallback", "--help"},
+                   {"--size", "--frames", "--screenshot", "--script", "--shader-dir", "--capture", "--fixed-dt"}}));
     ViewerOptions o;
     o.help = args.has("--help");
     if (args.positional.size() > 1) throw core::CliError("more than one scene given");
@@ -65,6 +68,7 @@ ViewerOptions parseViewerOptions(const std::vector<std::string>& argv) {
     o.syncTextures = args.has("--sync-textures");
     o.validation = !args.has("--no-validation");
     o.fallback = args.has("--fallback");
+    o.load = app::loadOptionsFromCli(args);
     return o;
 }
 

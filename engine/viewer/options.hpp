@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "scene/gltf_loader.hpp"
+
 namespace idk::viewer {
 
 extern const char* const kViewerHelp;
@@ -27,6 +29,7 @@ struct ViewerOptions {
     bool validation = true;
     bool fallback = false;
     bool help = false;
+    scene::LoadOptions load;                          // --allow-external-uris (app/scene_options.hpp)
 };
 
 // Throws core::CliError naming the option.

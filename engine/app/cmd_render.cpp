@@ -17,6 +17,7 @@
 #include "app/render_pathtrace.hpp"
 #include "app/render_replay.hpp"
 #include "app/scene_options.hpp"
+#include "core/atomic_file.hpp"
 #include "core/cli.hpp"
 #include "render/renderer.hpp"
 #include "render/scene_textures.hpp"
@@ -143,9 +144,8 @@ int runRender(const std::vector<std::string>& argv) {
     }
     core::writeImage(*out, frame.image);
     if (std::optional<std::string> graphFile = args.get("--graph")) {
-        std::ofstream file(*graphFile);
-        file << (std::filesystem::path(*graphFile).extension() == ".dot" ? frame.graphDot : frame.graphText);
-        if (!file) throw std::runtime_error(*graphFile + ": cannot write the graph dump");
+        core::writeFileAtomically(
+            *graphFile, std::filesystem::path(*graphFile).extension() == ".dot" ? frame.graphDot : frame.graphText);
     }
 
     if (args.has("--json")) {

@@ -19,14 +19,30 @@
 
 namespace idk::scene::gltf {
 
+// LoadOptions::maxMemoryBytes: what the load has committed so far, charged before each allocation.
+class MemoryBudget {
+public:
+    MemoryBudget(const std::filesystem::path& file, uint64_t limit) : file_(file), limit_(limit) {}
+    // Throws LoadError naming `what`, its size, what is already committed and the budget, when over.
+    void charge(uint64_t bytes, const std::string& what);
+    uint64_t used() const { return used_; }
+
+private:
+    const std::filesystem::path& file_;
+    uint64_t limit_ = 0;  // 0: none
+    uint64_t used_ = 0;
+};
+
 struct Ctx {
     const std::filesystem::path& file;
     const tinygltf::Model& model;
     Scene& scene;
     const LoadOptions& options;
+    MemoryBudget& budget;
 
     [[noreturn]] void fail(const std::string& cause) const { throw LoadError(file, cause); }
     void warn(const std::string& message) const;  // Scene::warnings + the engine log
+    void charge(uint64_t bytes, const std::string& what) const { budget.charge(bytes, what); }
 };
 
 inline std::string str(size_t v) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <optional>
@@ -20,6 +21,24 @@ namespace idk::scene {
 
 LoadError::LoadError(const std::filesystem::path& file, const std::string& cause)
     : std::runtime_error(file.string() + ": " + cause), file_(file), cause_(cause) {}
+
+namespace gltf {
+namespace {
+std::string sizeText(uint64_t bytes) {
+    if (bytes < (1u << 20)) return std::to_string(bytes) + " bytes";
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.1f MiB", double(bytes) / double(1u << 20));
+    return text;
+}
+}  // namespace
+
+void MemoryBudget::charge(uint64_t bytes, const std::string& what) {
+    if (limit_ != 0 && (bytes > limit_ || used_ > limit_ - bytes))
+        throw LoadError(file_, "memory budget exceeded: " + what + " needs " + sizeText(bytes) + " with " +
+                                   sizeText(used_) + " already committed; --max-memory is " + sizeText(limit_));
+    used_ += bytes;
+}
+}  // namespace gltf
 
 bool isSupportedExtension(const std::string& name) {
     static const std::array<const char*, 11> kSupported = {
@@ -39,13 +58,14 @@ constexpr uint32_t kGlbChunkJson = 0x4E4F534A;         // "JSON"
 constexpr size_t kMaxFileBytes = size_t{0xFFFFFFFFu};  // tinygltf takes 32-bit sizes
 constexpr int kMaxJsonDepth = 128;                     // glTF itself needs < 10; extras may nest a little
 
-std::vector<uint8_t> readWholeFile(const std::filesystem::path& path) {
+std::vector<uint8_t> readWholeFile(const std::filesystem::path& path, gltf::MemoryBudget* budget = nullptr) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw LoadError(path, "file not found");
     if (!std::filesystem::is_regular_file(path, ec)) throw LoadError(path, "not a regular file");
     const auto size = std::filesystem::file_size(path, ec);
     if (ec) throw LoadError(path, "cannot read file size: " + ec.message());
     if (size > kMaxFileBytes) throw LoadError(path, "file larger than 4 GiB");
+    if (budget) budget->charge(size, "file " + path.filename().string());
     std::ifstream in(path, std::ios::binary);
     if (!in) throw LoadError(path, "cannot open file");
     std::vector<uint8_t> bytes(static_cast<size_t>(size));
@@ -142,14 +162,20 @@ std::vector<uint8_t> withJson(std::span<const uint8_t> bytes, bool binary, std::
 
 // Every external buffer and image URI must stay inside the asset's folder (asset_uri.hpp): checked here, before
 // tinygltf reads a buffer or the image records are made, so a hostile URI is refused before any file is opened.
-void checkUris(const std::filesystem::path& path, const nlohmann::json& json, const LoadOptions& options) {
+// Data URIs are decoded by tinygltf: their decoded size (3/4 of the base64 text) is charged first.
+void checkUris(const std::filesystem::path& path, const nlohmann::json& json, const LoadOptions& options,
+               gltf::MemoryBudget& budget) {
     for (const std::string kind : {"buffer", "image"}) {
         const auto list = json.find(kind + "s");
         if (list == json.end() || !list->is_array()) continue;
         for (size_t i = 0; i < list->size(); ++i) {
             const auto& item = (*list)[i];
             const auto uri = item.is_object() ? item.find("uri") : item.end();
-            if (uri == item.end() || !uri->is_string() || isDataUri(uri->get<std::string>())) continue;
+            if (uri == item.end() || !uri->is_string()) continue;
+            if (isDataUri(uri->get<std::string>())) {
+                budget.charge(uri->get<std::string>().size() / 4 * 3, kind + " " + str(i) + " data URI");
+                continue;
+            }
             resolveAssetUri(path, uri->get<std::string>(), options.allowExternalUris, kind + " " + str(i));
         }
     }
@@ -162,6 +188,7 @@ struct FileAccess {
     std::filesystem::path folder;
     std::string baseDir;  // what tinygltf joins URIs onto
     bool allowExternal = false;
+    gltf::MemoryBudget* budget = nullptr;
 };
 
 bool fileAllowed(const std::string& file, void* user) {
@@ -186,13 +213,9 @@ bool readAllowedFile(std::vector<unsigned char>* out, std::string* err, const st
         if (err) *err = "not a regular file inside the asset's folder";
         return false;
     }
-    try {
-        *out = readWholeFile(file);
-        return true;
-    } catch (const LoadError& e) {
-        if (err) *err = e.cause();
-        return false;
-    }
+    // Over the budget: the LoadError passes through tinygltf to loadGltfFromMemory unchanged.
+    *out = readWholeFile(file, static_cast<const FileAccess*>(user)->budget);
+    return true;
 }
 
 bool writeNothing(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
@@ -205,7 +228,7 @@ bool writeNothing(std::string* err, const std::string&, const std::vector<unsign
 // requires an extension we do not implement is rejected by name. Returns rewritten file bytes when meshopt
 // fallback buffers or Draco index references had to be replaced for tinygltf (see below), else nothing.
 std::optional<std::vector<uint8_t>> precheckJson(const std::filesystem::path& path, std::span<const uint8_t> bytes,
-                                                 bool binary, const LoadOptions& options) {
+                                                 bool binary, const LoadOptions& options, gltf::MemoryBudget& budget) {
     const char* begin = reinterpret_cast<const char*>(bytes.data());
     size_t length = bytes.size();
     if (binary) {  // validateGlb() guarantees chunk 0 exists and fits
@@ -236,7 +259,7 @@ std::optional<std::vector<uint8_t>> precheckJson(const std::filesystem::path& pa
         for (const auto& ext : *it)
             if (ext.is_string() && !isSupportedExtension(ext.get<std::string>()))
                 throw LoadError(path, "requires unsupported extension " + ext.get<std::string>());
-    checkUris(path, json, options);
+    checkUris(path, json, options, budget);
     auto edited = json;
     const bool fallbacks = replaceFallbackBuffers(edited, binary);
     const bool draco = dropDracoIndices(edited);
@@ -260,7 +283,8 @@ std::string trimmed(std::string s) {
 }  // namespace
 
 Scene loadGltf(const std::filesystem::path& path, const LoadOptions& options) {
-    const std::vector<uint8_t> bytes = readWholeFile(path);
+    gltf::MemoryBudget fileBudget(path, options.maxMemoryBytes);
+    const std::vector<uint8_t> bytes = readWholeFile(path, &fileBudget);  // refused before reading when too large
     return loadGltfFromMemory(bytes, path, options);
 }
 
@@ -270,7 +294,9 @@ Scene loadGltfFromMemory(std::span<const uint8_t> bytes, const std::filesystem::
     if (bytes.size() > kMaxFileBytes) throw LoadError(path, "larger than 4 GiB");
     const bool binary = bytes.size() >= 4 && readU32(bytes, 0) == kGlbMagic;
     if (binary) validateGlb(path, bytes);
-    const std::optional<std::vector<uint8_t>> rewritten = precheckJson(path, bytes, binary, options);
+    gltf::MemoryBudget budget(path, options.maxMemoryBytes);
+    budget.charge(bytes.size(), "file " + path.filename().string());
+    const std::optional<std::vector<uint8_t>> rewritten = precheckJson(path, bytes, binary, options, budget);
     if (rewritten) bytes = std::span<const uint8_t>(*rewritten);
 
     tinygltf::TinyGLTF parser;
@@ -278,7 +304,7 @@ Scene loadGltfFromMemory(std::span<const uint8_t> bytes, const std::filesystem::
     tinygltf::Model model;
     std::string err, warn;
     const std::string baseDir = path.parent_path().string();
-    FileAccess access{assetFolder(path), baseDir, options.allowExternalUris};
+    FileAccess access{assetFolder(path), baseDir, options.allowExternalUris, &budget};
     parser.SetFsCallbacks({&fileAllowed, &expandFile, &readAllowedFile, &writeNothing, &access});
     bool ok = false;
     try {
@@ -287,6 +313,8 @@ Scene loadGltfFromMemory(std::span<const uint8_t> bytes, const std::filesystem::
         else
             ok = parser.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
                                             unsigned(bytes.size()), baseDir);
+    } catch (const LoadError&) {
+        throw;
     } catch (const std::exception& e) {
         throw LoadError(path, std::string("parse error: ") + e.what());
     }
@@ -295,7 +323,7 @@ Scene loadGltfFromMemory(std::span<const uint8_t> bytes, const std::filesystem::
 
     Scene scene;
     scene.sourcePath = path;
-    const gltf::Ctx ctx{path, model, scene, options};
+    const gltf::Ctx ctx{path, model, scene, options, budget};
     if (!warn.empty()) ctx.warn("tinygltf: " + trimmed(warn));
     for (const auto& ext : model.extensionsRequired)
         if (!isSupportedExtension(ext)) ctx.fail("requires unsupported extension " + ext);

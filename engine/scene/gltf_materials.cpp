@@ -10,6 +10,7 @@
 
 #include "scene/asset_uri.hpp"
 #include "scene/gltf_internal.hpp"
+#include "scene/texture_decode.hpp"
 
 namespace idk::scene::gltf {
 
@@ -106,6 +107,25 @@ void checkImage(const Ctx& ctx, Image& img, size_t index) {
         ctx.warn(what + ": not a known image format; it will be drawn as the magenta placeholder");
 }
 
+// LoadOptions::maxMemoryBytes: a PNG/JPEG image is charged its decoded size (RGBA8 with mips) from the size
+// its header declares, so a scene whose images would not fit fails here, before any is decoded. Other formats
+// are not charged (their decoder still refuses sizes above the texel limit).
+void chargeDecodedSize(const Ctx& ctx, const Image& img, size_t index) {
+    if (ctx.options.maxMemoryBytes == 0 || img.status != ImageStatus::Ok) return;
+    std::vector<uint8_t> head;
+    if (!img.path.empty()) {
+        head.resize(size_t{1} << 20);  // a JPEG frame header may follow large EXIF/ICC segments
+        std::ifstream in(img.path, std::ios::binary);
+        in.read(reinterpret_cast<char*>(head.data()), std::streamsize(head.size()));
+        head.resize(size_t(in.gcount()));
+    }
+    const auto size = declaredImageSize(img.path.empty() ? img.encoded : head);
+    if (!size) return;
+    ctx.charge(decodedTextureBytes(size->width, size->height),
+               "image " + str(index) + " (" + std::to_string(size->width) + "x" + std::to_string(size->height) +
+                   " texels, decoded with mips)");
+}
+
 }  // namespace
 
 void loadTextures(const Ctx& ctx) {
@@ -130,8 +150,10 @@ void loadTextures(const Ctx& ctx) {
             else
                 img.path = resolveAssetUri(ctx.file, src.uri, ctx.options.allowExternalUris, "image " + str(i));
         }
-        if (img.status == ImageStatus::Ok)
+        if (img.status == ImageStatus::Ok) {
             checkImage(ctx, img, i);
+            chargeDecodedSize(ctx, img, i);
+        }
         else
             ctx.warn("image " + str(i) + ": undecodable data URI; it will be drawn as the magenta placeholder");
         ctx.scene.images.push_back(std::move(img));

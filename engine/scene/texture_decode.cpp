@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
 #include <cctype>
 #include <cmath>
 #include <fstream>
@@ -222,6 +223,17 @@ std::string imageLabel(const Scene& scene, uint32_t imageIndex) {
     if (!image.path.empty()) return "image " + std::to_string(imageIndex) + named + " file " + image.path.string();
     std::string asset = scene.sourcePath.filename().string();
     return "embedded image " + std::to_string(imageIndex) + named + " of " + (asset.empty() ? "<memory>" : asset);
+}
+
+std::optional<DeclaredSize> declaredImageSize(const std::vector<uint8_t>& b) {
+    static constexpr uint8_t kPng[8] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
+    if (b.size() >= 24 && std::equal(kPng, kPng + 8, b.begin()) && std::memcmp(b.data() + 12, "IHDR", 4) == 0) {
+        auto be32 = [&](size_t at) {
+            return uint32_t(b[at]) << 24 | uint32_t(b[at + 1]) << 16 | uint32_t(b[at + 2]) << 8 | b[at + 3];
+        };
+        return DeclaredSize{be32(16), be32(20)};
+    }
+    return jpegDeclaredSize(b);
 }
 
 uint64_t decodedTextureBytes(uint32_t width, uint32_t height) {

@@ -6,10 +6,12 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "scene/jpeg_markers.hpp"
 #include "scene/scene.hpp"
 
 namespace idk::scene {
@@ -27,6 +29,9 @@ struct ImageLimits {
 };
 // Bytes of a width x height RGBA8 texture with all its mips (what decodeImage allocates for the result).
 uint64_t decodedTextureBytes(uint32_t width, uint32_t height);
+// The size a PNG (IHDR) or JPEG (frame header) declares, read from the first bytes without decoding; empty for
+// other formats or damaged headers.
+std::optional<DeclaredSize> declaredImageSize(const std::vector<uint8_t>& bytes);
 // The placeholder: 4x4 RGBA8, texel (x, y) is magenta (255, 0, 255, 255) when x + y is even, else opaque black.
 constexpr uint32_t kPlaceholderSize = 4;
 

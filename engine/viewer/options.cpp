@@ -27,6 +27,7 @@ const char* const kViewerHelp =
     "  --no-validation   do not load the Vulkan validation layer\n"
     "  --fallback        take the portable rung of every capability ladder\n"
     "  --allow-external-uris  let buffer and image URIs point outside the scene's folder (trusted content only)\n"
+    "  --max-memory SIZE refuse a scene whose loading would allocate more than SIZE (e.g. 2G) before allocating\n"
     "controls: W/A/S/D move, Space up, Shift faster, E GUI/FPS mode, T pause time, right-click select (GUI) or\n"
     "  shoot a light (FPS), Ctrl+R record, Ctrl+Space replay, G hide GUI, V vsync, F11 fullscreen, 1 recompile\n"
     "  shaders, Esc exit. Without a display use `idk render SCENE --out F.png`.\n";

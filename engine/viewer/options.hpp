@@ -29,7 +29,7 @@ struct ViewerOptions {
     bool validation = true;
     bool fallback = false;
     bool help = false;
-    scene::LoadOptions load;                          // --allow-external-uris (app/scene_options.hpp)
+    scene::LoadOptions load;                          // --allow-external-uris, --max-memory (app/scene_options.hpp)
 };
 
 // Throws core::CliError naming the option.

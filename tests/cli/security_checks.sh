@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # security_checks.sh IDK CASE: the `idk` command line on untrusted scenes (issue 17): URIs that leave the
 # scene's folder are refused with exit code 1 and one line naming the file and the URI, no image is written,
-# and --allow-external-uris renders the same files.
+# and --allow-external-uris renders the same files; --max-memory refuses a scene over its budget.
 set -u
 idk="$1"
 case_name="$2"
@@ -61,6 +61,21 @@ case "$case_name" in
     "$idk" render "$tmp/asset/scene.gltf" --size 16x16 --out "$tmp/x.png" 2>"$tmp/err" \
       || fail "a scene whose buffer is in its folder failed: $(cat "$tmp/err")"
     "$idk" render --help | grep -q -- "--allow-external-uris" || fail "render --help does not describe the option"
+    ;;
+  max_memory)
+    cp "$tmp/outside/secret.bin" "$tmp/asset/tri.bin"
+    scene_with "tri.bin"
+    "$idk" render "$tmp/asset/scene.gltf" --max-memory 256 --size 16x16 --out "$tmp/x.png" 2>"$tmp/err"
+    code=$?
+    [ "$code" -eq 1 ] || fail "exit code $code under --max-memory 256, expected 1: $(cat "$tmp/err")"
+    [ "$(wc -l <"$tmp/err")" -eq 1 ] || fail "expected one line on stderr, got: $(cat "$tmp/err")"
+    grep -qF "$tmp/asset/scene.gltf: memory budget exceeded: " "$tmp/err" || fail "no budget error: $(cat "$tmp/err")"
+    grep -qF -- "--max-memory is 256 bytes" "$tmp/err" || fail "the error does not give the budget: $(cat "$tmp/err")"
+    [ ! -e "$tmp/x.png" ] || fail "an image was written over budget"
+    "$idk" render "$tmp/asset/scene.gltf" --max-memory 64M --size 16x16 --out "$tmp/x.png" 2>"$tmp/err" \
+      || fail "the scene did not render under --max-memory 64M: $(cat "$tmp/err")"
+    "$idk" render "$tmp/asset/scene.gltf" --max-memory lots --out "$tmp/x.png" 2>/dev/null
+    [ $? -eq 2 ] || fail "--max-memory lots should be a usage error (exit 2)"
     ;;
   *)
     fail "unknown case"

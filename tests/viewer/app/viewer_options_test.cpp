@@ -1,7 +1,8 @@
 // viewer_options_test.cpp: idk-viewer's command line takes the scene options every program shares
-// (app/scene_options.hpp): --allow-external-uris reaches the loader's options, and is off by default.
+// (app/scene_options.hpp): --allow-external-uris and --max-memory reach the loader's options; both off by default.
 #include <gtest/gtest.h>
 
+#include "core/cli.hpp"
 #include "viewer/options.hpp"
 
 namespace idk::viewer {
@@ -13,6 +14,11 @@ TEST(ViewerOptions, SharesTheSceneLoadingOptions) {
     EXPECT_TRUE(o.load.allowExternalUris);
     ASSERT_TRUE(o.scene.has_value());
     EXPECT_EQ(*o.scene, "scene.gltf");
+    EXPECT_EQ(o.load.maxMemoryBytes, 0u);
+    EXPECT_EQ(parseViewerOptions({"--max-memory", "64M"}).load.maxMemoryBytes, uint64_t{64} << 20);
+    EXPECT_EQ(parseViewerOptions({"--max-memory=2g"}).load.maxMemoryBytes, uint64_t{2} << 30);
+    EXPECT_THROW(parseViewerOptions({"--max-memory", "lots"}), core::CliError);
+    EXPECT_THROW(parseViewerOptions({"--max-memory", "0"}), core::CliError);
 }
 
 }  // namespace

@@ -1,14 +1,12 @@
 // gltf_loader.cpp: glTF 2.0 (.gltf/.glb) -> Scene through tinygltf, the entry points of the port of IDKEngine's
-// ModelLoader: the file and GLB container checks, a JSON pre-pass (nesting depth, required extensions, meshopt
-// fallback buffers), parsing, then the per-topic stages of gltf_*.cpp in order. Hostile input never crashes:
-// every index and byte range is checked before it is read (see gltf_loader.hpp for what is an error).
+// ModelLoader: the GLB container checks, a JSON pre-pass (nesting depth, required extensions, meshopt fallback
+// buffers, URI confinement from gltf_files.cpp), parsing, then the per-topic stages of gltf_*.cpp in order.
+// Hostile input never crashes: every index and byte range is checked before it is read (see gltf_loader.hpp).
 #include "scene/gltf_loader.hpp"
 
 #include <algorithm>
 #include <array>
-#include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <optional>
 #include <span>
 
@@ -22,24 +20,6 @@ namespace idk::scene {
 LoadError::LoadError(const std::filesystem::path& file, const std::string& cause)
     : std::runtime_error(file.string() + ": " + cause), file_(file), cause_(cause) {}
 
-namespace gltf {
-namespace {
-std::string sizeText(uint64_t bytes) {
-    if (bytes < (1u << 20)) return std::to_string(bytes) + " bytes";
-    char text[32];
-    std::snprintf(text, sizeof(text), "%.1f MiB", double(bytes) / double(1u << 20));
-    return text;
-}
-}  // namespace
-
-void MemoryBudget::charge(uint64_t bytes, const std::string& what) {
-    if (limit_ != 0 && (bytes > limit_ || used_ > limit_ - bytes))
-        throw LoadError(file_, "memory budget exceeded: " + what + " needs " + sizeText(bytes) + " with " +
-                                   sizeText(used_) + " already committed; --max-memory is " + sizeText(limit_));
-    used_ += bytes;
-}
-}  // namespace gltf
-
 bool isSupportedExtension(const std::string& name) {
     static const std::array<const char*, 11> kSupported = {
         "KHR_mesh_quantization",           "KHR_draco_mesh_compression", "EXT_meshopt_compression",
@@ -51,28 +31,12 @@ bool isSupportedExtension(const std::string& name) {
 
 namespace {
 
+using gltf::kMaxFileBytes;
 using gltf::str;
 
 constexpr uint32_t kGlbMagic = 0x46546C67;             // "glTF"
 constexpr uint32_t kGlbChunkJson = 0x4E4F534A;         // "JSON"
-constexpr size_t kMaxFileBytes = size_t{0xFFFFFFFFu};  // tinygltf takes 32-bit sizes
 constexpr int kMaxJsonDepth = 128;                     // glTF itself needs < 10; extras may nest a little
-
-std::vector<uint8_t> readWholeFile(const std::filesystem::path& path, gltf::MemoryBudget* budget = nullptr) {
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) throw LoadError(path, "file not found");
-    if (!std::filesystem::is_regular_file(path, ec)) throw LoadError(path, "not a regular file");
-    const auto size = std::filesystem::file_size(path, ec);
-    if (ec) throw LoadError(path, "cannot read file size: " + ec.message());
-    if (size > kMaxFileBytes) throw LoadError(path, "file larger than 4 GiB");
-    if (budget) budget->charge(size, "file " + path.filename().string());
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw LoadError(path, "cannot open file");
-    std::vector<uint8_t> bytes(static_cast<size_t>(size));
-    if (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size)))
-        throw LoadError(path, "cannot read file");
-    return bytes;
-}
 
 uint32_t readU32(std::span<const uint8_t> bytes, size_t offset) {
     uint32_t v = 0;
@@ -160,68 +124,6 @@ std::vector<uint8_t> withJson(std::span<const uint8_t> bytes, bool binary, std::
     return out;
 }
 
-// Every external buffer and image URI must stay inside the asset's folder (asset_uri.hpp): checked here, before
-// tinygltf reads a buffer or the image records are made, so a hostile URI is refused before any file is opened.
-// Data URIs are decoded by tinygltf: their decoded size (3/4 of the base64 text) is charged first.
-void checkUris(const std::filesystem::path& path, const nlohmann::json& json, const LoadOptions& options,
-               gltf::MemoryBudget& budget) {
-    for (const std::string kind : {"buffer", "image"}) {
-        const auto list = json.find(kind + "s");
-        if (list == json.end() || !list->is_array()) continue;
-        for (size_t i = 0; i < list->size(); ++i) {
-            const auto& item = (*list)[i];
-            const auto uri = item.is_object() ? item.find("uri") : item.end();
-            if (uri == item.end() || !uri->is_string()) continue;
-            if (isDataUri(uri->get<std::string>())) {
-                budget.charge(uri->get<std::string>().size() / 4 * 3, kind + " " + str(i) + " data URI");
-                continue;
-            }
-            resolveAssetUri(path, uri->get<std::string>(), options.allowExternalUris, kind + " " + str(i));
-        }
-    }
-}
-
-// tinygltf's file system for external buffers. Defence in depth behind checkUris(): every path tinygltf
-// wants to open (it also searches the working directory, "./uri") is confined again, and nothing is expanded
-// or written.
-struct FileAccess {
-    std::filesystem::path folder;
-    std::string baseDir;  // what tinygltf joins URIs onto
-    bool allowExternal = false;
-    gltf::MemoryBudget* budget = nullptr;
-};
-
-bool fileAllowed(const std::string& file, void* user) {
-    const auto& access = *static_cast<const FileAccess*>(user);
-    std::error_code ec;
-    return std::filesystem::is_regular_file(file, ec) && (access.allowExternal || insideFolder(access.folder, file));
-}
-
-// No `~` or `$VAR` expansion. tinygltf joins even an absolute URI onto the base folder ("base//abs"): an
-// allowed absolute URI is taken as written (a refused one never gets here, see checkUris).
-std::string expandFile(const std::string& file, void* user) {
-    const auto& access = *static_cast<const FileAccess*>(user);
-    const std::string prefix = access.baseDir + "/";
-    if (access.allowExternal && !access.baseDir.empty() && file.size() > prefix.size() &&
-        file.compare(0, prefix.size(), prefix) == 0 && file[prefix.size()] == '/')
-        return file.substr(prefix.size());
-    return file;
-}
-
-bool readAllowedFile(std::vector<unsigned char>* out, std::string* err, const std::string& file, void* user) {
-    if (!fileAllowed(file, user)) {
-        if (err) *err = "not a regular file inside the asset's folder";
-        return false;
-    }
-    // Over the budget: the LoadError passes through tinygltf to loadGltfFromMemory unchanged.
-    *out = readWholeFile(file, static_cast<const FileAccess*>(user)->budget);
-    return true;
-}
-
-bool writeNothing(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
-    if (err) *err = "the loader never writes files";
-    return false;
-}
 
 // Checks the JSON text before any parser builds a tree from it: nesting deeper than kMaxJsonDepth is rejected
 // (tinygltf converts extras/extensions recursively, so a hostile file could overflow the stack), and a file that
@@ -259,7 +161,7 @@ std::optional<std::vector<uint8_t>> precheckJson(const std::filesystem::path& pa
         for (const auto& ext : *it)
             if (ext.is_string() && !isSupportedExtension(ext.get<std::string>()))
                 throw LoadError(path, "requires unsupported extension " + ext.get<std::string>());
-    checkUris(path, json, options, budget);
+    gltf::checkUris(path, json, options, budget);
     auto edited = json;
     const bool fallbacks = replaceFallbackBuffers(edited, binary);
     const bool draco = dropDracoIndices(edited);
@@ -284,7 +186,7 @@ std::string trimmed(std::string s) {
 
 Scene loadGltf(const std::filesystem::path& path, const LoadOptions& options) {
     gltf::MemoryBudget fileBudget(path, options.maxMemoryBytes);
-    const std::vector<uint8_t> bytes = readWholeFile(path, &fileBudget);  // refused before reading when too large
+    const std::vector<uint8_t> bytes = gltf::readWholeFile(path, &fileBudget);  // refused before reading when too large
     return loadGltfFromMemory(bytes, path, options);
 }
 
@@ -304,8 +206,8 @@ Scene loadGltfFromMemory(std::span<const uint8_t> bytes, const std::filesystem::
     tinygltf::Model model;
     std::string err, warn;
     const std::string baseDir = path.parent_path().string();
-    FileAccess access{assetFolder(path), baseDir, options.allowExternalUris, &budget};
-    parser.SetFsCallbacks({&fileAllowed, &expandFile, &readAllowedFile, &writeNothing, &access});
+    gltf::FileAccess access{assetFolder(path), baseDir, options.allowExternalUris, &budget};
+    parser.SetFsCallbacks(gltf::fileCallbacks(access));
     bool ok = false;
     try {
         if (binary)

@@ -18,6 +18,7 @@
 #include <thread>
 
 #include "app/commands.hpp"
+#include "app/scene_options.hpp"
 #include "bvh/blas.hpp"
 #include "bvh/metrics.hpp"
 #include "bvh/raw_mesh.hpp"
@@ -96,7 +97,8 @@ private:
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
-std::vector<bvh::Triangle> loadTriangles(const std::filesystem::path& path, std::string& kind) {
+std::vector<bvh::Triangle> loadTriangles(const std::filesystem::path& path, const scene::LoadOptions& options,
+                                         std::string& kind) {
     std::string ext = path.extension().string();
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
     if (ext == ".bin") {
@@ -107,7 +109,7 @@ std::vector<bvh::Triangle> loadTriangles(const std::filesystem::path& path, std:
         throw std::runtime_error(path.string() + ": unsupported scene file (expected .gltf, .glb or a raw .bin)");
     }
     kind = "glTF, instanced triangles in world space";
-    const scene::Scene scene = scene::loadGltf(path);  // logs its own warnings
+    const scene::Scene scene = scene::loadGltf(path, options);  // logs its own warnings
     const render::TriangleMesh mesh = render::worldTriangles(scene);
     std::vector<bvh::Triangle> tris(mesh.indices.size());
     for (size_t t = 0; t < tris.size(); ++t) {
@@ -120,9 +122,11 @@ std::vector<bvh::Triangle> loadTriangles(const std::filesystem::path& path, std:
 }  // namespace
 
 int runBvh(const std::vector<std::string>& argv) {
-    const core::CliArgs args = core::parseCli(argv, {{"--json", "--no-epo", "--help", "--spatial-splits"}, {"--split-factor", "--split-budget"}});
+    const core::CliArgs args = core::parseCli(
+        argv, withSceneOptions({{"--json", "--no-epo", "--help", "--spatial-splits"}, {"--split-factor", "--split-budget"}}));
     if (args.has("--help")) {
         std::fputs(kBvhHelp, stdout);
+        std::fputs(kSceneOptionsHelp, stdout);
         return 0;
     }
     if (args.positional.empty()) throw core::CliError("SCENE is required");
@@ -141,7 +145,7 @@ int runBvh(const std::vector<std::string>& argv) {
     Progress progress;
     progress.step("loading " + path.filename().string());
     std::string kind;
-    const std::vector<bvh::Triangle> triangles = loadTriangles(path, kind);
+    const std::vector<bvh::Triangle> triangles = loadTriangles(path, loadOptionsFromCli(args), kind);
     progress.step("building the BVH over " + std::to_string(triangles.size()) + " triangles");
     const bvh::Blas blas = bvh::buildBlas(triangles, options);
     double epo = 0.0, epoMs = 0.0;

@@ -21,6 +21,8 @@
 #include "app/ladder_report.hpp"
 #include "app/render_pathtrace.hpp"
 #include "app/render_replay.hpp"
+#include "app/scene_options.hpp"
+#include "core/atomic_file.hpp"
 #include "core/cli.hpp"
 #include "render/renderer.hpp"
 #include "render/scene_textures.hpp"
@@ -119,14 +121,15 @@ int runRender(const std::vector<std::string>& argv) { return runRender(argv, nul
 
 int runRender(const std::vector<std::string>& argv, std::vector<vk::Ladder>* rungsThatRan) {
     core::CliArgs args =
-        core::parseCli(argv, {{"--stats", "--json", "--no-validation", "--fallback", "--help", "--pathtrace", "--denoise"},
+        core::parseCli(argv, withSceneOptions({{"--stats", "--json", "--no-validation", "--fallback", "--help", "--pathtrace", "--denoise"},
                                   {"--out", "--size", "--graph", "--shading", "--exposure", "--environment",
                                    "--env-intensity", "--time", "--animation", "--replay", "--video", "--frames",
                                    "--spp", "--max-depth", "--seed", "--light-sampling", "--sort", "--traversal",
                                    "--camera", "--orbit", "--camera-index", "--orbit-frames", "--background", "--fps",
-                                   "--rung"}});
+                                   "--rung"}}));
     if (args.has("--help")) {
         std::fputs(kRenderHelp, stdout);
+        std::fputs(kSceneOptionsHelp, stdout);
         std::fputs(kPathTraceHelp, stdout);
         return 0;
     }
@@ -172,7 +175,7 @@ int runRender(const std::vector<std::string>& argv, std::vector<vk::Ladder>* run
         throw core::CliError("--video '" + *args.get("--video") + "': the file must end in .mp4");
 
     // Load first: a bad scene path fails fast, before any Vulkan work.
-    scene::Scene scene = args.positional.empty() ? loadDefaultScene() : scene::loadGltf(args.positional[0]);
+    scene::Scene scene = args.positional.empty() ? loadDefaultScene() : scene::loadGltf(args.positional[0], loadOptionsFromCli(args));
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "idk render: warning: %s\n", w.c_str());
     posePerOptions(args, scene);
     if (replay) return runRenderReplay(args, scene, settings, width, height);
@@ -214,9 +217,8 @@ int runRender(const std::vector<std::string>& argv, std::vector<vk::Ladder>* run
     }
     if (rungsThatRan) *rungsThatRan = ctx->consultedLadders();
     if (std::optional<std::string> graphFile = args.get("--graph")) {
-        std::ofstream file(*graphFile);
-        file << (std::filesystem::path(*graphFile).extension() == ".dot" ? frame.graphDot : frame.graphText);
-        if (!file) throw std::runtime_error(*graphFile + ": cannot write the graph dump");
+        core::writeFileAtomically(
+            *graphFile, std::filesystem::path(*graphFile).extension() == ".dot" ? frame.graphDot : frame.graphText);
     }
 
     if (args.has("--json")) {

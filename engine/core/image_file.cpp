@@ -1,11 +1,14 @@
-// image_file.cpp: OpenImageIO-backed image files.
+// image_file.cpp: OpenImageIO-backed image files; outputs are written atomically (core/atomic_file.hpp).
 #include "core/image_file.hpp"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+
+#include "core/atomic_file.hpp"
 
 namespace idk::core {
 
@@ -25,9 +28,13 @@ void writeImage(const std::filesystem::path& path, const ImageRgba32f& image) {
     if (image.pixels.size() != size_t(image.width) * image.height * 4) {
         throw std::invalid_argument(path.string() + ": pixel count does not match the image size");
     }
-    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+    // Encoded in memory, then written with checked writes: OpenImageIO's PNG writer does not report a failed
+    // write (a full disk, the file-size limit), so writing through it could publish a truncated file.
+    std::vector<unsigned char> encoded;
+    OIIO::Filesystem::IOVecOutput memory(encoded);
     auto out = OIIO::ImageOutput::create(path.string());
     if (!out) throw std::runtime_error(path.string() + ": cannot create image writer: " + OIIO::geterror());
+    if (!out->set_ioproxy(&memory)) throw std::runtime_error(path.string() + ": the image writer cannot write to memory");
     int w = static_cast<int>(image.width), h = static_cast<int>(image.height);
     bool ok;
     if (exr) {
@@ -42,9 +49,10 @@ void writeImage(const std::filesystem::path& path, const ImageRgba32f& image) {
         OIIO::ImageSpec spec(w, h, 4, OIIO::TypeDesc::UINT8);
         ok = out->open(path.string(), spec) && out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
     }
-    std::string error = ok ? "" : out->geterror();
-    out->close();
-    if (!ok) throw std::runtime_error(path.string() + ": " + error);
+    ok = out->close() && ok;  // close() finishes the encoding
+    if (!ok) throw std::runtime_error(path.string() + ": " + out->geterror());
+    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+    writeFileAtomically(path, std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()));
 }
 
 ImageRgba32f readImage(const std::filesystem::path& path) {

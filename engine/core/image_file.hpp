@@ -15,7 +15,8 @@ struct ImageRgba32f {
     std::vector<float> pixels;  // width * height * 4
 };
 
-// Writes .png (sRGB-encoded, clamped to [0,1]) or .exr (linear half-free float). Throws std::runtime_error naming
+// Writes .png (sRGB-encoded, clamped to [0,1]) or .exr (linear half-free float), atomically (core/atomic_file.hpp:
+// a failed or interrupted write leaves no file, or the older one, under `path`). Throws std::runtime_error naming
 // the path and OpenImageIO's message on failure or an unsupported extension.
 void writeImage(const std::filesystem::path& path, const ImageRgba32f& image);
 

@@ -223,6 +223,18 @@ vk::Image placeholder(vk::Context& ctx, VkFormat format, const void* texel, VkDe
 }  // namespace
 
 GpuScene::GpuScene(vk::Context& ctx, const scene::Scene& scene, GpuSceneContents contents) : ctx_(ctx) {
+    // A throw part-way (a buffer over the device's maxBufferSize, out of memory) skips the destructor: release
+    // what was already created here.
+    try {
+        create(scene, contents);
+    } catch (...) {
+        release();
+        throw;
+    }
+}
+
+void GpuScene::create(const scene::Scene& scene, GpuSceneContents contents) {
+    vk::Context& ctx = ctx_;
     TextureBindings b;
     if (!scene.meshes.empty()) {
         const uint8_t white[4] = {255, 255, 255, 255};
@@ -271,6 +283,10 @@ GpuScene::GpuScene(vk::Context& ctx, const scene::Scene& scene, GpuSceneContents
 }
 
 GpuScene::~GpuScene() {
+    release();
+}
+
+void GpuScene::release() {
     for (vk::Buffer* b :
          {&vertices_, &indices_, &meshes_, &instances_, &draws_, &materials_, &lights_, &colors_, &uv1_}) {
         if (*b) ctx_.destroyDeferred(*b);

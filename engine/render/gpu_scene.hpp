@@ -109,6 +109,8 @@ public:
     void clearMaterialsDirty() noexcept { materialsDirty_ = false; }
 
 private:
+    void create(const scene::Scene& scene, GpuSceneContents contents);
+    void release();  // every resource created so far (the destructor, and a constructor that throws)
     vk::Context& ctx_;
     GpuSceneData data_;
     vk::Image white_, flatNormal_;

@@ -52,9 +52,9 @@ GpuLambertScene uploadLambertScene(vk::Context& ctx, const LambertSceneData& dat
     g.vertices = upload(ctx, data.vertices, "lambert vertices");
     g.materials = upload(ctx, data.materials, "lambert materials");
     g.lights = upload(ctx, data.lights, "lambert lights");
-    g.vertexIndex = ctx.bindless().addBuffer(g.vertices.buffer);
-    g.materialIndex = ctx.bindless().addBuffer(g.materials.buffer);
-    g.lightIndex = ctx.bindless().addBuffer(g.lights.buffer);
+    g.vertexIndex = ctx.bindless().addBuffer(g.vertices.buffer, g.vertices.size, g.vertices.name);
+    g.materialIndex = ctx.bindless().addBuffer(g.materials.buffer, g.materials.size, g.materials.name);
+    g.lightIndex = ctx.bindless().addBuffer(g.lights.buffer, g.lights.size, g.lights.name);
     g.vertexCount = static_cast<uint32_t>(data.vertices.size());
     g.lightCount = static_cast<uint32_t>(data.lights.size());
     return g;

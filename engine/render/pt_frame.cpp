@@ -62,13 +62,13 @@ PtFrameResources createPtFrame(vk::Context& ctx, uint32_t width, uint32_t height
     f.albedoStorage = bindless.addStorage(f.albedoImage.view);
     f.normalStorage = bindless.addStorage(f.normalImage.view);
     f.depthStorage = bindless.addStorage(f.depthImage.view);
-    f.queueIndex[0] = bindless.addBuffer(f.queue[0].buffer);
-    f.queueIndex[1] = bindless.addBuffer(f.queue[1].buffer);
+    f.queueIndex[0] = bindless.addBuffer(f.queue[0].buffer, f.queue[0].size, f.queue[0].name);
+    f.queueIndex[1] = bindless.addBuffer(f.queue[1].buffer, f.queue[1].size, f.queue[1].name);
     if (sorting) {
         f.keys = makeBuffer(ctx, pixels * sizeof(uint32_t), "pt sort keys");
         f.sortScratch = makeBuffer(ctx, VkDeviceSize(radixSortScratchElements(uint32_t(pixels), true)) * 4, "pt sort scratch");
-        f.keysIndex = bindless.addBuffer(f.keys.buffer);
-        f.scratchIndex = bindless.addBuffer(f.sortScratch.buffer);
+        f.keysIndex = bindless.addBuffer(f.keys.buffer, f.keys.size, f.keys.name);
+        f.scratchIndex = bindless.addBuffer(f.sortScratch.buffer, f.sortScratch.size, f.sortScratch.name);
     }
     return f;
 }

@@ -168,16 +168,14 @@ TextureStreamer::Prepared TextureStreamer::prepare(uint32_t jobIndex) {
     p.job = jobIndex;
     const Job& job = jobs_[jobIndex];  // immutable fields only (label, image, srgb)
     try {
-        p.texture = job.image ? scene::decodeImage(scene_.images[*job.image], job.srgb, job.label)
-                              : scene::decodeImage(scene::Image{}, job.srgb, job.label);
-        const uint32_t maxSize = ctx_.info().limits.maxImageDimension2D;
-        if (p.texture.width > maxSize || p.texture.height > maxSize) {
-            const std::string cause = job.label + ": size " + std::to_string(p.texture.width) + "x" +
-                                      std::to_string(p.texture.height) + " exceeds the device limit " +
-                                      std::to_string(maxSize) + "; using the magenta placeholder";
-            p.texture = scene::placeholderTexture(job.srgb);
-            p.texture.warning = cause;
+        // The device's image size limit is checked against the declared size, before anything is decoded.
+        scene::ImageLimits limits;
+        if (ctx_.info().limits.maxImageDimension2D < limits.maxDimension) {
+            limits.maxDimension = ctx_.info().limits.maxImageDimension2D;
+            limits.dimensionLimit = "texel device limit (maxImageDimension2D)";
         }
+        p.texture = job.image ? scene::decodeImage(scene_.images[*job.image], job.srgb, job.label, limits)
+                              : scene::decodeImage(scene::Image{}, job.srgb, job.label, limits);
         vk::ImageDesc desc;
         desc.format = job.srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
         desc.extent = {p.texture.width, p.texture.height, 1};

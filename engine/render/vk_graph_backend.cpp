@@ -124,7 +124,7 @@ graph::PhysicalBuffer VkGraphBackend::createBuffer(const graph::BufferInfo& info
     address.buffer = b.buffer;
     b.address = vkGetBufferDeviceAddress(ctx_.device(), &address);
     ctx_.setName(b.buffer, VK_OBJECT_TYPE_BUFFER, std::string(debugName));
-    if (info.usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) b.storageIndex = ctx_.bindless().addBuffer(b.buffer).value;
+    if (info.usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) b.storageIndex = ctx_.bindless().addBuffer(b.buffer, info.size, std::string(debugName)).value;
     return b;
 }
 

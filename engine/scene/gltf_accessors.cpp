@@ -156,9 +156,11 @@ std::vector<float> readAnyFloats(const Ctx& ctx, int index, const std::string& u
     std::vector<float> out;
     if (acc.bufferView < 0) {
         if (acc.count > kMaxZeroAccessorCount) ctx.fail(what + ": count " + str(acc.count) + " is too large");
+        ctx.charge(uint64_t(acc.count) * n * sizeof(float), what);
         out.assign(acc.count * n, 0.0f);  // glTF: an accessor without bufferView is all zeros
     } else {
         const ByteRange range = checkedRange(ctx, acc.bufferView, acc.byteOffset, acc.count, elementSize, true, what);
+        ctx.charge(uint64_t(acc.count) * n * sizeof(float), what);
         out.resize(acc.count * n);
         for (size_t i = 0; i < acc.count; ++i) {
             const uint8_t* e = range.base + i * range.stride;
@@ -223,10 +225,12 @@ std::vector<uint32_t> readIndices(const Ctx& ctx, int index, const std::string& 
     }
     if (acc.bufferView < 0) {
         if (acc.count > kMaxZeroAccessorCount) ctx.fail(what + ": count " + str(acc.count) + " is too large");
+        ctx.charge(uint64_t(acc.count) * sizeof(uint32_t), what);
         return std::vector<uint32_t>(acc.count, 0u);
     }
     const size_t size = componentSize(ct);
     const ByteRange range = checkedRange(ctx, acc.bufferView, acc.byteOffset, acc.count, size, true, what);
+    ctx.charge(uint64_t(acc.count) * sizeof(uint32_t), what);
     std::vector<uint32_t> out(acc.count);
     for (size_t i = 0; i < acc.count; ++i) out[i] = decodeUint(range.base + i * range.stride, ct);
     return out;

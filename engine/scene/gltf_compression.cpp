@@ -69,6 +69,7 @@ void decodeMeshoptViews(const Ctx& ctx, tinygltf::Model& model) {
             ctx.fail(where + ": unknown filter '" + filter + "'");
         if (n > kMaxDecodedBytes / s) ctx.fail(where + ": " + str(n) + " x " + str(s) + " bytes is too large");
 
+        ctx.charge(uint64_t(n) * s, where);
         std::vector<unsigned char> out(n * s);
         const unsigned char* compressed = source.data() + offset;
         int rc = 0;
@@ -126,6 +127,7 @@ std::optional<DracoGeometry> decodeDraco(const Ctx& ctx, const tinygltf::Primiti
     if (out.vertexCount > kMaxDracoPoints) ctx.fail(what + ": " + str(out.vertexCount) + " points is too many");
     const size_t faces = mesh->num_faces();
     if (faces > kMaxDecodedBytes / 12) ctx.fail(what + ": " + str(faces) + " faces is too many");
+    ctx.charge(uint64_t(faces) * 12, what + " indices");
     out.indices.resize(faces * 3);
     for (draco::FaceIndex f(0); f < mesh->num_faces(); ++f)
         for (int k = 0; k < 3; ++k) out.indices[size_t(f.value()) * 3 + size_t(k)] = mesh->face(f)[k].value();
@@ -157,6 +159,7 @@ std::optional<DracoGeometry> decodeDraco(const Ctx& ctx, const tinygltf::Primiti
         }
         DecodedAttribute values;
         values.components = comps;
+        ctx.charge(uint64_t(out.vertexCount) * size_t(comps) * sizeof(float), what + " attribute " + name);
         values.values.resize(out.vertexCount * size_t(comps));
         for (draco::PointIndex p(0); p < mesh->num_points(); ++p) {
             const draco::AttributeValueIndex index = attr->mapped_index(p);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
 
 #include "scene/gltf_loader.hpp"
 #include "scene/scene.hpp"
@@ -19,14 +20,30 @@
 
 namespace idk::scene::gltf {
 
+// LoadOptions::maxMemoryBytes: what the load has committed so far, charged before each allocation.
+class MemoryBudget {
+public:
+    MemoryBudget(const std::filesystem::path& file, uint64_t limit) : file_(file), limit_(limit) {}
+    // Throws LoadError naming `what`, its size, what is already committed and the budget, when over.
+    void charge(uint64_t bytes, const std::string& what);
+    uint64_t used() const { return used_; }
+
+private:
+    const std::filesystem::path& file_;
+    uint64_t limit_ = 0;  // 0: none
+    uint64_t used_ = 0;
+};
+
 struct Ctx {
     const std::filesystem::path& file;
     const tinygltf::Model& model;
     Scene& scene;
     const LoadOptions& options;
+    MemoryBudget& budget;
 
     [[noreturn]] void fail(const std::string& cause) const { throw LoadError(file, cause); }
     void warn(const std::string& message) const;  // Scene::warnings + the engine log
+    void charge(uint64_t bytes, const std::string& what) const { budget.charge(bytes, what); }
 };
 
 inline std::string str(size_t v) {
@@ -35,6 +52,30 @@ inline std::string str(size_t v) {
 inline std::string str(int v) {
     return std::to_string(v);
 }
+
+// --- files (gltf_files.cpp) -------------------------------------------------------------------------------
+
+constexpr size_t kMaxFileBytes = size_t{0xFFFFFFFFu};  // tinygltf takes 32-bit sizes
+
+// The whole file, its size checked (and charged to `budget`, when given) before anything is allocated.
+std::vector<uint8_t> readWholeFile(const std::filesystem::path& path, MemoryBudget* budget = nullptr);
+
+// Every external buffer and image URI must stay inside the asset's folder (asset_uri.hpp): checked here, before
+// tinygltf reads a buffer or the image records are made, so a hostile URI is refused before any file is opened.
+// Data URIs are decoded by tinygltf: their decoded size (3/4 of the base64 text) is charged first.
+void checkUris(const std::filesystem::path& path, const nlohmann::json& json, const LoadOptions& options,
+               MemoryBudget& budget);
+
+// tinygltf's file system for external buffers. Defence in depth behind checkUris(): every path tinygltf
+// wants to open (it also searches the working directory, "./uri") is confined again, and nothing is expanded
+// or written.
+struct FileAccess {
+    std::filesystem::path folder;
+    std::string baseDir;  // what tinygltf joins URIs onto
+    bool allowExternal = false;
+    MemoryBudget* budget = nullptr;
+};
+tinygltf::FsCallbacks fileCallbacks(FileAccess& access);  // `access` must outlive the parse
 
 // --- accessors (gltf_accessors.cpp) -----------------------------------------------------------------------
 

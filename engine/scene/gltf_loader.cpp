@@ -1,18 +1,18 @@
 // gltf_loader.cpp: glTF 2.0 (.gltf/.glb) -> Scene through tinygltf, the entry points of the port of IDKEngine's
-// ModelLoader: the file and GLB container checks, a JSON pre-pass (nesting depth, required extensions, meshopt
-// fallback buffers), parsing, then the per-topic stages of gltf_*.cpp in order. Hostile input never crashes:
-// every index and byte range is checked before it is read (see gltf_loader.hpp for what is an error).
+// ModelLoader: the GLB container checks, a JSON pre-pass (nesting depth, required extensions, meshopt fallback
+// buffers, URI confinement from gltf_files.cpp), parsing, then the per-topic stages of gltf_*.cpp in order.
+// Hostile input never crashes: every index and byte range is checked before it is read (see gltf_loader.hpp).
 #include "scene/gltf_loader.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cstring>
-#include <fstream>
 #include <optional>
 #include <span>
 
 #include <nlohmann/json.hpp>
 
+#include "scene/asset_uri.hpp"
 #include "scene/gltf_internal.hpp"
 
 namespace idk::scene {
@@ -31,27 +31,12 @@ bool isSupportedExtension(const std::string& name) {
 
 namespace {
 
+using gltf::kMaxFileBytes;
 using gltf::str;
 
 constexpr uint32_t kGlbMagic = 0x46546C67;             // "glTF"
 constexpr uint32_t kGlbChunkJson = 0x4E4F534A;         // "JSON"
-constexpr size_t kMaxFileBytes = size_t{0xFFFFFFFFu};  // tinygltf takes 32-bit sizes
 constexpr int kMaxJsonDepth = 128;                     // glTF itself needs < 10; extras may nest a little
-
-std::vector<uint8_t> readWholeFile(const std::filesystem::path& path) {
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) throw LoadError(path, "file not found");
-    if (!std::filesystem::is_regular_file(path, ec)) throw LoadError(path, "not a regular file");
-    const auto size = std::filesystem::file_size(path, ec);
-    if (ec) throw LoadError(path, "cannot read file size: " + ec.message());
-    if (size > kMaxFileBytes) throw LoadError(path, "file larger than 4 GiB");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw LoadError(path, "cannot open file");
-    std::vector<uint8_t> bytes(static_cast<size_t>(size));
-    if (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size)))
-        throw LoadError(path, "cannot read file");
-    return bytes;
-}
 
 uint32_t readU32(std::span<const uint8_t> bytes, size_t offset) {
     uint32_t v = 0;
@@ -139,12 +124,13 @@ std::vector<uint8_t> withJson(std::span<const uint8_t> bytes, bool binary, std::
     return out;
 }
 
+
 // Checks the JSON text before any parser builds a tree from it: nesting deeper than kMaxJsonDepth is rejected
 // (tinygltf converts extras/extensions recursively, so a hostile file could overflow the stack), and a file that
 // requires an extension we do not implement is rejected by name. Returns rewritten file bytes when meshopt
 // fallback buffers or Draco index references had to be replaced for tinygltf (see below), else nothing.
 std::optional<std::vector<uint8_t>> precheckJson(const std::filesystem::path& path, std::span<const uint8_t> bytes,
-                                                 bool binary) {
+                                                 bool binary, const LoadOptions& options, gltf::MemoryBudget& budget) {
     const char* begin = reinterpret_cast<const char*>(bytes.data());
     size_t length = bytes.size();
     if (binary) {  // validateGlb() guarantees chunk 0 exists and fits
@@ -175,6 +161,7 @@ std::optional<std::vector<uint8_t>> precheckJson(const std::filesystem::path& pa
         for (const auto& ext : *it)
             if (ext.is_string() && !isSupportedExtension(ext.get<std::string>()))
                 throw LoadError(path, "requires unsupported extension " + ext.get<std::string>());
+    gltf::checkUris(path, json, options, budget);
     auto edited = json;
     const bool fallbacks = replaceFallbackBuffers(edited, binary);
     const bool draco = dropDracoIndices(edited);
@@ -198,7 +185,8 @@ std::string trimmed(std::string s) {
 }  // namespace
 
 Scene loadGltf(const std::filesystem::path& path, const LoadOptions& options) {
-    const std::vector<uint8_t> bytes = readWholeFile(path);
+    gltf::MemoryBudget fileBudget(path, options.maxMemoryBytes);
+    const std::vector<uint8_t> bytes = gltf::readWholeFile(path, &fileBudget);  // refused before reading when too large
     return loadGltfFromMemory(bytes, path, options);
 }
 
@@ -208,7 +196,9 @@ Scene loadGltfFromMemory(std::span<const uint8_t> bytes, const std::filesystem::
     if (bytes.size() > kMaxFileBytes) throw LoadError(path, "larger than 4 GiB");
     const bool binary = bytes.size() >= 4 && readU32(bytes, 0) == kGlbMagic;
     if (binary) validateGlb(path, bytes);
-    const std::optional<std::vector<uint8_t>> rewritten = precheckJson(path, bytes, binary);
+    gltf::MemoryBudget budget(path, options.maxMemoryBytes);
+    budget.charge(bytes.size(), "file " + path.filename().string());
+    const std::optional<std::vector<uint8_t>> rewritten = precheckJson(path, bytes, binary, options, budget);
     if (rewritten) bytes = std::span<const uint8_t>(*rewritten);
 
     tinygltf::TinyGLTF parser;
@@ -216,6 +206,8 @@ Scene loadGltfFromMemory(std::span<const uint8_t> bytes, const std::filesystem::
     tinygltf::Model model;
     std::string err, warn;
     const std::string baseDir = path.parent_path().string();
+    gltf::FileAccess access{assetFolder(path), baseDir, options.allowExternalUris, &budget};
+    parser.SetFsCallbacks(gltf::fileCallbacks(access));
     bool ok = false;
     try {
         if (binary)
@@ -223,6 +215,8 @@ Scene loadGltfFromMemory(std::span<const uint8_t> bytes, const std::filesystem::
         else
             ok = parser.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
                                             unsigned(bytes.size()), baseDir);
+    } catch (const LoadError&) {
+        throw;
     } catch (const std::exception& e) {
         throw LoadError(path, std::string("parse error: ") + e.what());
     }
@@ -231,7 +225,7 @@ Scene loadGltfFromMemory(std::span<const uint8_t> bytes, const std::filesystem::
 
     Scene scene;
     scene.sourcePath = path;
-    const gltf::Ctx ctx{path, model, scene, options};
+    const gltf::Ctx ctx{path, model, scene, options, budget};
     if (!warn.empty()) ctx.warn("tinygltf: " + trimmed(warn));
     for (const auto& ext : model.extensionsRequired)
         if (!isSupportedExtension(ext)) ctx.fail("requires unsupported extension " + ext);

@@ -35,13 +35,21 @@ bool isSupportedExtension(const std::string& name);
 
 struct LoadOptions {
     std::optional<uint32_t> scene;  // which glTF scene to place; empty: the file's `scene`, else scene 0
+    // External buffer and image URIs must resolve inside the asset's folder (see asset_uri.hpp); true lifts
+    // the rule for trusted content (`--allow-external-uris`).
+    bool allowExternalUris = false;
+    // Total bytes the load may allocate (`--max-memory`; 0: no budget): the file, external buffers, decoded data
+    // URIs, accessor data, meshopt/Draco output and the decoded size of every PNG/JPEG image (from its header),
+    // each charged before it is allocated. Going over is a LoadError naming the budget and the numbers.
+    uint64_t maxMemoryBytes = 0;
 };
 
 // Loads the file. Throws LoadError. Non-fatal problems (skipped point/line primitives, ignored attributes...)
 // are appended to Scene::warnings and logged as warnings.
 //
 // Bad input, decided per case:
-//   * LoadError (naming the file and the cause): malformed containers/JSON, any index or byte range out of
+//   * LoadError (naming the file and the cause): going over LoadOptions::maxMemoryBytes, an external buffer or image URI that is absolute or resolves
+//     outside the asset's folder (unless allowExternalUris; checked before any file is opened), malformed containers/JSON, any index or byte range out of
 //     range, attribute count mismatches, undecodable Draco/meshopt data, a skin with more than kMaxJoints
 //     joints, a joint index past its skin with a nonzero weight, non-finite inverse bind matrices, animation
 //     sampler/node indices out of range, input/output keyframe count mismatches, decreasing or non-finite

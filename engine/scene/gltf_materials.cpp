@@ -8,7 +8,9 @@
 #include <cstring>
 #include <fstream>
 
+#include "scene/asset_uri.hpp"
 #include "scene/gltf_internal.hpp"
+#include "scene/texture_decode.hpp"
 
 namespace idk::scene::gltf {
 
@@ -70,25 +72,6 @@ float finiteOr(double v, float fallback) {
     return std::isfinite(v) ? float(v) : fallback;
 }
 
-std::string percentDecode(const std::string& uri) {
-    auto hex = [](char c) -> int {
-        if (c >= '0' && c <= '9') return c - '0';
-        if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-        if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-        return -1;
-    };
-    std::string out;
-    for (size_t i = 0; i < uri.size(); ++i) {
-        if (uri[i] == '%' && i + 2 < uri.size() && hex(uri[i + 1]) >= 0 && hex(uri[i + 2]) >= 0) {
-            out += char(hex(uri[i + 1]) * 16 + hex(uri[i + 2]));
-            i += 2;
-        } else {
-            out += uri[i];
-        }
-    }
-    return out;
-}
-
 // Whether the first bytes are an image format a decoder can know (not a guarantee that it decodes).
 bool knownImageSignature(const uint8_t* b, size_t n) {
     auto starts = [&](std::initializer_list<uint8_t> sig) {
@@ -124,6 +107,25 @@ void checkImage(const Ctx& ctx, Image& img, size_t index) {
         ctx.warn(what + ": not a known image format; it will be drawn as the magenta placeholder");
 }
 
+// LoadOptions::maxMemoryBytes: a PNG/JPEG image is charged its decoded size (RGBA8 with mips) from the size
+// its header declares, so a scene whose images would not fit fails here, before any is decoded. Other formats
+// are not charged (their decoder still refuses sizes above the texel limit).
+void chargeDecodedSize(const Ctx& ctx, const Image& img, size_t index) {
+    if (ctx.options.maxMemoryBytes == 0 || img.status != ImageStatus::Ok) return;
+    std::vector<uint8_t> head;
+    if (!img.path.empty()) {
+        head.resize(size_t{1} << 20);  // a JPEG frame header may follow large EXIF/ICC segments
+        std::ifstream in(img.path, std::ios::binary);
+        in.read(reinterpret_cast<char*>(head.data()), std::streamsize(head.size()));
+        head.resize(size_t(in.gcount()));
+    }
+    const auto size = declaredImageSize(img.path.empty() ? img.encoded : head);
+    if (!size) return;
+    ctx.charge(decodedTextureBytes(size->width, size->height),
+               "image " + str(index) + " (" + std::to_string(size->width) + "x" + std::to_string(size->height) +
+                   " texels, decoded with mips)");
+}
+
 }  // namespace
 
 void loadTextures(const Ctx& ctx) {
@@ -143,13 +145,15 @@ void loadTextures(const Ctx& ctx) {
         } else if (!src.image.empty()) {
             img.encoded = src.image;  // a data URI, kept encoded by the image callback
         } else if (!src.uri.empty()) {
-            if (src.uri.rfind("data:", 0) == 0)
+            if (isDataUri(src.uri))
                 img.status = ImageStatus::UnknownFormat;  // a data URI tinygltf could not decode
             else
-                img.path = ctx.file.parent_path() / percentDecode(src.uri);
+                img.path = resolveAssetUri(ctx.file, src.uri, ctx.options.allowExternalUris, "image " + str(i));
         }
-        if (img.status == ImageStatus::Ok)
+        if (img.status == ImageStatus::Ok) {
             checkImage(ctx, img, i);
+            chargeDecodedSize(ctx, img, i);
+        }
         else
             ctx.warn("image " + str(i) + ": undecodable data URI; it will be drawn as the magenta placeholder");
         ctx.scene.images.push_back(std::move(img));

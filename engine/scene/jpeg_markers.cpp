@@ -43,4 +43,31 @@ std::vector<uint8_t> withoutJpegIccProfiles(const std::vector<uint8_t>& jpeg, si
     return out;
 }
 
+std::optional<DeclaredSize> jpegDeclaredSize(const std::vector<uint8_t>& jpeg) {
+    if (jpeg.size() < 4 || jpeg[0] != 0xFF || jpeg[1] != 0xD8) return std::nullopt;
+    size_t pos = 2;
+    while (pos + 4 <= jpeg.size() && jpeg[pos] == 0xFF) {
+        const uint8_t marker = jpeg[pos + 1];
+        if (marker == 0xFF) {
+            ++pos;
+            continue;
+        }
+        if (marker == 0xDA || marker == 0xD9) return std::nullopt;
+        if (marker == 0x01 || (marker >= 0xD0 && marker <= 0xD7)) {
+            pos += 2;
+            continue;
+        }
+        const size_t length = size_t(jpeg[pos + 2]) << 8 | jpeg[pos + 3];
+        if (length < 2 || pos + 2 + length > jpeg.size()) return std::nullopt;
+        // SOFn: C0..CF except C4 (DHT), C8 (JPG extension) and CC (DAC). Payload: precision, height, width.
+        const bool frame = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
+        if (frame && length >= 7) {
+            const uint8_t* p = jpeg.data() + pos + 4;
+            return DeclaredSize{uint32_t(p[3]) << 8 | p[4], uint32_t(p[1]) << 8 | p[2]};
+        }
+        pos += 2 + length;
+    }
+    return std::nullopt;
+}
+
 }  // namespace idk::scene

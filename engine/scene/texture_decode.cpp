@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
 #include <cctype>
 #include <cmath>
 #include <fstream>
@@ -71,6 +72,19 @@ std::string firstLine(std::string message) {
     if (auto nl = message.find('\n'); nl != std::string::npos) message.resize(nl);
     if (message.size() > 300) message = message.substr(0, 300) + "...";
     return message.empty() ? "no further detail" : message;
+}
+
+// Why a width x height image may not be decoded under `limits`, if it may not.
+std::optional<std::string> limitError(uint64_t width, uint64_t height, const ImageLimits& limits) {
+    if (width > limits.maxDimension || height > limits.maxDimension)
+        return "size " + std::to_string(width) + "x" + std::to_string(height) + " exceeds the " +
+               std::to_string(limits.maxDimension) + " " + limits.dimensionLimit + " (refused before decoding)";
+    const uint64_t bytes = decodedTextureBytes(uint32_t(width), uint32_t(height));
+    if (bytes > limits.maxDecodedBytes)
+        return "size " + std::to_string(width) + "x" + std::to_string(height) + " decodes to " +
+               std::to_string(bytes >> 20) + " MiB, more than the " + std::to_string(limits.maxDecodedBytes >> 20) +
+               " MiB memory budget (--max-memory; refused before decoding)";
+    return std::nullopt;
 }
 
 DecodedTexture failed(std::string_view label, const std::string& cause, bool srgb, bool reportedByLoader = false) {
@@ -211,6 +225,25 @@ std::string imageLabel(const Scene& scene, uint32_t imageIndex) {
     return "embedded image " + std::to_string(imageIndex) + named + " of " + (asset.empty() ? "<memory>" : asset);
 }
 
+std::optional<DeclaredSize> declaredImageSize(const std::vector<uint8_t>& b) {
+    static constexpr uint8_t kPng[8] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
+    if (b.size() >= 24 && std::equal(kPng, kPng + 8, b.begin()) && std::memcmp(b.data() + 12, "IHDR", 4) == 0) {
+        auto be32 = [&](size_t at) {
+            return uint32_t(b[at]) << 24 | uint32_t(b[at + 1]) << 16 | uint32_t(b[at + 2]) << 8 | b[at + 3];
+        };
+        return DeclaredSize{be32(16), be32(20)};
+    }
+    return jpegDeclaredSize(b);
+}
+
+uint64_t decodedTextureBytes(uint32_t width, uint32_t height) {
+    uint64_t total = 0;
+    for (uint64_t w = std::max(width, 1u), h = std::max(height, 1u);; w = std::max<uint64_t>(1, w / 2), h = std::max<uint64_t>(1, h / 2)) {
+        total += w * h * 4;
+        if (w == 1 && h == 1) return total;
+    }
+}
+
 DecodedTexture buildMipChain(std::vector<uint8_t> level0, uint32_t width, uint32_t height, bool srgb) {
     if (width == 0 || height == 0 || level0.size() != size_t(width) * height * 4)
         throw std::invalid_argument("buildMipChain: " + std::to_string(level0.size()) + " bytes for a " +
@@ -253,7 +286,7 @@ DecodedTexture placeholderTexture(bool srgb) {
 
 namespace {
 
-DecodedTexture decodeImageUnguarded(const Image& image, bool srgb, const std::string& label) {
+DecodedTexture decodeImageUnguarded(const Image& image, bool srgb, const std::string& label, const ImageLimits& limits) {
     if (image.status == ImageStatus::Missing) return failed(label, "file not found", srgb, true);
     if (image.status == ImageStatus::UnknownFormat) return failed(label, "not a known image format", srgb, true);
 
@@ -288,6 +321,14 @@ DecodedTexture decodeImageUnguarded(const Image& image, bool srgb, const std::st
     static constexpr uint8_t kPngSignature[8] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
     if (bytes->size() >= 8 && std::equal(kPngSignature, kPngSignature + 8, bytes->begin())) {
         if (auto error = pngStructureError(*bytes)) return failed(label, *error, srgb);
+        // IHDR (checked to be the first chunk): width and height, big-endian, at bytes 16..23.
+        auto be32 = [&](size_t at) {
+            return uint32_t((*bytes)[at]) << 24 | uint32_t((*bytes)[at + 1]) << 16 | uint32_t((*bytes)[at + 2]) << 8 |
+                   (*bytes)[at + 3];
+        };
+        if (auto error = limitError(be32(16), be32(20), limits)) return failed(label, *error, srgb);
+    } else if (const auto size = jpegDeclaredSize(*bytes)) {
+        if (auto error = limitError(size->width, size->height, limits)) return failed(label, *error, srgb);
     } else if (bytes->size() < 16) {
         return failed(label, "cannot decode " + std::to_string(bytes->size()) + " bytes", srgb);
     }
@@ -309,9 +350,7 @@ DecodedTexture decodeImageUnguarded(const Image& image, bool srgb, const std::st
     if (spec.width <= 0 || spec.height <= 0 || spec.depth > 1)
         return fail("unsupported image dimensions " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
                     "x" + std::to_string(spec.depth));
-    if (uint32_t(spec.width) > kMaxTextureSize || uint32_t(spec.height) > kMaxTextureSize)
-        return fail("size " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " exceeds the " +
-                    std::to_string(kMaxTextureSize) + " texel limit");
+    if (auto error = limitError(uint64_t(spec.width), uint64_t(spec.height), limits)) return fail(*error);
     if (spec.nchannels < 1 || spec.nchannels > 64) return fail(std::to_string(spec.nchannels) + " channels");
 
     const OIIO::TypeDesc base(OIIO::TypeDesc::BASETYPE(spec.format.basetype));
@@ -343,7 +382,7 @@ DecodedTexture decodeImageUnguarded(const Image& image, bool srgb, const std::st
 
 }  // namespace
 
-DecodedTexture decodeImage(const Image& image, bool srgb, std::string_view labelIn) {
+DecodedTexture decodeImage(const Image& image, bool srgb, std::string_view labelIn, const ImageLimits& limits) {
     std::string label(labelIn);
     if (label.empty())
         label = !image.path.empty() ? image.path.string()
@@ -351,7 +390,7 @@ DecodedTexture decodeImage(const Image& image, bool srgb, std::string_view label
     // OpenImageIO's readers may throw on hostile headers (its GIF reader throws std::length_error for a huge
     // logical screen: found by tests/fuzz/fuzz_image.cpp); the contract is a placeholder, never an exception.
     try {
-        return decodeImageUnguarded(image, srgb, label);
+        return decodeImageUnguarded(image, srgb, label, limits);
     } catch (const std::exception& e) {
         return failed(label, std::string("cannot decode: ") + e.what(), srgb);
     }

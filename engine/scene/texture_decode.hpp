@@ -6,16 +6,32 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "scene/jpeg_markers.hpp"
 #include "scene/scene.hpp"
 
 namespace idk::scene {
 
 // Images wider or taller than this are rejected (placeholder + warning), like undecodable ones.
 constexpr uint32_t kMaxTextureSize = 16384;
+
+// What one decode may allocate, checked against the size the file declares before anything is decoded (PNG
+// IHDR and JPEG frame headers are read by hand, before OpenImageIO sees the bytes; other formats from the header
+// OpenImageIO reads in open()). A refused image gives the placeholder and a warning naming the limit.
+struct ImageLimits {
+    uint32_t maxDimension = kMaxTextureSize;       // texels per axis
+    std::string dimensionLimit = "texel limit";     // names maxDimension in warnings (e.g. the device's limit)
+    uint64_t maxDecodedBytes = UINT64_MAX;          // RGBA8 texels with the full mip chain
+};
+// Bytes of a width x height RGBA8 texture with all its mips (what decodeImage allocates for the result).
+uint64_t decodedTextureBytes(uint32_t width, uint32_t height);
+// The size a PNG (IHDR) or JPEG (frame header) declares, read from the first bytes without decoding; empty for
+// other formats or damaged headers.
+std::optional<DeclaredSize> declaredImageSize(const std::vector<uint8_t>& bytes);
 // The placeholder: 4x4 RGBA8, texel (x, y) is magenta (255, 0, 255, 255) when x + y is even, else opaque black.
 constexpr uint32_t kPlaceholderSize = 4;
 
@@ -63,7 +79,8 @@ std::string imageLabel(const Scene& scene, uint32_t imageIndex);
 // file (a PNG's chunk list is walked before OpenImageIO sees it), 0 bytes, or a size above kMaxTextureSize give
 // the placeholder and `warning` naming `label` and the cause. Files are read into memory like embedded bytes. The
 // function does not log; the caller reports each image's warning once (unless reportedByLoader).
-DecodedTexture decodeImage(const Image& image, bool srgb, std::string_view label = {});
+DecodedTexture decodeImage(const Image& image, bool srgb, std::string_view label = {},
+                           const ImageLimits& limits = {});
 
 // Builds the mip chain over level-0 RGBA8 texels (width * height * 4 bytes; throws std::invalid_argument
 // otherwise). Each level is filtered from the previous 8-bit level with the exact area-weighted box: per axis,

@@ -9,6 +9,7 @@
 #include <system_error>
 #include <unistd.h>
 
+#include "core/atomic_file.hpp"
 #include "core/log.hpp"
 #include "tools/camera_controller.hpp"
 
@@ -167,23 +168,10 @@ Capture readCapture(const std::filesystem::path& path) {
 
 void writeCapture(const std::filesystem::path& path, const Capture& capture) {
     const std::vector<uint8_t> bytes = serializeCapture(capture);
-    std::filesystem::path temporary = path;
-    temporary += core::concat(".tmp", ::getpid());
-    {
-        std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-        if (file) file.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-        if (file) file.close();
-        if (!file) {
-            std::error_code ignored;
-            std::filesystem::remove(temporary, ignored);
-            throw CaptureError(path.string() + ": cannot write the capture file");
-        }
-    }
-    std::error_code error;
-    std::filesystem::rename(temporary, path, error);
-    if (error) {
-        std::filesystem::remove(temporary, error);
-        throw CaptureError(path.string() + ": cannot write the capture file (rename failed)");
+    try {
+        core::writeFileAtomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+    } catch (const std::runtime_error& e) {
+        throw CaptureError(std::string(e.what()) + " (cannot write the capture file)");
     }
 }
 

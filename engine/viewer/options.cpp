@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "app/scene_options.hpp"
 #include "core/cli.hpp"
 #include "vk/features.hpp"
 
@@ -28,15 +29,18 @@ const char* const kViewerHelp =
     "  --fallback        take the portable rung of every capability ladder\n"
     "  --rung L=R        force capability ladder L to rung R (repeatable; `idk info` lists them)\n"
     "  --memory-log F    every 100 frames, one JSON line of host RSS and device memory by category (soak runs)\n"
+    "  --allow-external-uris  let buffer and image URIs point outside the scene's folder (trusted content only)\n"
+    "  --max-memory SIZE refuse a scene whose loading would allocate more than SIZE (e.g. 2G) before allocating\n"
     "controls: W/A/S/D move, Space up, Shift faster, E GUI/FPS mode, T pause time, right-click select (GUI) or\n"
     "  shoot a light (FPS), Ctrl+R record, Ctrl+Space replay, G hide GUI, V vsync, F11 fullscreen, 1 recompile\n"
     "  shaders, Esc exit. Without a display use `idk render SCENE --out F.png`.\n";
 
 ViewerOptions parseViewerOptions(const std::vector<std::string>& argv) {
     core::CliArgs args = core::parseCli(
-        argv, {{"--no-ui", "--watch", "--no-vsync", "--sync-textures", "--no-validation", "--fallback", "--help"},
-               {"--size", "--frames", "--screenshot", "--script", "--shader-dir", "--capture", "--fixed-dt", "--rung",
-                "--memory-log"}});
+        argv, app::withSceneOptions(
+                  {{"--no-ui", "--watch", "--no-vsync", "--sync-textures", "--no-validation", "--fallback", "--help"},
+                   {"--size", "--frames", "--screenshot", "--script", "--shader-dir", "--capture", "--fixed-dt", "--rung",
+                    "--memory-log"}}));
     ViewerOptions o;
     o.help = args.has("--help");
     if (args.positional.size() > 1) throw core::CliError("more than one scene given");
@@ -78,6 +82,7 @@ ViewerOptions parseViewerOptions(const std::vector<std::string>& argv) {
         }
         o.rungs.push_back(spec);
     }
+    o.load = app::loadOptionsFromCli(args);
     return o;
 }
 

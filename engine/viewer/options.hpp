@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "scene/gltf_loader.hpp"
+
 namespace idk::viewer {
 
 extern const char* const kViewerHelp;
@@ -29,6 +31,7 @@ struct ViewerOptions {
     bool fallback = false;
     std::vector<std::string> rungs;                   // --rung LADDER=RUNG (repeatable), checked by parseViewerOptions
     bool help = false;
+    scene::LoadOptions load;                          // --allow-external-uris, --max-memory (app/scene_options.hpp)
 };
 
 // Throws core::CliError naming the option.

@@ -27,7 +27,7 @@ Viewer::Viewer(const ViewerOptions& opts) : options(opts) {
     window = std::make_unique<Window>(options.width, options.height, "idk-viewer");
     std::vector<ScriptEvent> script;
     if (options.script) script = parseInputScript(*options.script);
-    scene = options.scene ? scene::loadGltf(*options.scene) : app::loadDefaultScene();
+    scene = options.scene ? scene::loadGltf(*options.scene, options.load) : app::loadDefaultScene();
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "idk-viewer: warning: %s\n", w.c_str());
 
     createDevice();

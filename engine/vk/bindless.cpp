@@ -154,6 +154,14 @@ SamplerIndex BindlessTable::addSampler(const SamplerDesc& desc) {
     return {i};
 }
 
+StorageBufferIndex BindlessTable::addBuffer(VkBuffer buffer, VkDeviceSize size, const std::string& name) {
+    const uint32_t limit = context_.info().limits.maxStorageBufferRange;
+    if (size > limit)
+        throw DeviceLimitError("storage buffer '" + name + "' needs " + std::to_string(size) +
+                               " bytes, more than the device's maxStorageBufferRange (" + std::to_string(limit) + ")");
+    return addBuffer(buffer, 0, VK_WHOLE_SIZE);
+}
+
 StorageBufferIndex BindlessTable::addBuffer(VkBuffer buffer, VkDeviceSize offset, VkDeviceSize range) {
     uint32_t i = acquire(gpu::kBindingStorageBuffers);
     VkDescriptorBufferInfo info{buffer, offset, range};

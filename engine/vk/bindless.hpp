@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <mutex>
+#include <string>
 #include <vector>
 
 namespace idk::vk {
@@ -41,6 +42,10 @@ public:
     StorageImageIndex addStorage(VkImageView view);
     SamplerIndex addSampler(const SamplerDesc& desc);  // the sampler object is owned by the table
     StorageBufferIndex addBuffer(VkBuffer buffer, VkDeviceSize offset = 0, VkDeviceSize range = VK_WHOLE_SIZE);
+    // The whole buffer as one storage-buffer descriptor: `size` above the device's maxStorageBufferRange throws
+    // DeviceLimitError naming `name` (a descriptor range over the limit is a validation error; buffer device
+    // address access has no such limit).
+    StorageBufferIndex addBuffer(VkBuffer buffer, VkDeviceSize size, const std::string& name);
 
     void release(SampledIndex index);
     void release(StorageImageIndex index);

@@ -331,6 +331,11 @@ void Context::createDevice() {
     info_.driverVersion = props.properties.driverVersion;
     info_.type = props.properties.deviceType;
     info_.limits = props.properties.limits;
+    info_.maxBufferSize = p13.maxBufferSize;
+    const DeviceLimitOverrides& o = desc_.limitOverrides;
+    if (o.maxImageDimension2D) info_.limits.maxImageDimension2D = *o.maxImageDimension2D;
+    if (o.maxStorageBufferRange) info_.limits.maxStorageBufferRange = *o.maxStorageBufferRange;
+    if (o.maxBufferSize) info_.maxBufferSize = *o.maxBufferSize;
     info_.timestampPeriodNs = props.properties.limits.timestampPeriod;
     info_.maxSampledImagesUpdateAfterBind = std::min(p12.maxDescriptorSetUpdateAfterBindSampledImages,
                                                      p12.maxPerStageDescriptorUpdateAfterBindSampledImages);
@@ -519,6 +524,10 @@ void Context::setName(VkObjectType type, uint64_t handle, const std::string& nam
 
 Buffer Context::createBuffer(const BufferDesc& desc) {
     if (desc.size == 0) throw std::invalid_argument("createBuffer '" + desc.name + "': size is zero");
+    if (desc.size > info_.maxBufferSize)
+        throw DeviceLimitError("buffer '" + desc.name + "' needs " + std::to_string(desc.size) +
+                               " bytes, more than the device's maxBufferSize (" + std::to_string(info_.maxBufferSize) +
+                               "); the scene or the settings are too large for this device");
     Buffer b;
     b.size = desc.size;
     b.name = desc.name;
@@ -549,6 +558,13 @@ Buffer Context::createBuffer(const BufferDesc& desc) {
 }
 
 Image Context::createImage(const ImageDesc& desc) {
+    const bool volume = desc.type == VK_IMAGE_TYPE_3D;
+    const uint32_t maxSize = volume ? info_.limits.maxImageDimension3D : info_.limits.maxImageDimension2D;
+    if (std::max({desc.extent.width, desc.extent.height, volume ? desc.extent.depth : 1u}) > maxSize)
+        throw DeviceLimitError("image '" + desc.name + "' (" + std::to_string(desc.extent.width) + "x" +
+                               std::to_string(desc.extent.height) + (volume ? "x" + std::to_string(desc.extent.depth) : "") +
+                               ") exceeds the device's " + (volume ? "maxImageDimension3D" : "maxImageDimension2D") + " (" +
+                               std::to_string(maxSize) + ")");
     Image img;
     img.format = desc.format;
     img.type = desc.type;

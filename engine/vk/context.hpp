@@ -10,7 +10,9 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -23,6 +25,21 @@ namespace idk::vk {
 
 class BindlessTable;
 
+// Test-only: the device pretends to have these smaller limits, so tests of the "too large for the device" errors
+// stay small (a 4 KiB buffer instead of a 128 MiB scene).
+struct DeviceLimitOverrides {
+    std::optional<uint32_t> maxImageDimension2D;
+    std::optional<uint32_t> maxStorageBufferRange;
+    std::optional<VkDeviceSize> maxBufferSize;
+};
+
+// A resource larger than a device limit allows: the message names the resource, its size and the limit (instead
+// of the validation error or driver failure creating it would give).
+class DeviceLimitError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
 struct ContextDesc {
     bool validation = IDK_DEFAULT_VALIDATION;          // messenger counts errors; GPU tests assert zero
     bool syncValidation = IDK_DEFAULT_SYNC_VALIDATION;  // VkValidationFeaturesEXT synchronization checks
@@ -32,6 +49,7 @@ struct ContextDesc {
     std::vector<const char*> instanceExtensions;        // window-system extensions; empty = headless
     bool presentation = false;                          // require VK_KHR_swapchain
     std::string deviceNameFilter;                       // substring; also env IDK_DEVICE
+    DeviceLimitOverrides limitOverrides;                // tests only
 };
 
 // Counts and keeps the validation layer's messages.
@@ -50,6 +68,7 @@ struct DeviceInfo {
     uint32_t driverVersion = 0;
     VkPhysicalDeviceType type = VK_PHYSICAL_DEVICE_TYPE_OTHER;
     VkPhysicalDeviceLimits limits{};
+    VkDeviceSize maxBufferSize = 0;  // Vulkan 1.3 (maintenance4): the largest VkBuffer
     uint32_t maxSampledImagesUpdateAfterBind = 0;
     uint32_t maxStorageImagesUpdateAfterBind = 0;
     uint32_t maxStorageBuffersUpdateAfterBind = 0;

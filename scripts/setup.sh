@@ -13,6 +13,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   ffmpeg xvfb xauth
   python3-matplotlib
+  slurm-wlm munge
 )
 BACKPORT_PACKAGES=(mesa-vulkan-drivers libgl1-mesa-dri libegl-mesa0 libglx-mesa0 libglapi-mesa libgbm1)
 

@@ -188,6 +188,7 @@ int submit(const core::CliArgs& args, const std::vector<std::string>& render) {
     if (!pending.empty()) {
         std::vector<std::string> options = common;
         options.push_back("--array=" + list);
+        options.push_back("--requeue");  // Slurm's own requeue after a node failure; attempts/ still bounds the runs
         options.push_back("--output=" + (job.dir / "logs" / "task_%a.log").string());
         const std::string array = sbatch(job, options, "exec " + self + "task " + quote(job.dir.string()));
         std::printf("submitted job array %s (%zu task(s))\n", array.c_str(), pending.size());

@@ -40,7 +40,9 @@ const char* const kFarmHelp =
     "  --sbatch-arg X extra sbatch argument for every job (repeatable, e.g. --sbatch-arg=--partition=gpu)\n"
     "  -- ...         the rest goes to every `idk render` (scene, --size, --seed, --pathtrace options, --crf, ...);\n"
     "                 use --crf 0 for videos whose decoded frames equal one machine's render (lossless chunks)\n"
-    "A rerun submits only the chunks whose outputs are missing or invalid (ffprobe frame count; EXR size and counts).\n";
+    "A rerun submits only the chunks whose outputs are missing or invalid (ffprobe frame count; EXR size and counts).\n"
+    "Exit codes: 0 = done (status: the job is complete), 1 = an error or a failed chunk (named), 2 = a usage error,\n"
+    "3 = status of a job that is not complete yet.\n";
 
 namespace {
 

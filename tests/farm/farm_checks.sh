@@ -4,7 +4,8 @@
 #   local_still  `idk farm submit --still --local`: the merged still equals the manual merge of the same parts
 #   local_video  `idk farm submit --local -j 2`: a 30-frame replay in 3 chunks decodes to the frames of one render;
 #                a lost chunk is the only one the rerun renders; a failing chunk stops after --max-attempts
-#   slurm        the same video on a single-node Slurm cluster started here (tests/farm/slurm_cluster.sh)
+#   slurm        the same video on a single-node Slurm cluster started here (tests/farm/slurm_cluster.sh); one
+#                task is killed with scancel, and the rerun renders only its chunk
 set -u
 idk="$1"
 case_name="$2"
@@ -132,20 +133,26 @@ case "$case_name" in
     }
     "$idk" farm submit "$tmp/job" --replay "$tmp/cap.idkcap" --video "$tmp/farm.mp4" --chunks 3 --size 64x64 \
       -- --crf 0 >"$tmp/log" 2>&1 || fail "farm submit failed: $(cat "$tmp/log")"
-    grep -q "submitted job array" "$tmp/log" || fail "no job array: $(cat "$tmp/log")"
+    array=$(sed -n 's/^submitted job array \([0-9]*\) (3 task(s))$/\1/p' "$tmp/log")
+    [ -n "$array" ] || fail "no 3-task job array: $(cat "$tmp/log")"
+    # Kill chunk 1's task at once (pending or starting: a task needs seconds): the finish job's afterok can no
+    # longer hold, so Slurm drops it (--kill-on-invalid-dep) and no video is written.
+    scancel "${array}_1" || fail "scancel ${array}_1 failed"
     wait_done || fail "Slurm jobs still queued after 120 s: $(squeue)"
-    [ "$(nframes "$tmp/farm.mp4")" = 30 ] || fail "no 30-frame video: $(cat "$tmp/job"/logs/*)"
-    cmp -s <(framemd5 "$tmp/single.mp4" | awk -F, '{print $NF}') <(framemd5 "$tmp/farm.mp4" | awk -F, '{print $NF}') \
-      || fail "decoded frames differ from the single render"
-    grep -q "slurm job" "$tmp/job/attempts/001" || fail "chunk 1 did not run as a Slurm task"
-    # Kill chunk 1's task's output (a killed task leaves none): the rerun submits an array of that chunk only.
-    rm "$tmp/job/chunk_001.mp4" "$tmp/farm.mp4"
+    [ -e "$tmp/farm.mp4" ] && fail "a video was written although chunk 1 was killed"
+    [ -e "$tmp/job/chunk_001.mp4" ] && fail "the killed task left a chunk"
+    "$idk" farm status "$tmp/job" >"$tmp/status"; [ $? -eq 3 ] || fail "status: $(cat "$tmp/status")"
+    grep -q "3 chunks: 2 done, 1 pending, 0 failed" "$tmp/status" || fail "status: $(cat "$tmp/status")"
+    # The rerun submits an array of chunk 1 alone; the other chunks are not rendered again.
     "$idk" farm submit "$tmp/job" >"$tmp/log" 2>&1 || fail "rerun failed: $(cat "$tmp/log")"
     grep -q "chunks to run: 1$" "$tmp/log" && grep -q "(1 task(s))" "$tmp/log" || fail "rerun: $(cat "$tmp/log")"
     wait_done || fail "rerun still queued after 120 s"
-    [ "$(nframes "$tmp/farm.mp4")" = 30 ] || fail "the rerun did not rebuild the video: $(cat "$tmp/job"/logs/*)"
-    [ "$(wc -l <"$tmp/job/attempts/000")" = 1 ] && [ "$(wc -l <"$tmp/job/attempts/001")" = 2 ] \
-      || fail "attempt counts: $(wc -l "$tmp"/job/attempts/*)"
+    [ "$(nframes "$tmp/farm.mp4")" = 30 ] || fail "no 30-frame video: $(cat "$tmp/job"/logs/*)"
+    cmp -s <(framemd5 "$tmp/single.mp4" | awk -F, '{print $NF}') <(framemd5 "$tmp/farm.mp4" | awk -F, '{print $NF}') \
+      || fail "decoded frames differ from the single render"
+    [ "$(wc -l <"$tmp/job/attempts/000")" = 1 ] && [ "$(wc -l <"$tmp/job/attempts/002")" = 1 ] \
+      || fail "chunks 0 or 2 ran again: $(wc -l "$tmp"/job/attempts/*)"
+    grep -q "slurm job" "$tmp/job/attempts/001" || fail "chunk 1 did not run as a Slurm task"
     "$idk" farm status "$tmp/job" >"$tmp/status" || fail "status: $(cat "$tmp/status")"
     ;;
   *)

@@ -154,6 +154,13 @@ case "$case_name" in
       || fail "chunks 0 or 2 ran again: $(wc -l "$tmp"/job/attempts/*)"
     grep -q "slurm job" "$tmp/job/attempts/001" || fail "chunk 1 did not run as a Slurm task"
     "$idk" farm status "$tmp/job" >"$tmp/status" || fail "status: $(cat "$tmp/status")"
+    # A path-traced still as a 2-task array: the merge of samples 0:4 and 4:8 matches one 8-spp render.
+    "$idk" farm submit "$tmp/still" --still --spp 8 --chunks 2 --out "$tmp/still.exr" --size 24x24 \
+      -- --max-depth 4 --seed 7 >"$tmp/log" 2>&1 || fail "still submit failed: $(cat "$tmp/log")"
+    "$idk" render "${pt[@]}" --pathtrace --spp 8 --out "$tmp/single.exr" 2>/dev/null || fail "single still failed"
+    wait_done || fail "still jobs still queued after 120 s"
+    idiff -a -fail 0 -failrelative 1e-6 "$tmp/still.exr" "$tmp/single.exr" >"$tmp/idiff" \
+      || fail "Slurm still vs one render: $(cat "$tmp/idiff" "$tmp"/still/logs/*)"
     ;;
   *)
     fail "unknown case"

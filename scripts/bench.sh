@@ -37,4 +37,13 @@ fi
 if [ "${IDK_BENCH_SOAK:-1}" != 0 ]; then
   bash scripts/soak.sh "$build"
 fi
+# Issue 18's render farm: a 300-frame replay on 1, 2, 4 Slurm tasks of a throwaway single-node cluster (about 3
+# minutes). It needs root, slurm-wlm and munge; IDK_BENCH_FARM=0 skips it and keeps the last farm_section.md.
+if [ "${IDK_BENCH_FARM:-1}" != 0 ]; then
+  if [ "$(id -u)" = 0 ] && command -v slurmctld >/dev/null; then
+    bash scripts/bench_farm.sh "$build"
+  else
+    echo "bench.sh: skipping the render-farm benchmark (needs root and slurm-wlm; scripts/setup.sh installs it)" >&2
+  fi
+fi
 python3 scripts/bench_report.py --compact bench/results/latest.json BENCHMARKS.md

@@ -581,6 +581,15 @@ def soak_section(results_dir):
         return soak_summary.section(json.load(f))
 
 
+def farm_section(results_dir):
+    """The render-farm section scripts/bench_farm.sh wrote (bench/results/farm_section.md), if any."""
+    path = os.path.join(results_dir, "farm_section.md")
+    if not os.path.exists(path):
+        return []
+    with open(path) as f:
+        return f.read().rstrip().splitlines() + [""]
+
+
 def main(argv):
     args = [a for a in argv[1:] if not a.startswith("--")]
     if len(args) != 2:
@@ -605,6 +614,7 @@ def main(argv):
             lines += [f"## {group[0].upper() + group[1:]}", ""] + table(groups[group]) + [""]
     lines += pathtrace_section(os.path.dirname(os.path.abspath(results_path)))
     lines += soak_section(os.path.dirname(os.path.abspath(results_path)))
+    lines += farm_section(os.path.dirname(os.path.abspath(results_path)))
     with open(out_path, "w") as f:
         f.write("\n".join(lines).rstrip() + "\n")
     print(f"bench_report.py: wrote {out_path} ({sum(len(r) for r in groups.values())} rows)")

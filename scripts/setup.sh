@@ -14,6 +14,7 @@ PACKAGES=(
   ffmpeg xvfb xauth
   python3-matplotlib
   clang libclang-rt-14-dev
+  slurm-wlm munge
 )
 BACKPORT_PACKAGES=(mesa-vulkan-drivers libgl1-mesa-dri libegl-mesa0 libglx-mesa0 libglapi-mesa libgbm1)
 

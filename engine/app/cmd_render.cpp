@@ -71,6 +71,8 @@ const char* const kRenderHelp =
     "  --video OUT.mp4  encode the frames with ffmpeg (H.264, yuv420p, the capture's frame rate); odd sizes are\n"
     "                   padded to even with a black column/row; on any error no video is left behind\n"
     "  --frames a:b     only frames a..b-1 (counted from 0; 'a:' to the end), to split a long video across machines\n"
+    "  --crf N          libx264 constant rate factor of --video (default 22; 0 = lossless: decoded frames then\n"
+    "                   do not depend on how a video was split into chunks, see `idk farm`)\n"
     "  --pathtrace      path-trace every frame (--spp, --seed, --denoise, ... as below): frame i equals the still\n"
     "                   `--pathtrace --time T --camera eye=...:target=...` of record i with the same --seed;\n"
     "                   --out F.exr|F.png also writes F_0000.exr, ... per frame (with or without --video)\n"
@@ -126,7 +128,7 @@ int runRender(const std::vector<std::string>& argv, std::vector<vk::Ladder>* run
                                    "--env-intensity", "--time", "--animation", "--replay", "--video", "--frames",
                                    "--spp", "--max-depth", "--seed", "--light-sampling", "--sort", "--traversal",
                                    "--camera", "--orbit", "--camera-index", "--orbit-frames", "--background", "--fps",
-                                   "--rung"}}));
+                                   "--rung", "--sample-range", "--crf"}}));
     if (args.has("--help")) {
         std::fputs(kRenderHelp, stdout);
         std::fputs(kSceneOptionsHelp, stdout);
@@ -178,6 +180,8 @@ int runRender(const std::vector<std::string>& argv, std::vector<vk::Ladder>* run
     scene::Scene scene = args.positional.empty() ? loadDefaultScene() : scene::loadGltf(args.positional[0], loadOptionsFromCli(args));
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "idk render: warning: %s\n", w.c_str());
     posePerOptions(args, scene);
+    if (args.get("--sample-range") && (replay || orbitVideo || !args.has("--pathtrace")))
+        throw core::CliError("--sample-range a:b: only for a path-traced still (--pathtrace --out F.exr)");
     if (replay) return runRenderReplay(args, scene, settings, width, height);
     const std::vector<scene::CameraView> views = camerasFromCli(args, scene);  // usage errors before Vulkan too
     if (args.has("--pathtrace")) return runRenderPathTrace(args, scene, settings, width, height, views, fps);
@@ -192,7 +196,7 @@ int runRender(const std::vector<std::string>& argv, std::vector<vk::Ladder>* run
         render::SceneTextureStream textures(*ctx, renderer, scene);
         textures.finishSynchronously();  // a single image wants every texture, not placeholders
         std::optional<tools::VideoWriter> video;
-        if (orbitVideo) video.emplace(*args.get("--video"), width, height, tools::VideoOptions{.fps = fps});
+        if (orbitVideo) video.emplace(*args.get("--video"), width, height, videoOptionsFromCli(args, fps));
         for (size_t k = 0; k < views.size(); ++k) {
             frame = renderer.renderOffscreen(views[k], width, height);
             if (video) {

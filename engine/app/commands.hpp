@@ -14,10 +14,14 @@ int runRender(const std::vector<std::string>& args);
 int runRender(const std::vector<std::string>& args, std::vector<vk::Ladder>* rungsThatRan);
 int runBvh(const std::vector<std::string>& args);
 int runCompare(const std::vector<std::string>& args);
+int runMerge(const std::vector<std::string>& args);
+int runFarm(const std::vector<std::string>& args);
 
 extern const char* const kInfoHelp;
 extern const char* const kRenderHelp;
 extern const char* const kBvhHelp;
 extern const char* const kCompareHelp;
+extern const char* const kMergeHelp;
+extern const char* const kFarmHelp;
 
 }  // namespace idk::app

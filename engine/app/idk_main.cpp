@@ -22,6 +22,8 @@ const char* const kHelp =
     "  render   render a glTF scene (or the embedded Cornell box) to a PNG or EXR image\n"
     "  bvh      build the BVH of a scene and print its statistics (SAH, EPO, depth, stack, build time)\n"
     "  compare  error metrics of an image against a reference (RMSE, relative MSE, PSNR, FLIP) and CI gates\n"
+    "  merge    combine path-traced sample ranges (render --sample-range) into one image\n"
+    "  farm     split a replay video or a path-traced still into chunks: Slurm job arrays or local processes\n"
     "  help     this text; `idk <command> --help` describes one command\n";
 
 }  // namespace
@@ -39,6 +41,8 @@ int main(int argc, char** argv) {
         if (command == "render") return idk::app::runRender(rest);
         if (command == "bvh") return idk::app::runBvh(rest);
         if (command == "compare") return idk::app::runCompare(rest);
+        if (command == "merge") return idk::app::runMerge(rest);
+        if (command == "farm") return idk::app::runFarm(rest);
         std::fprintf(stderr, "idk: unknown command '%s' (see `idk help`)\n", command.c_str());
         return 2;
     } catch (const idk::core::CliError& e) {

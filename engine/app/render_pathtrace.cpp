@@ -37,6 +37,8 @@ const char* const kPathTraceHelp =
     "                   GPU that has it; our BVH with --fallback and on CPU devices such as lavapipe, whose ray query\n"
     "                   is far slower); bvh (8-wide compressed nodes) / rayquery force the rung (as --rung\n"
     "                   ray-traversal=fallback|native); bvh2: the portable rung with the binary walk (same hits)\n"
+    "  --sample-range a:b  render only sample indices a..b-1 of the --seed's sequence and write the raw accumulation\n"
+    "                   to --out F.exr (RGB = radiance sum, A = sample count) for `idk merge` (render farms)\n"
     "  --denoise        also run the edge-aware denoiser (albedo/normal/depth guided) and write its output\n"
     "  --camera, --orbit, --camera-index, --environment, --env-intensity, --exposure (.png only), --size, --json,\n"
     "  --no-validation, --fallback, --rung as above; --json adds the camera and the rungs that ran\n";
@@ -62,6 +64,13 @@ std::string oneOf(const core::CliArgs& args, const char* flag, const char* fallb
 }
 
 }  // namespace
+
+tools::VideoOptions videoOptionsFromCli(const core::CliArgs& args, double fps) {
+    tools::VideoOptions o{.fps = fps};
+    o.crf = int(parseCount(args, "--crf", "22", 0));
+    if (o.crf > 51) throw core::CliError("--crf '" + *args.get("--crf") + "': give 0..51");
+    return o;
+}
 
 void drawProgressBar(uint64_t done, uint64_t total, const char* unit) {
     constexpr int kWidth = 40;
@@ -113,6 +122,23 @@ PathTraceCli pathTraceFromCli(const core::CliArgs& args, const render::RenderSet
     p.options.traversal = traversal == "bvh2" ? render::PtTraversal::Bvh2 : render::PtTraversal::Auto;
     p.options.sortRays = sort == "on";
     p.options.denoise = args.has("--denoise");
+    if (std::optional<std::string> range = args.get("--sample-range")) {
+        const size_t colon = range->find(':');
+        const std::string a = colon == std::string::npos ? "" : range->substr(0, colon);
+        const std::string b = colon == std::string::npos ? "" : range->substr(colon + 1);
+        auto whole = [&](const std::string& t) {
+            if (t.empty() || t.size() > 9 || t.find_first_not_of("0123456789") != std::string::npos)
+                throw core::CliError("--sample-range '" + *range + "': give a:b, sample indices a <= i < b");
+            return uint32_t(std::stoul(t));
+        };
+        const uint32_t first = whole(a), end = whole(b);
+        if (end <= first) throw core::CliError("--sample-range '" + *range + "': b must be greater than a");
+        if (args.get("--spp")) throw core::CliError("--sample-range a:b sets the sample count: drop --spp");
+        if (p.options.denoise) throw core::CliError("--sample-range writes raw sums: drop --denoise (denoise after idk merge)");
+        p.settings.firstSample = first;
+        p.settings.spp = end - first;
+        p.options.readSum = true;
+    }
     p.options.environment = settings.environment;
     p.options.environmentIntensity = settings.environmentIntensity;
     return p;
@@ -132,12 +158,18 @@ int runRenderPathTrace(const core::CliArgs& args, const scene::Scene& scene, con
     {
         render::PathTracer tracer(*ctx, shaders, scene, options);
         std::optional<tools::VideoWriter> writer;
-        if (video) writer.emplace(*video, width, height, tools::VideoOptions{.fps = fps});
+        if (video) writer.emplace(*video, width, height, videoOptionsFromCli(args, fps));
+        if (options.readSum && (video || views.size() != 1 || std::filesystem::path(out).extension() != ".exr"))
+            throw core::CliError("--sample-range a:b writes one raw accumulation: a single view and --out F.exr");
         const bool terminal = isatty(fileno(stderr)) != 0;
         auto progress = [](uint32_t done, uint32_t total) { drawProgressBar(done, total, "spp"); };
         for (size_t k = 0; k < views.size(); ++k) {
             result = tracer.render(views[k], width, height, pt,
                                    terminal ? render::PathTracer::Progress(progress) : render::PathTracer::Progress());
+            if (options.readSum) {
+                core::writeImage(out, result.sum);
+                continue;
+            }
             const core::ImageRgba32f& image = options.denoise && result.didDenoise ? result.denoised : result.image;
             if (writer) {
                 writer->addFrame(displayBytes(image, settings.exposure));

@@ -10,6 +10,7 @@
 #include "render/renderer.hpp"
 #include "vk/context.hpp"
 #include "scene/scene.hpp"
+#include "tools/video_writer.hpp"
 
 namespace idk::app {
 
@@ -35,6 +36,9 @@ PathTraceCli pathTraceFromCli(const core::CliArgs& args, const render::RenderSet
 core::ImageRgba32f displayImage(core::ImageRgba32f image, float exposure);
 // RGBA8 sRGB bytes of displayImage(image) for the video writer (alpha 255).
 std::vector<uint8_t> displayBytes(const core::ImageRgba32f& image, float exposure);
+
+// --crf N (default 22, 0 = lossless) and the frame rate as the video writer's options.
+tools::VideoOptions videoOptionsFromCli(const core::CliArgs& args, double fps);
 
 // A progress bar on stderr when it is a terminal: "[####   ] 3/10 label".
 void drawProgressBar(uint64_t done, uint64_t total, const char* unit);

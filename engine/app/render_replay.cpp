@@ -97,7 +97,7 @@ int replayPathTraced(const core::CliArgs& args, scene::Scene& scene, const rende
     std::unique_ptr<vk::Context> ctx = createContext(cli.contextDesc);
     vk::ShaderLibrary shaders(*ctx);
     std::optional<tools::VideoWriter> writer;
-    if (video) writer.emplace(*video, width, height, tools::VideoOptions{.fps = capture.rateHz});
+    if (video) writer.emplace(*video, width, height, videoOptionsFromCli(args, capture.rateHz));
     const bool animated = !scene.animations.empty();
     std::unique_ptr<render::PathTracer> tracer;
     ProgressBar progress(range.end - range.first);
@@ -178,7 +178,7 @@ int runRenderReplay(const core::CliArgs& args, scene::Scene& scene, render::Rend
         renderer.setScene(scene);
         render::SceneTextureStream textures(ctx, renderer, scene);
         textures.finishSynchronously();
-        tools::VideoWriter writer(*video, width, height, tools::VideoOptions{.fps = capture.rateHz});
+        tools::VideoWriter writer(*video, width, height, videoOptionsFromCli(args, capture.rateHz));
         const bool animated = !scene.animations.empty();
         ProgressBar progress(range.end - range.first);
         std::optional<vk::MemoryLog> memoryLog = vk::MemoryLog::fromEnvironment();  // soak runs (scripts/soak.sh)

@@ -16,6 +16,9 @@ struct PtSettings {
     bool nee = true;             // next-event estimation + MIS; false: BSDF sampling only (IDKEngine's approach;
                                  // punctual lights then contribute nothing, as nothing can hit them)
     uint32_t rouletteDepth = 3;  // Russian roulette after this many segments (0: from the first)
+    // GPU tracer: the first sample index rendered (samples firstSample .. firstSample + spp - 1 of the seed's
+    // sequence), so that render farm tasks split one image's samples (`idk render --sample-range a:b`).
+    uint32_t firstSample = 0;
 };
 
 }  // namespace idk::pathtrace

@@ -280,7 +280,7 @@ PathTraceResult PathTracer::render(const scene::CameraView& camera, uint32_t wid
         addTimes(m.runGraph(
             [&](const PtStageContext& sc) {
                 if (done == 0) addPtClear(sc);
-                for (uint32_t k = 0; k < count; ++k) addPtSample(sc, done + k);
+                for (uint32_t k = 0; k < count; ++k) addPtSample(sc, settings.firstSample + done + k);
                 if (last) addPtResolve(sc);
                 if (last && m.options.denoise) addPtDenoise(sc);
             },
@@ -299,6 +299,12 @@ PathTraceResult PathTracer::render(const scene::CameraView& camera, uint32_t wid
                                 VK_FORMAT_R16G16B16A16_SFLOAT, width, height);
         result.depth = toImage(vk::readbackImage(m.ctx, f.depthImage, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL),
                                VK_FORMAT_R32_SFLOAT, width, height);
+    }
+    if (m.options.readSum) {
+        result.sum.width = width;
+        result.sum.height = height;
+        result.sum.pixels.resize(size_t(width) * height * 4);
+        vk::downloadBuffer(m.ctx, f.accumColor, result.sum.pixels.data(), result.sum.pixels.size() * sizeof(float));
     }
     if (m.options.denoise) {
         result.denoised = toImage(vk::readbackImage(m.ctx, f.denoisedImage, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL),

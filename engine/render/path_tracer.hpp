@@ -45,6 +45,7 @@ struct PathTracerOptions {
     bool sortRays = false;   // sort each bounce's rays by (material, direction octant) before shading
     bool denoise = false;    // also run PT-C's edge-aware denoiser on the result (PathTraceResult::denoised)
     bool readGuides = false; // read back the albedo/normal/depth guide images
+    bool readSum = false;    // read back the raw radiance sum (PathTraceResult::sum) for `idk merge`
     uint32_t samplesPerBatch = 4;  // samples recorded per submission (progress granularity)
     float environmentIntensity = 1.0f;
     // Equirectangular HDR environment: nullopt = defaultEnvironmentPath(); an empty path = constant radiance 0.5.
@@ -66,6 +67,7 @@ struct PathTraceResult {
     core::ImageRgba32f normal;    // readGuides/denoise: first-hit world normal (0 for the sky)
     core::ImageRgba32f depth;     // readGuides/denoise: first-hit distance along the ray in r (0 for the sky)
     core::ImageRgba32f denoised;  // denoise: the denoiser's output
+    core::ImageRgba32f sum;       // readSum: the accumulation as summed on the GPU (RGB), sample count in A
     std::vector<PtStageTime> stageTimes;  // GPU time per stage, summed over samples and bounces
     double gpuMilliseconds = 0.0;
     double wallMilliseconds = 0.0;

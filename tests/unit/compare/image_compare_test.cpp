@@ -103,7 +103,10 @@ TEST_F(CompareCommand, MissingUnreadableAndMismatchedFilesAreNamed) {
     expectErrorNaming({a, (dir / "missing.exr").string()}, "missing.exr");
     expectErrorNaming({(dir / "junk.exr").string(), a}, "junk.exr");
     std::string msg = expectErrorNaming({a, (dir / "small.exr").string()}, "small.exr");
-    EXPECT_NE(msg.find("4x4 vs 2x4"), std::string::npos) << msg;
+    // Both files with their sizes, and the cause.
+    EXPECT_NE(msg.find("a.exr (4x4) vs "), std::string::npos) << msg;
+    EXPECT_NE(msg.find("small.exr (2x4)"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("image sizes differ"), std::string::npos) << msg;
 }
 
 TEST_F(CompareCommand, UsageErrors) {

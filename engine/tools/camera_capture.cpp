@@ -181,16 +181,28 @@ double captureDuration(const Capture& capture) {
 
 namespace {
 
+// a + (b - a) * s for s in [0, 1], finite for any finite a and b: the difference of two values near the largest
+// double overflows (found by tests/fuzz/fuzz_capture.cpp), so it is taken in long double (wider exponent on x86-64)
+// and the result is kept between a and b; where long double is no wider, an overflow gives the nearer end.
+double lerpFinite(double a, double b, double s) {
+    const long double r = static_cast<long double>(a) + (static_cast<long double>(b) - a) * s;
+    if (!std::isfinite(r)) return s < 0.5 ? a : b;
+    return std::clamp(static_cast<double>(r), std::min(a, b), std::max(a, b));
+}
+
+float lerpFinite(float a, float b, double s) {
+    return static_cast<float>(lerpFinite(static_cast<double>(a), static_cast<double>(b), s));
+}
+
 CaptureFrame lerpFrames(const CaptureFrame& a, const CaptureFrame& b, double s, double time) {
-    const float f = float(s);
     CaptureFrame out = a;
     out.time = time;
-    out.position = a.position + (b.position - a.position) * f;
-    out.yaw = a.yaw + (b.yaw - a.yaw) * f;
-    out.pitch = a.pitch + (b.pitch - a.pitch) * f;
-    out.yfov = a.yfov + (b.yfov - a.yfov) * f;
+    for (int axis = 0; axis < 3; ++axis) out.position[axis] = lerpFinite(a.position[axis], b.position[axis], s);
+    out.yaw = lerpFinite(a.yaw, b.yaw, s);
+    out.pitch = lerpFinite(a.pitch, b.pitch, s);
+    out.yfov = lerpFinite(a.yfov, b.yfov, s);
     // A paused span keeps the scene time of its start; otherwise the scene time runs with the interpolation.
-    out.sceneTime = a.paused ? a.sceneTime : a.sceneTime + (b.sceneTime - a.sceneTime) * s;
+    out.sceneTime = a.paused ? a.sceneTime : lerpFinite(a.sceneTime, b.sceneTime, s);
     return out;
 }
 

@@ -44,24 +44,6 @@ bool emptyBox(const gpu::GpuBlasNode& n) { return !(n.min.x <= n.max.x && n.min.
 constexpr std::array<uint32_t, 3> kTraceGroup = {gpu::kBvhTraceGroupSize, 1, 1};
 constexpr std::array<uint32_t, 3> kRefitGroup = {gpu::kBvhRefitGroupSize, 1, 1};
 
-void dispatchTrace(VkCommandBuffer cmd, const BvhKernels& k, const gpu::BvhTracePush& push, TraceMode mode,
-                   bool useTlas, uint32_t blasStack, uint32_t tlasStack) {
-    if (push.count == 0) return;
-    // A stack of 0 entries is not a valid array size; 1 is the smallest pipeline variant.
-    const vk::Pipeline& pipeline =
-        k.shaders.compute({ShaderId::bvh_trace_rays_comp,
-                           {{gpu::kSpecBvhStackSize, std::max(blasStack, 1u)},
-                            {gpu::kSpecBvhTlasStackSize, std::max(tlasStack, 1u)},
-                            {gpu::kSpecBvhTraceMode, static_cast<uint32_t>(mode)},
-                            {gpu::kSpecBvhUseTlas, useTlas ? 1u : 0u}},
-                           sizeof(gpu::BvhTracePush),
-                           kTraceGroup});
-    k.ctx.bindless().bind(cmd);
-    vk::bindPipeline(cmd, pipeline);
-    vk::pushConstants(cmd, k.ctx, push);
-    vkCmdDispatch(cmd, vk::groupCount(push.count, gpu::kBvhTraceGroupSize), 1, 1);
-}
-
 }  // namespace
 
 std::vector<uint32_t> refitOrder(std::span<const gpu::GpuBlasNode> nodes,
@@ -170,6 +152,25 @@ uint64_t GpuTlas::gpuBytes() const { return nodes_.size + order_.size + instance
 
 // ---- recording --------------------------------------------------------------------------------------------------
 
+void dispatchTraceKernel(VkCommandBuffer cmd, const BvhKernels& k, ShaderId kernel, const gpu::BvhTracePush& push,
+                         TraceMode mode, bool useTlas, uint32_t blasStack, uint32_t tlasStack) {
+    if (push.count == 0) return;
+    // A stack of 0 entries is not a valid array size; 1 is the smallest pipeline variant.
+    const vk::Pipeline& pipeline =
+        k.shaders.compute({kernel,
+                           {{gpu::kSpecBvhStackSize, std::max(blasStack, 1u)},
+                            {gpu::kSpecBvhTlasStackSize, std::max(tlasStack, 1u)},
+                            {gpu::kSpecBvhTraceMode, static_cast<uint32_t>(mode)},
+                            {gpu::kSpecBvhUseTlas, useTlas ? 1u : 0u}},
+                           sizeof(gpu::BvhTracePush),
+                           kTraceGroup});
+    k.ctx.bindless().bind(cmd);
+    vk::bindPipeline(cmd, pipeline);
+    vk::pushConstants(cmd, k.ctx, push);
+    vkCmdDispatch(cmd, vk::groupCount(push.count, gpu::kBvhTraceGroupSize), 1, 1);
+}
+
+
 void recordTraceRays(VkCommandBuffer cmd, const BvhKernels& kernels, const GpuBlas& blas, TraceMode mode,
                      VkDeviceAddress rays, VkDeviceAddress hits, uint32_t count, uint32_t stackSize) {
     gpu::BvhTracePush push{};
@@ -177,7 +178,8 @@ void recordTraceRays(VkCommandBuffer cmd, const BvhKernels& kernels, const GpuBl
     push.rays = rays;
     push.hits = hits;
     push.count = count;
-    dispatchTrace(cmd, kernels, push, mode, false, stackSize != 0 ? stackSize : blas.stackSize(), 1);
+    dispatchTraceKernel(cmd, kernels, ShaderId::bvh_trace_rays_comp, push, mode, false,
+                        stackSize != 0 ? stackSize : blas.stackSize(), 1);
 }
 
 void recordTraceRays(VkCommandBuffer cmd, const BvhKernels& kernels, const GpuTlas& tlas, TraceMode mode,
@@ -187,7 +189,8 @@ void recordTraceRays(VkCommandBuffer cmd, const BvhKernels& kernels, const GpuTl
     push.rays = rays;
     push.hits = hits;
     push.count = count;
-    dispatchTrace(cmd, kernels, push, mode, true, tlas.blasStackSize(), tlas.stackSize());
+    dispatchTraceKernel(cmd, kernels, ShaderId::bvh_trace_rays_comp, push, mode, true, tlas.blasStackSize(),
+                        tlas.stackSize());
 }
 
 void recordRefit(VkCommandBuffer cmd, const BvhKernels& kernels, const GpuBlas& blas) {

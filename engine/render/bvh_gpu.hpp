@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "shader_manifest.hpp"
 #include "shared/bvh_trace_types.h"
 #include "vk/resources.hpp"
 
@@ -125,6 +126,11 @@ void recordTraceRays(VkCommandBuffer cmd, const BvhKernels& kernels, const GpuBl
                      VkDeviceAddress rays, VkDeviceAddress hits, uint32_t count, uint32_t stackSize = 0);
 void recordTraceRays(VkCommandBuffer cmd, const BvhKernels& kernels, const GpuTlas& tlas, TraceMode mode,
                      VkDeviceAddress rays, VkDeviceAddress hits, uint32_t count);
+// The dispatch behind every trace-rays kernel (binary, 8-wide): stack sizes, trace mode and BLAS/TLAS as spec
+// constants, the push constants, one invocation per ray; nothing for count 0.
+void dispatchTraceKernel(VkCommandBuffer cmd, const BvhKernels& kernels, shaders::ShaderId kernel,
+                         const gpu::BvhTracePush& push, TraceMode mode, bool useTlas, uint32_t blasStack,
+                         uint32_t tlasStack);
 
 // Recomputes every box of `blas` from its current positions, one dispatch per level with compute->compute
 // barriers between levels. The result equals bvh::refitBlas on the same positions, flattened.

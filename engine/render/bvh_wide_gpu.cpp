@@ -16,7 +16,6 @@ namespace idk::render {
 namespace {
 
 constexpr const char* kCategory = "bvh";
-constexpr std::array<uint32_t, 3> kTraceGroup = {gpu::kBvhTraceGroupSize, 1, 1};
 
 // Read through device addresses only; storage is the honest usage. Never zero-sized (16 bytes, never read).
 template <class T>
@@ -25,23 +24,6 @@ vk::Buffer createFilled(vk::Context& ctx, std::span<const T> values, const std::
                                           vk::MemoryUsage::GpuOnly, name, kCategory});
     if (!values.empty()) vk::uploadBuffer(ctx, buffer, values);
     return buffer;
-}
-
-void dispatchTraceWide(VkCommandBuffer cmd, const BvhKernels& k, const gpu::BvhTracePush& push, TraceMode mode,
-                       bool useTlas, uint32_t blasStack, uint32_t tlasStack) {
-    if (push.count == 0) return;
-    const vk::Pipeline& pipeline =
-        k.shaders.compute({vk::ShaderId::bvh_trace_rays_wide_comp,
-                           {{gpu::kSpecBvhStackSize, std::max(blasStack, 1u)},
-                            {gpu::kSpecBvhTlasStackSize, std::max(tlasStack, 1u)},
-                            {gpu::kSpecBvhTraceMode, static_cast<uint32_t>(mode)},
-                            {gpu::kSpecBvhUseTlas, useTlas ? 1u : 0u}},
-                           sizeof(gpu::BvhTracePush),
-                           kTraceGroup});
-    k.ctx.bindless().bind(cmd);
-    vk::bindPipeline(cmd, pipeline);
-    vk::pushConstants(cmd, k.ctx, push);
-    vkCmdDispatch(cmd, vk::groupCount(push.count, gpu::kBvhTraceGroupSize), 1, 1);
 }
 
 }  // namespace
@@ -108,7 +90,8 @@ void recordTraceRaysWide(VkCommandBuffer cmd, const BvhKernels& kernels, const G
     push.rays = rays;
     push.hits = hits;
     push.count = count;
-    dispatchTraceWide(cmd, kernels, push, mode, false, stackSize != 0 ? stackSize : blas.stackSize(), 1);
+    dispatchTraceKernel(cmd, kernels, vk::ShaderId::bvh_trace_rays_wide_comp, push, mode, false,
+                        stackSize != 0 ? stackSize : blas.stackSize(), 1);
 }
 
 void recordTraceRaysWide(VkCommandBuffer cmd, const BvhKernels& kernels, const GpuWideTlas& tlas, TraceMode mode,
@@ -118,7 +101,8 @@ void recordTraceRaysWide(VkCommandBuffer cmd, const BvhKernels& kernels, const G
     push.rays = rays;
     push.hits = hits;
     push.count = count;
-    dispatchTraceWide(cmd, kernels, push, mode, true, tlas.blasStackSize(), tlas.stackSize());
+    dispatchTraceKernel(cmd, kernels, vk::ShaderId::bvh_trace_rays_wide_comp, push, mode, true, tlas.blasStackSize(),
+                        tlas.stackSize());
 }
 
 }  // namespace idk::render

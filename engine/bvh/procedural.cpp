@@ -180,7 +180,7 @@ IndexedMesh makeAtrium(const AtriumOptions& options) {
     return mesh;
 }
 
-void rotateAboutCenter(IndexedMesh& mesh, float degrees) {
+glm::mat4 rotationAboutCenter(const IndexedMesh& mesh, float degrees) {
     Box box;
     for (const glm::vec3& p : mesh.positions) box.grow(p);
     const glm::vec3 center = 0.5f * (box.min + box.max);
@@ -189,9 +189,10 @@ void rotateAboutCenter(IndexedMesh& mesh, float degrees) {
     m = glm::rotate(m, r, glm::vec3(0, 0, 1));
     m = glm::rotate(m, r, glm::vec3(0, 1, 0));
     m = glm::rotate(m, r, glm::vec3(1, 0, 0));
-    m = glm::translate(m, -center);
-    mesh.transform(m);
+    return glm::translate(m, -center);
 }
+
+void rotateAboutCenter(IndexedMesh& mesh, float degrees) { mesh.transform(rotationAboutCenter(mesh, degrees)); }
 
 std::vector<Triangle> makeRandomTriangles(uint32_t count, uint32_t seed) {
     std::mt19937 rng(seed);

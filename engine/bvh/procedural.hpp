@@ -36,7 +36,9 @@ struct AtriumOptions {
 // slabs around a central void, segmented columns, balusters, a tessellated statue and plants.
 IndexedMesh makeAtrium(const AtriumOptions& options = {});
 
-// Rotation by `degrees` about x, then y, then z, around the centre of the mesh's bounding box.
+// Rotation by `degrees` about x, then y, then z, around the centre of the mesh's bounding box: the matrix, and the
+// mesh transformed by it.
+glm::mat4 rotationAboutCenter(const IndexedMesh& mesh, float degrees);
 void rotateAboutCenter(IndexedMesh& mesh, float degrees);
 
 // `count` triangles with vertices around random centres in [0, 1]^3, edge lengths spread over three decades.

@@ -98,18 +98,6 @@ protected:
     }
 };
 
-glm::mat4 rotationAboutCenter(const bvh::IndexedMesh& mesh, float degrees) {  // as bvh::rotateAboutCenter
-    bvh::Box box;
-    for (const glm::vec3& p : mesh.positions) box.grow(p);
-    const glm::vec3 center = 0.5f * (box.min + box.max);
-    const float r = glm::radians(degrees);
-    glm::mat4 m = glm::translate(glm::mat4(1.0f), center);
-    m = glm::rotate(m, r, glm::vec3(0, 0, 1));
-    m = glm::rotate(m, r, glm::vec3(0, 1, 0));
-    m = glm::rotate(m, r, glm::vec3(1, 0, 0));
-    return glm::translate(m, -center);
-}
-
 TEST_F(BvhWideTraceTest, BunnyWideEqualsBinary) {
     const TestBlas bunny(ctx(), bunnyMesh(), {}, "bunny");
     const TestWide wide(ctx(), bunny, "bunny");
@@ -124,7 +112,7 @@ TEST_F(BvhWideTraceTest, BunnyWideEqualsBinary) {
 
 TEST_F(BvhWideTraceTest, RotatedPresplitAtriumWideEqualsBinary) {
     bvh::IndexedMesh atrium = bvh::makeAtrium();
-    const glm::mat4 rotation = rotationAboutCenter(atrium, 45.0f);
+    const glm::mat4 rotation = bvh::rotationAboutCenter(atrium, 45.0f);
     bvh::rotateAboutCenter(atrium, 45.0f);
     const TestBlas rotated(ctx(), fromIndexed(atrium), bvh::BuildOptions{.splitFactor = 0.3f}, "rotated atrium");
     const TestWide wide(ctx(), rotated, "rotated atrium");

@@ -24,6 +24,7 @@
 #include "app/scene_options.hpp"
 #include "core/atomic_file.hpp"
 #include "core/cli.hpp"
+#include "frame/settings_table.hpp"
 #include "render/renderer.hpp"
 #include "render/scene_textures.hpp"
 #include "scene/animation.hpp"
@@ -81,11 +82,12 @@ const char* const kRenderHelp =
 namespace {
 
 nlohmann::json statsJson(const render::FrameResult& frame, const vk::Context& ctx, const vk::MemoryStats& memory,
-                         const scene::CameraView& camera) {
+                         const scene::CameraView& camera, const render::RenderSettings& settings) {
     nlohmann::json j;
     j["device"] = ctx.info().name;
     j["camera"] = cameraJson(camera);
     j["rungs"] = laddersJson(ctx.consultedLadders());
+    j["settings"] = frame::settingsJson(settings);
     j["passes"] = frame.passesRun;
     nlohmann::json times = nlohmann::json::object();
     for (const vk::ScopeTiming& t : frame.passTimes) times[t.name] = t.milliseconds;
@@ -123,14 +125,15 @@ int runRender(const std::vector<std::string>& argv) { return runRender(argv, nul
 
 int runRender(const std::vector<std::string>& argv, std::vector<vk::Ladder>* rungsThatRan) {
     core::CliArgs args =
-        core::parseCli(argv, withSceneOptions({{"--stats", "--json", "--no-validation", "--fallback", "--help", "--pathtrace", "--denoise"},
-                                  {"--out", "--size", "--graph", "--shading", "--exposure", "--environment",
-                                   "--env-intensity", "--time", "--animation", "--replay", "--video", "--frames",
+        core::parseCli(argv, frame::withSettingOptions(withSceneOptions({{"--stats", "--json", "--no-validation", "--fallback", "--help", "--pathtrace", "--denoise"},
+                                  {"--out", "--size", "--graph", "--shading", "--environment", "--time", "--animation", "--replay", "--video", "--frames",
                                    "--spp", "--max-depth", "--seed", "--light-sampling", "--sort", "--traversal",
                                    "--camera", "--orbit", "--camera-index", "--orbit-frames", "--background", "--fps",
-                                   "--rung", "--sample-range", "--crf"}}));
+                                   "--rung", "--sample-range", "--crf"}})));
     if (args.has("--help")) {
         std::fputs(kRenderHelp, stdout);
+        std::fputs("rasterizer settings (also the viewer's panels and --json's \"settings\"):\n", stdout);
+        std::fputs(frame::settingOptionsHelp().c_str(), stdout);
         std::fputs(kSceneOptionsHelp, stdout);
         std::fputs(kPathTraceHelp, stdout);
         return 0;
@@ -164,8 +167,7 @@ int runRender(const std::vector<std::string>& argv, std::vector<vk::Ladder>* run
     if (transparent && settings.shading != render::Shading::Pbr)
         throw core::CliError("--background transparent needs --shading pbr (lambert has no coverage)");
     settings.output = extension == ".exr" ? render::OutputKind::Hdr : render::OutputKind::Display;
-    settings.exposure = float(core::parseNumber("--exposure", args.get("--exposure", "1")));
-    settings.environmentIntensity = float(core::parseNumber("--env-intensity", args.get("--env-intensity", "1")));
+    frame::applySettingOptions(args, settings);
     if (std::optional<std::string> env = args.get("--environment"))
         settings.environment = *env == "none" ? std::filesystem::path() : std::filesystem::path(*env);
     double fps = 30.0;
@@ -226,7 +228,7 @@ int runRender(const std::vector<std::string>& argv, std::vector<vk::Ladder>* run
     }
 
     if (args.has("--json")) {
-        std::cout << statsJson(frame, *ctx, memory, views.back()).dump(2) << "\n";
+        std::cout << statsJson(frame, *ctx, memory, views.back(), settings).dump(2) << "\n";
     } else if (args.has("--stats")) {
         std::printf("passes:\n");
         for (const vk::ScopeTiming& t : frame.passTimes) std::printf("  %-24s %8.3f ms\n", t.name.c_str(), t.milliseconds);

@@ -167,9 +167,9 @@ PointShadowMaps::Frame PointShadowMaps::beginFrame(graph::RenderGraph& graph,
     return frame;
 }
 
-bool updatePointShadowMaps(vk::Context& ctx, const GpuScene& scene, const PointShadowSettings& settings,
-                           std::unique_ptr<PointShadowMaps>& maps) {
-    std::vector<uint32_t> casters = pointShadowCasters(scene.data().lights, settings.maxLights);
+bool updatePointShadowMaps(vk::Context& ctx, const GpuScene& scene, const std::vector<gpu::GpuLight>& lights,
+                           const PointShadowSettings& settings, std::unique_ptr<PointShadowMaps>& maps) {
+    std::vector<uint32_t> casters = pointShadowCasters(lights, settings.maxLights);
     if (casters.empty() || scene.drawCount() == 0 || settings.resolution == 0) {
         maps.reset();
         return false;

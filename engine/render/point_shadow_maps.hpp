@@ -80,9 +80,10 @@ private:
     vk::Buffer layeredDraws_;
 };
 
-// Keeps `maps` in step with the scene's lights and the settings: creates it, re-creates it when the casters, the
-// resolution or the ladder's rung change, and releases it when no light casts. Returns whether shadows run.
-bool updatePointShadowMaps(vk::Context& ctx, const GpuScene& scene, const PointShadowSettings& settings,
-                           std::unique_ptr<PointShadowMaps>& maps);
+// Keeps `maps` in step with the frame's lights (the scene's plus any extra ones) and the settings: creates it,
+// re-creates it when the casters, the resolution or the ladder's rung change, and releases it when no light casts.
+// Returns whether shadows run.
+bool updatePointShadowMaps(vk::Context& ctx, const GpuScene& scene, const std::vector<gpu::GpuLight>& lights,
+                           const PointShadowSettings& settings, std::unique_ptr<PointShadowMaps>& maps);
 
 }  // namespace idk::render

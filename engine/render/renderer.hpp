@@ -5,9 +5,7 @@
 // times and the indirect draws they recorded. Ports the role of IDKEngine's RasterPipeline.Render.
 #pragma once
 // Frames (RenderSettings::shading):
-//   Pbr (default): [scene_update] [pose_upload] [skinning] -> gbuffer [-> point_shadows] -> deferred_lighting -> sky
-//                  [-> transparency] -> tonemap (point_shadows only with shadow-casting lights, transparency only
-//                  with BLEND draws, tonemap only for Display)
+//   Pbr (default): the frame recipe of engine/frame/frame_recipe.cpp (one line per feature, in frame order)
 //   Lambert:       lambert (the foundation's forward pass; linear HDR output)
 #include <filesystem>
 #include <functional>
@@ -17,37 +15,18 @@
 #include <vector>
 
 #include "core/image_file.hpp"
+#include "frame/frame_recipe.hpp"
 #include "graph/resource_pool.hpp"
 #include "passes/passes.hpp"
-#include "render/blend_draws.hpp"
-#include "render/environment.hpp"
 #include "render/gpu_scene.hpp"
 #include "render/lambert_scene.hpp"
-#include "render/point_shadow_maps.hpp"
+#include "render/render_settings.hpp"
 #include "render/vk_graph_backend.hpp"
-#include "shared/deferred_types.h"
 #include "scene/camera.hpp"
 #include "vk/frames.hpp"
 #include "vk/shader_library.hpp"
 
 namespace idk::render {
-
-enum class Shading : uint8_t { Pbr, Lambert };
-enum class OutputKind : uint8_t {
-    Display,  // AgX-tonemapped, sRGB-encoded 8-bit (what a PNG stores)
-    Hdr,      // linear radiance before tonemapping (what an EXR stores); no tonemap pass
-};
-
-struct RenderSettings {
-    Shading shading = Shading::Pbr;        // fixed once a scene is set
-    OutputKind output = OutputKind::Display;  // ignored by Lambert (always linear HDR)
-    float exposure = 1.0f;                 // linear scale before the tonemap curve
-    float environmentIntensity = 1.0f;     // scales the sky and the ambient light (0: black, no ambient)
-    // Equirectangular HDR environment: nullopt = defaultEnvironmentPath(); an empty path = constant grey 0.5.
-    // A file that cannot be read falls back to the constant with a warning.
-    std::optional<std::filesystem::path> environment;
-    PointShadowSettings pointShadows;  // which lights cast cube shadows, and the cube resolution
-};
 
 struct FrameResult {
     // Hdr: linear radiance, alpha = coverage (1 geometry, 0 sky). Lambert: linear radiance, alpha 1.
@@ -102,23 +81,22 @@ public:
 
     // Lights that are not part of the scene (the viewer's shot lights), appended to the scene's lights from the
     // next frame on; they light, cast point shadows (PointShadowSettings) and move as the caller updates them.
-    void setExtraLights(std::vector<gpu::GpuLight> lights) { extraLights_ = std::move(lights); }
+    void setExtraLights(std::vector<gpu::GpuLight> lights) { features_.inputs.setExtraLights(std::move(lights)); }
     // Everything but `shading` may change between frames.
     RenderSettings& settings() noexcept { return settings_; }
     // The PBR path's GPU scene (nullptr for Lambert or before setScene): the texture streamer's setTexture.
     GpuScene* gpuScene() noexcept { return gpuScene_.get(); }
     // The point-shadow cubes of the last frame (nullptr when no light cast one): tests read them back.
-    const PointShadowMaps* pointShadowMaps() const noexcept { return pointShadows_.get(); }
+    const PointShadowMaps* pointShadowMaps() const noexcept { return features_.pointShadows.maps(); }
     // Runs inside each frame's command buffer before the frame's graph is built (TextureStreamer::pump goes
     // here: textures it makes ready reach this frame's materials through the scene_update pass).
     void setBeforeFrame(std::function<void(VkCommandBuffer)> hook) { beforeFrame_ = std::move(hook); }
 
 private:
-    // Returns the output's last version (already marked as the graph's output).
+    // Imports `target` as the frame's output and records the frame recipe; returns the output's last version
+    // (already marked as the graph's output).
     graph::TextureHandle renderPbr(graph::RenderGraph& graph, const scene::CameraView& camera, uint32_t width,
                                    uint32_t height, const vk::Image& target, passes::IndirectDrawLog& log);
-    const GpuEnvironment& environment();
-    bool updateShadowMaps(const std::vector<gpu::GpuLight>& lights);
 
     vk::Context& ctx_;
     vk::ShaderLibrary& shaders_;
@@ -129,16 +107,9 @@ private:
     GpuLambertScene lambertScene_;
     bool hasLambertScene_ = false;
     std::unique_ptr<GpuScene> gpuScene_;
-    std::unique_ptr<PointShadowMaps> pointShadows_;  // only while a light casts a shadow
-    std::unique_ptr<BlendDraws> blendDraws_;         // only for scenes with BLEND draws
-    std::optional<GpuEnvironment> environment_;
-    bool environmentLoaded_ = false;  // environment_ holds the configured map (not the intensity-0 stand-in)
-    std::vector<vk::Buffer> frameConstants_;  // one host-visible GpuFrame per frame slot
-    vk::StorageImageIndex outputStorage_;     // the frame's output image while it renders
+    frame::Features features_;            // the PBR frame's features and their persistent resources
+    vk::StorageImageIndex outputStorage_;  // the frame's output image while it renders
     std::function<void(VkCommandBuffer)> beforeFrame_;
-    std::vector<gpu::GpuLight> extraLights_;
-    std::vector<gpu::GpuLight> combinedLights_;  // scene lights + extra lights of the frame being built
-    std::vector<vk::Buffer> lightBuffers_;       // per frame slot, only while there are extra lights
     vk::Image sceneImage_;            // renderFrame's pre-UI image (recreated when the size changes)
     uint64_t lastFrameValue_ = 0;     // timeline value of the last renderFrame
     bool hasTimings_ = false;         // the backend's timestamps belong to a completed renderFrame

@@ -40,7 +40,7 @@ void Viewer::createDevice() {
                                                   options.shaderDir.value_or(shaders::kShaderSourceDir));
     reloader = std::make_unique<ShaderReloader>(*shaders);
 
-    renderer = std::make_unique<render::Renderer>(*ctx, *shaders);
+    renderer = std::make_unique<render::Renderer>(*ctx, *shaders, options.settings);
     renderer->setScene(scene);
     textures = std::make_unique<render::SceneTextureStream>(*ctx, *renderer, scene);
     if (options.syncTextures) textures->finishSynchronously();
@@ -55,6 +55,7 @@ void Viewer::destroyDevice() {
     }
     ui.reset();
     textures.reset();
+    if (renderer) options.settings = renderer->settings();  // a recovered device keeps the panels' settings
     renderer.reset();
     swapchain.reset();
     if (surface) vkDestroySurfaceKHR(ctx->instance(), surface, nullptr);

@@ -5,6 +5,7 @@
 
 #include "app/scene_options.hpp"
 #include "core/cli.hpp"
+#include "frame/settings_table.hpp"
 #include "vk/features.hpp"
 
 namespace idk::viewer {
@@ -37,10 +38,10 @@ const char* const kViewerHelp =
 
 ViewerOptions parseViewerOptions(const std::vector<std::string>& argv) {
     core::CliArgs args = core::parseCli(
-        argv, app::withSceneOptions(
+        argv, frame::withSettingOptions(app::withSceneOptions(
                   {{"--no-ui", "--watch", "--no-vsync", "--sync-textures", "--no-validation", "--fallback", "--help"},
                    {"--size", "--frames", "--screenshot", "--script", "--shader-dir", "--capture", "--fixed-dt", "--rung",
-                    "--memory-log"}}));
+                    "--memory-log"}})));
     ViewerOptions o;
     o.help = args.has("--help");
     if (args.positional.size() > 1) throw core::CliError("more than one scene given");
@@ -83,6 +84,7 @@ ViewerOptions parseViewerOptions(const std::vector<std::string>& argv) {
         o.rungs.push_back(spec);
     }
     o.load = app::loadOptionsFromCli(args);
+    frame::applySettingOptions(args, o.settings);
     return o;
 }
 

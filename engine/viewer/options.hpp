@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "render/render_settings.hpp"
 #include "scene/gltf_loader.hpp"
 
 namespace idk::viewer {
@@ -32,6 +33,7 @@ struct ViewerOptions {
     std::vector<std::string> rungs;                   // --rung LADDER=RUNG (repeatable), checked by parseViewerOptions
     bool help = false;
     scene::LoadOptions load;                          // --allow-external-uris, --max-memory (app/scene_options.hpp)
+    render::RenderSettings settings;                  // the rasterizer options of frame/settings_table.hpp
 };
 
 // Throws core::CliError naming the option.

@@ -13,30 +13,64 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtx/matrix_decompose.hpp>
 
+#include "frame/settings_table.hpp"
 #include "viewer/viewer_app.hpp"
 
 namespace idk::viewer {
 namespace {
+
+// One widget per row of the settings table (frame/settings_table.cpp), grouped by the row's panel.
+bool settingWidget(const frame::SettingOption& o, render::RenderSettings& s) {
+    const double value = o.get(s);
+    switch (o.kind) {
+    case frame::OptionKind::Number: {
+        float v = float(value);
+        if (!ImGui::SliderFloat(o.label, &v, float(o.min), float(o.max), "%.3g",
+                                o.logarithmic ? ImGuiSliderFlags_Logarithmic : 0))
+            return false;
+        o.set(s, double(std::clamp(v, float(o.min), float(o.max))));
+        return true;
+    }
+    case frame::OptionKind::Integer: {
+        int v = int(value);
+        if (!ImGui::SliderInt(o.label, &v, int(o.min), int(o.max))) return false;
+        o.set(s, double(std::clamp(v, int(o.min), int(o.max))));
+        return true;
+    }
+    case frame::OptionKind::Choice: {
+        int v = int(value);
+        if (!ImGui::Combo(o.label, &v, o.choices.data(), int(o.choices.size()))) return false;
+        o.set(s, double(v));
+        return true;
+    }
+    case frame::OptionKind::Toggle: {
+        bool v = value != 0.0;
+        if (!ImGui::Checkbox(o.label, &v)) return false;
+        o.set(s, v ? 1.0 : 0.0);
+        return true;
+    }
+    }
+    return false;
+}
 
 void rendererPanel(Viewer& v) {
     if (!ImGui::CollapsingHeader("Renderer", ImGuiTreeNodeFlags_DefaultOpen)) return;
     render::RenderSettings& s = v.renderer->settings();
     ImGui::Text("shading: %s (fixed per scene)", s.shading == render::Shading::Pbr ? "PBR (deferred)" : "Lambert");
     ImGui::Text("output: Display (AgX tonemap, sRGB)");
-    ImGui::SliderFloat("exposure", &s.exposure, 0.0f, 8.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
-    ImGui::SliderFloat("environment intensity", &s.environmentIntensity, 0.0f, 4.0f, "%.2f");
     std::string env = s.environment ? (s.environment->empty() ? "constant grey" : s.environment->string())
                                     : render::defaultEnvironmentPath().string();
     ImGui::TextWrapped("environment: %s", env.c_str());
-    int maxLights = int(s.pointShadows.maxLights);
-    if (ImGui::SliderInt("shadow-casting lights", &maxLights, 0, 16)) s.pointShadows.maxLights = uint32_t(maxLights);
-    static constexpr std::array<uint32_t, 5> kResolutions = {128, 256, 512, 1024, 2048};
-    int current = 0;
-    for (size_t i = 0; i < kResolutions.size(); ++i)
-        if (kResolutions[i] == s.pointShadows.resolution) current = int(i);
-    const char* names[] = {"128", "256", "512", "1024", "2048"};
-    if (ImGui::Combo("shadow cube size", &current, names, IM_ARRAYSIZE(names)))
-        s.pointShadows.resolution = kResolutions[size_t(current)];
+    std::string panel;
+    for (const frame::SettingOption& o : frame::settingOptions()) {
+        if (panel != o.panel) {
+            panel = o.panel;
+            ImGui::Separator();
+            ImGui::TextDisabled("%s", o.panel);
+        }
+        settingWidget(o, s);
+    }
+    ImGui::Separator();
     bool vsync = v.swapchain->vsync();
     if (ImGui::Checkbox("vsync (V)", &vsync)) v.swapchain->setVsync(vsync);
     const char* mode = v.swapchain->presentMode() == VK_PRESENT_MODE_FIFO_KHR        ? "FIFO"

@@ -1,6 +1,8 @@
 // viewer_app.cpp: the viewer's set-up, frame loop, controls and presentation.
 #include "viewer/viewer_app.hpp"
 
+#include "frame/settings_table.hpp"
+
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <imgui.h>
@@ -342,6 +344,8 @@ int runViewer(const std::vector<std::string>& argv) {
         ViewerOptions options = parseViewerOptions(argv);
         if (options.help) {
             std::fputs(kViewerHelp, stdout);
+            std::fputs("rasterizer settings (also in the Renderer panel):\n", stdout);
+            std::fputs(frame::settingOptionsHelp().c_str(), stdout);
             return 0;
         }
         Viewer viewer(options);

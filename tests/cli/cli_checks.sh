@@ -32,6 +32,15 @@ case "$case_name" in
     grep -q '"passes"' "$tmp/stats.json" || fail "--json has no passes: $(cat "$tmp/stats.json")"
     grep -q '"gbuffer"' "$tmp/stats.json" || fail "--json does not list the gbuffer pass"
     grep -q '"memoryBytes"' "$tmp/stats.json" || fail "--json has no memory by category"
+    # The settings table: --json records every option; its flags parse with range checks (exit 2 naming the flag).
+    "$idk" render --size 16x16 --out "$tmp/s.png" --exposure 2 --shadow-size 256 --json >"$tmp/set.json" \
+      || fail "render with table options failed"
+    grep -q '"shadow-size": "256"' "$tmp/set.json" || fail "--json settings lack shadow-size 256: $(cat "$tmp/set.json")"
+    grep -q '"exposure": 2' "$tmp/set.json" || fail "--json settings lack exposure 2"
+    "$idk" render --size 8x8 --out "$tmp/s.png" --shadow-size 300 2>"$tmp/err"; [ $? -eq 2 ] \
+      || fail "--shadow-size 300 should exit 2"
+    grep -q -- "--shadow-size '300'" "$tmp/err" || fail "error does not name --shadow-size: $(cat "$tmp/err")"
+    "$idk" render --help | grep -q -- "--env-intensity" || fail "render --help lacks the table's options"
     "$idk" render --size 16x16 --out "$tmp/g.png" --graph "$tmp/frame.dot" || fail "render with --graph failed"
     grep -q "digraph" "$tmp/frame.dot" || fail "--graph .dot is not graphviz: $(head -3 "$tmp/frame.dot")"
     ;;

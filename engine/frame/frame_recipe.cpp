@@ -1,0 +1,49 @@
+// frame_recipe.cpp: the deferred PBR frame, in order. Every line is one feature; each feature reads what the
+// lines above it put into the FrameContext and adds its own products. Features that are off (or that the scene
+// does not need) add nothing and allocate nothing. Ports IDKEngine's RasterPipeline.Render frame order
+// (reference 1.5, steps 6.6-6.13, 9).
+#include "frame/frame_recipe.hpp"
+
+namespace idk::frame {
+namespace {
+
+// Display output lights into a transient HDR image that the tonemap writes into the target; Hdr output lights
+// straight into the target.
+graph::TextureHandle hdrTarget(FrameContext& f) {
+    if (f.settings.output != render::OutputKind::Display) return f.output;
+    graph::TextureDesc desc;
+    desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    return f.graph.createTexture("hdr radiance", desc);
+}
+
+graph::TextureHandle finish(FrameContext& f) {
+    graph::TextureHandle last = f.settings.output == render::OutputKind::Display
+                                    ? passes::addTonemapPass(f.graph, f.ctx, f.shaders, f.hdr, f.output,
+                                                             f.settings.exposure)
+                                    : f.hdr;
+    f.graph.markOutput(last);
+    return last;
+}
+
+}  // namespace
+
+void Features::setScene(vk::Context& ctx, const render::GpuScene& scene, uint32_t framesInFlight) {
+    pointShadows.reset();
+    transparency.setScene(ctx, scene, framesInFlight);
+}
+
+graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Features& x) {
+    x.environment.addPasses(f);                                       // f.environment
+    x.inputs.addPasses(f, scene, x.environment.current(f.settings));  // f.frameConstants, f.scene, f.lights
+    // Shadows before the G-buffer: the installed validation layer counts every draw that uses the bindless
+    // sampled array (the G-buffer's) as reading the cubes, so their write must not follow such a draw.
+    x.pointShadows.addPasses(f, scene);                               // f.pointShadows
+    f.gbuffer = passes::addGBufferPass(f.graph, f.ctx, f.shaders, f.scene, f.frameConstants, &f.log);
+    f.hdr = passes::addDeferredLightingPass(f.graph, f.ctx, f.shaders, f.gbuffer, f.frameConstants, f.scene.lights,
+                                            f.environment, hdrTarget(f), f.pointShadows);
+    f.hdr = passes::addSkyPass(f.graph, f.ctx, f.shaders, f.gbuffer.depth, f.frameConstants, f.environment, f.hdr);
+    x.transparency.addPasses(f, scene);                               // blends into f.hdr
+    return finish(f);                                                 // tonemap (Display) into f.output
+}
+
+}  // namespace idk::frame

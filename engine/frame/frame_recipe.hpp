@@ -1,0 +1,29 @@
+// frame_recipe.hpp: the deferred PBR frame as one ordered list of features (frame_recipe.cpp), and the features'
+// persistent state. To add a feature: a settings struct and a class in its own files under engine/frame/, a member
+// here, one line in recordPbrFrame at its place in the frame, its options in settings_table.cpp.
+#pragma once
+#include "frame/environment_feature.hpp"
+#include "frame/frame_context.hpp"
+#include "frame/frame_inputs.hpp"
+#include "frame/point_shadow_feature.hpp"
+#include "frame/transparency_feature.hpp"
+#include "render/gpu_scene.hpp"
+
+namespace idk::frame {
+
+struct Features {
+    explicit Features(vk::Context& ctx) : inputs(ctx), environment(ctx) {}
+    void setScene(vk::Context& ctx, const render::GpuScene& scene, uint32_t framesInFlight);
+
+    FrameInputs inputs;
+    EnvironmentFeature environment;
+    PointShadowFeature pointShadows;
+    TransparencyFeature transparency;
+};
+
+// Declares the whole PBR frame into f.graph, ending in f.output (imported by the caller): the tonemapped image
+// for Display output, else the linear HDR image itself. Returns the output's last version, marked as the
+// graph's output.
+graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Features& features);
+
+}  // namespace idk::frame

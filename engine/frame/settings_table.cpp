@@ -1,0 +1,143 @@
+// settings_table.cpp: the table of the rasterized frame's options (see settings_table.hpp) and the functions that
+// turn it into CLI parsing, help text and JSON. One row per option; a feature's rows sit together.
+#include "frame/settings_table.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+namespace idk::frame {
+namespace {
+
+using render::RenderSettings;
+
+constexpr std::array<uint32_t, 5> kShadowCubeSizes = {128, 256, 512, 1024, 2048};
+
+double cubeSizeIndex(uint32_t size) {
+    for (size_t i = 0; i < kShadowCubeSizes.size(); ++i)
+        if (kShadowCubeSizes[i] == size) return double(i);
+    return 2.0;
+}
+
+std::vector<SettingOption> buildTable() {
+    std::vector<SettingOption> t;
+    // Tonemap and environment.
+    t.push_back({"--exposure", "Tonemap", "exposure", "linear exposure before tonemapping", OptionKind::Number,
+                 0.0, 64.0, {}, [](const RenderSettings& s) { return double(s.exposure); },
+                 [](RenderSettings& s, double v) { s.exposure = float(v); }, true});
+    t.push_back({"--env-intensity", "Environment", "environment intensity",
+                 "scale of the sky and ambient light (0 = black sky, no ambient)", OptionKind::Number, 0.0, 16.0, {},
+                 [](const RenderSettings& s) { return double(s.environmentIntensity); },
+                 [](RenderSettings& s, double v) { s.environmentIntensity = float(v); }});
+    // Point-light cube shadows.
+    t.push_back({"--shadow-lights", "Shadows", "shadow-casting lights",
+                 "point/spot lights that cast cube shadows, the first N in light order (0 = none)",
+                 OptionKind::Integer, 0.0, 16.0, {},
+                 [](const RenderSettings& s) { return double(s.pointShadows.maxLights); },
+                 [](RenderSettings& s, double v) { s.pointShadows.maxLights = uint32_t(v); }});
+    t.push_back({"--shadow-size", "Shadows", "shadow cube size", "cube shadow face size in texels",
+                 OptionKind::Choice, 0.0, 0.0, {"128", "256", "512", "1024", "2048"},
+                 [](const RenderSettings& s) { return cubeSizeIndex(s.pointShadows.resolution); },
+                 [](RenderSettings& s, double v) { s.pointShadows.resolution = kShadowCubeSizes[size_t(v)]; }});
+    return t;
+}
+
+std::string key(const SettingOption& o) { return std::string(o.flag).substr(2); }
+
+std::string choiceList(const SettingOption& o) {
+    std::string list;
+    for (const char* c : o.choices) list += (list.empty() ? "" : "|") + std::string(c);
+    return list;
+}
+
+std::string formatNumber(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return text;
+}
+
+}  // namespace
+
+const std::vector<SettingOption>& settingOptions() {
+    static const std::vector<SettingOption> table = buildTable();
+    return table;
+}
+
+core::CliSpec withSettingOptions(core::CliSpec spec) {
+    for (const SettingOption& o : settingOptions())
+        (o.kind == OptionKind::Toggle ? spec.flags : spec.options).insert(o.flag);
+    return spec;
+}
+
+void applySettingOptions(const core::CliArgs& args, render::RenderSettings& settings) {
+    for (const SettingOption& o : settingOptions()) {
+        if (o.kind == OptionKind::Toggle) {
+            if (args.has(o.flag)) o.set(settings, 1.0);
+            continue;
+        }
+        const std::optional<std::string> text = args.get(o.flag);
+        if (!text) continue;
+        if (o.kind == OptionKind::Choice) {
+            size_t i = 0;
+            while (i < o.choices.size() && *text != o.choices[i]) ++i;
+            if (i == o.choices.size())
+                throw core::CliError(std::string(o.flag) + " '" + *text + "': use " + choiceList(o));
+            o.set(settings, double(i));
+            continue;
+        }
+        const double v = core::parseNumber(o.flag, *text);
+        const bool whole = o.kind == OptionKind::Number || v == std::floor(v);
+        if (!(v >= o.min && v <= o.max) || !whole)
+            throw core::CliError(std::string(o.flag) + " '" + *text + "': give " +
+                                 (o.kind == OptionKind::Integer ? "a whole number" : "a number") + " in [" +
+                                 formatNumber(o.min) + ", " + formatNumber(o.max) + "]");
+        o.set(settings, v);
+    }
+}
+
+std::string optionValueText(const SettingOption& o, const render::RenderSettings& settings) {
+    const double v = o.get(settings);
+    switch (o.kind) {
+    case OptionKind::Choice: return o.choices.at(size_t(v));
+    case OptionKind::Toggle: return v != 0.0 ? "on" : "off";
+    default: return formatNumber(v);
+    }
+}
+
+std::string settingOptionsHelp() {
+    const render::RenderSettings defaults;
+    std::string help;
+    for (const SettingOption& o : settingOptions()) {
+        std::string usage = std::string("  ") + o.flag;
+        if (o.kind == OptionKind::Choice) usage += " " + choiceList(o);
+        else if (o.kind != OptionKind::Toggle) usage += o.kind == OptionKind::Integer ? " N" : " X";
+        usage.resize(std::max<size_t>(usage.size() + 1, 19), ' ');
+        help += usage + o.help;
+        if (o.kind != OptionKind::Toggle) {
+            if (o.kind != OptionKind::Choice)
+                help += " (" + formatNumber(o.min) + " to " + formatNumber(o.max) + ";";
+            else
+                help += " (";
+            help += " default " + optionValueText(o, defaults) + ")";
+        }
+        help += "\n";
+    }
+    return help;
+}
+
+nlohmann::json settingsJson(const render::RenderSettings& settings) {
+    nlohmann::json j = nlohmann::json::object();
+    for (const SettingOption& o : settingOptions()) {
+        const double v = o.get(settings);
+        switch (o.kind) {
+        case OptionKind::Choice: j[key(o)] = o.choices.at(size_t(v)); break;
+        case OptionKind::Toggle: j[key(o)] = v != 0.0; break;
+        case OptionKind::Integer: j[key(o)] = int64_t(v); break;
+        case OptionKind::Number: j[key(o)] = v; break;
+        }
+    }
+    return j;
+}
+
+}  // namespace idk::frame

@@ -1,0 +1,30 @@
+// render_settings.hpp: what a rasterized frame is asked to do. Each feature owns a settings struct (declared in
+// its own header under engine/frame/) that is a member here; frame/settings_table.cpp lists the options a user may
+// set (CLI flags, viewer panels and the --stats --json record are all generated from that one table).
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+
+#include "render/point_shadow_maps.hpp"
+
+namespace idk::render {
+
+enum class Shading : uint8_t { Pbr, Lambert };
+enum class OutputKind : uint8_t {
+    Display,  // AgX-tonemapped, sRGB-encoded 8-bit (what a PNG stores)
+    Hdr,      // linear radiance before tonemapping (what an EXR stores); no tonemap pass
+};
+
+struct RenderSettings {
+    Shading shading = Shading::Pbr;        // fixed once a scene is set
+    OutputKind output = OutputKind::Display;  // ignored by Lambert (always linear HDR)
+    float exposure = 1.0f;                 // linear scale before the tonemap curve
+    float environmentIntensity = 1.0f;     // scales the sky and the ambient light (0: black, no ambient)
+    // Equirectangular HDR environment: nullopt = defaultEnvironmentPath(); an empty path = constant grey 0.5.
+    // A file that cannot be read falls back to the constant with a warning.
+    std::optional<std::filesystem::path> environment;
+    PointShadowSettings pointShadows;  // which lights cast cube shadows, and the cube resolution
+};
+
+}  // namespace idk::render

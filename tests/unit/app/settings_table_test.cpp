@@ -1,0 +1,81 @@
+// settings_table_test.cpp: the rasterizer's option table (engine/frame/settings_table.hpp) drives CLI parsing, help
+// and JSON from one declaration: every row's flag parses, range and name errors name the option, defaults round-trip
+// through get/set, and the JSON record and help text list every row.
+#include <gtest/gtest.h>
+
+#include <set>
+#include <string>
+
+#include "core/cli.hpp"
+#include "frame/settings_table.hpp"
+
+namespace idk::frame {
+namespace {
+
+core::CliArgs parse(const std::vector<std::string>& argv) { return core::parseCli(argv, withSettingOptions({})); }
+
+TEST(SettingsTable, FlagsAreUniqueAndEveryRowIsComplete) {
+    std::set<std::string> flags;
+    for (const SettingOption& o : settingOptions()) {
+        EXPECT_TRUE(flags.insert(o.flag).second) << o.flag << " twice";
+        EXPECT_EQ(std::string(o.flag).rfind("--", 0), 0u) << o.flag;
+        EXPECT_NE(o.get, nullptr) << o.flag;
+        EXPECT_NE(o.set, nullptr) << o.flag;
+        if (o.kind == OptionKind::Choice) EXPECT_GE(o.choices.size(), 2u) << o.flag;
+        if (o.kind == OptionKind::Number || o.kind == OptionKind::Integer) EXPECT_LT(o.min, o.max) << o.flag;
+    }
+}
+
+TEST(SettingsTable, DefaultsRoundTripThroughGetAndSet) {
+    const render::RenderSettings defaults;
+    for (const SettingOption& o : settingOptions()) {
+        render::RenderSettings s;
+        o.set(s, o.get(defaults));
+        EXPECT_EQ(settingsJson(s), settingsJson(defaults)) << o.flag;
+    }
+}
+
+TEST(SettingsTable, ParsesValuesIntoTheSettings) {
+    render::RenderSettings s;
+    applySettingOptions(parse({"--exposure", "2.5", "--env-intensity=0", "--shadow-lights", "3", "--shadow-size", "1024"}),
+                        s);
+    EXPECT_FLOAT_EQ(s.exposure, 2.5f);
+    EXPECT_FLOAT_EQ(s.environmentIntensity, 0.0f);
+    EXPECT_EQ(s.pointShadows.maxLights, 3u);
+    EXPECT_EQ(s.pointShadows.resolution, 1024u);
+    const nlohmann::json j = settingsJson(s);
+    EXPECT_EQ(j.at("exposure"), 2.5);
+    EXPECT_EQ(j.at("shadow-lights"), 3);
+    EXPECT_EQ(j.at("shadow-size"), "1024");
+}
+
+TEST(SettingsTable, BadValuesNameTheOptionAndWhatIsAccepted) {
+    render::RenderSettings s;
+    const auto message = [&](const std::vector<std::string>& argv) {
+        try {
+            applySettingOptions(parse(argv), s);
+        } catch (const core::CliError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_NE(message({"--exposure", "-1"}).find("--exposure '-1'"), std::string::npos);
+    EXPECT_NE(message({"--exposure", "nan"}).find("--exposure"), std::string::npos);
+    EXPECT_NE(message({"--shadow-lights", "2.5"}).find("whole number"), std::string::npos);
+    const std::string size = message({"--shadow-size", "300"});
+    EXPECT_NE(size.find("128|256|512|1024|2048"), std::string::npos) << size;
+    EXPECT_EQ(s.pointShadows.resolution, render::RenderSettings{}.pointShadows.resolution);  // untouched on error
+}
+
+TEST(SettingsTable, HelpAndJsonListEveryRow) {
+    const std::string help = settingOptionsHelp();
+    const nlohmann::json j = settingsJson(render::RenderSettings{});
+    for (const SettingOption& o : settingOptions()) {
+        EXPECT_NE(help.find(o.flag), std::string::npos) << o.flag;
+        EXPECT_TRUE(j.contains(std::string(o.flag).substr(2))) << o.flag;
+    }
+    EXPECT_NE(help.find("default 512"), std::string::npos) << help;
+}
+
+}  // namespace
+}  // namespace idk::frame

@@ -555,36 +555,13 @@ void BM_BvhTraceGpu(benchmark::State& state, const SceneSpec* spec, bool diffuse
     if (!requireDevice(state)) return;
     vk::Context& ctx = *context();
     const SceneData& s = sceneData(spec->name);
-    const std::vector<bvh::Ray>& rays = raysOf(s, diffuse);
-    const uint32_t n = uint32_t(rays.size());
     const std::vector<gpu::GpuBlasNode> nodes = bvh::flatten(*s.traceBlas);
     const std::vector<gpu::GpuBlasTriangle> refs = bvh::flattenTriangles(*s.traceBlas, s.mesh.indices);
     render::GpuBlas blas(ctx, {nodes, refs, s.mesh.positions, bvh::requiredStackSize(s.traceBlas->nodes)}, "bench blas");
-    std::vector<gpu::GpuBvhRay> gpuRays(n);
-    for (uint32_t i = 0; i < n; ++i) gpuRays[i] = {rays[i].origin, rays[i].tMin, rays[i].direction, rays[i].tMax};
-    vk::Buffer rayBuffer = vk::createBufferWithData(
-        ctx, {n * sizeof(gpu::GpuBvhRay), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::GpuOnly, "bench rays", "bench"},
-        gpuRays.data(), n * sizeof(gpu::GpuBvhRay));
-    vk::Buffer hitBuffer = ctx.createBuffer(
-        {n * sizeof(gpu::GpuBvhHit), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::GpuOnly, "bench hits", "bench"});
-    vk::TimestampQueries queries(ctx, 1);
-    auto record = [&](VkCommandBuffer cmd) {
-        render::recordTraceRays(cmd, {ctx, *shaders()}, blas, render::TraceMode::Closest, rayBuffer.address,
-                                hitBuffer.address, n);
-    };
-    timeGpu(ctx, queries, record);  // warm-up: pipeline creation
-    double wall = 0.0;
-    for (auto _ : state) state.SetIterationTime(timeGpu(ctx, queries, record, &wall));
-    const std::vector<gpu::GpuBvhHit> hits = vk::downloadBuffer<gpu::GpuBvhHit>(ctx, hitBuffer, n);
-    const std::vector<bvh::Hit>& expected = diffuse ? s.diffuseHits : s.primaryHits;
-    double mismatches = 0;
-    for (uint32_t i = 0; i < n; ++i) mismatches += (hits[i].triangleId != expected[i].triangleId || hits[i].t != expected[i].t) ? 1 : 0;
-    ctx.destroy(rayBuffer);
-    ctx.destroy(hitBuffer);
-    state.counters["mismatches"] = mismatches;
-    state.counters["submit_wall_ms"] = wall * 1e3 / double(state.iterations());
-    state.SetItemsProcessed(state.iterations() * int64_t(n));
-    state.counters["rays"] = double(n);
+    runGpuTrace(state, bvhBenchScene(spec->name), diffuse,
+                [&](VkCommandBuffer cmd, VkDeviceAddress rays, VkDeviceAddress hits, uint32_t n) {
+                    render::recordTraceRays(cmd, {ctx, *shaders()}, blas, render::TraceMode::Closest, rays, hits, n);
+                });
     setBvhRow(state,
               {"bvh", inputText(*spec),
                std::string("ours: GLSL closest hit (include/bvh_traverse.glsl), ") + rayKind(diffuse) +
@@ -647,6 +624,35 @@ BvhBenchScene bvhBenchScene(const std::string& name) {
     const SceneData& s = sceneData(name);
     return {&s.mesh, s.traceBlas.get(), &s.primary, &s.diffuse, &s.primaryHits, &s.diffuseHits, inputText(*spec),
             std::string("BLAS split ") + splitName(kTraceSplitFactor), spec->big};
+}
+
+void runGpuTrace(benchmark::State& state, const BvhBenchScene& s, bool diffuse,
+                 const std::function<void(VkCommandBuffer, VkDeviceAddress, VkDeviceAddress, uint32_t)>& trace) {
+    vk::Context& ctx = *context();
+    const std::vector<bvh::Ray>& rays = diffuse ? *s.diffuse : *s.primary;
+    const uint32_t n = uint32_t(rays.size());
+    std::vector<gpu::GpuBvhRay> gpuRays(n);
+    for (uint32_t i = 0; i < n; ++i) gpuRays[i] = {rays[i].origin, rays[i].tMin, rays[i].direction, rays[i].tMax};
+    vk::Buffer rayBuffer = vk::createBufferWithData(
+        ctx, {n * sizeof(gpu::GpuBvhRay), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::GpuOnly, "bench rays", "bench"},
+        gpuRays.data(), n * sizeof(gpu::GpuBvhRay));
+    vk::Buffer hitBuffer = ctx.createBuffer(
+        {n * sizeof(gpu::GpuBvhHit), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::GpuOnly, "bench hits", "bench"});
+    vk::TimestampQueries queries(ctx, 1);
+    auto record = [&](VkCommandBuffer cmd) { trace(cmd, rayBuffer.address, hitBuffer.address, n); };
+    timeGpu(ctx, queries, record);  // warm-up: pipeline creation
+    double wall = 0.0;
+    for (auto _ : state) state.SetIterationTime(timeGpu(ctx, queries, record, &wall));
+    const std::vector<gpu::GpuBvhHit> hits = vk::downloadBuffer<gpu::GpuBvhHit>(ctx, hitBuffer, n);
+    const std::vector<bvh::Hit>& expected = diffuse ? *s.diffuseHits : *s.primaryHits;
+    double mismatches = 0;
+    for (uint32_t i = 0; i < n; ++i) mismatches += (hits[i].triangleId != expected[i].triangleId || hits[i].t != expected[i].t) ? 1 : 0;
+    ctx.destroy(rayBuffer);
+    ctx.destroy(hitBuffer);
+    state.counters["mismatches"] = mismatches;
+    state.counters["submit_wall_ms"] = wall * 1e3 / double(state.iterations());
+    state.SetItemsProcessed(state.iterations() * int64_t(n));
+    state.counters["rays"] = double(n);
 }
 
 void setBvhBenchRow(benchmark::State& state, const RowInfo& row, const std::string& kind, const std::string& rays) {

@@ -3,6 +3,7 @@
 // (the reference of every GPU row), and its row labels (the BVH table of scripts/bench_report.py).
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,12 @@ struct BvhBenchScene {
 
 // Built on first use and kept for the run. Throws std::invalid_argument for an unknown name.
 BvhBenchScene bvhBenchScene(const std::string& name);
+
+// Uploads the scene's primary or diffuse rays, runs `trace` (which records one traversal of `n` rays from `rays` into
+// `hits`) once to warm up (pipeline creation) and then per iteration timed by timestamp queries; sets the counters
+// every GPU traversal row has (mismatches against the CPU traversal's hits: same triangle and t; rays; submit wall).
+void runGpuTrace(benchmark::State& state, const BvhBenchScene& s, bool diffuse,
+                 const std::function<void(VkCommandBuffer, VkDeviceAddress rays, VkDeviceAddress hits, uint32_t n)>& trace);
 
 // The BVH table's row label: kind = build | cpu | gpu, rays = primary | diffuse.
 void setBvhBenchRow(benchmark::State& state, const RowInfo& row, const std::string& kind, const std::string& rays);

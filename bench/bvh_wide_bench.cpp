@@ -28,37 +28,6 @@ constexpr std::array<const char*, 6> kWideScenes = {"bunny", "BrainStem", "ToyCa
 
 const char* rayKind(bool diffuse) { return diffuse ? "diffuse" : "primary"; }
 
-// Uploads the rays, runs `record` once to warm up (pipeline creation) and then per iteration; counts hits that
-// differ from the CPU traversal's.
-void runTrace(benchmark::State& state, const BvhBenchScene& s, bool diffuse,
-              const std::function<void(VkCommandBuffer, VkDeviceAddress, VkDeviceAddress, uint32_t)>& trace) {
-    vk::Context& ctx = *context();
-    const std::vector<bvh::Ray>& rays = diffuse ? *s.diffuse : *s.primary;
-    const uint32_t n = uint32_t(rays.size());
-    std::vector<gpu::GpuBvhRay> gpuRays(n);
-    for (uint32_t i = 0; i < n; ++i) gpuRays[i] = {rays[i].origin, rays[i].tMin, rays[i].direction, rays[i].tMax};
-    vk::Buffer rayBuffer = vk::createBufferWithData(
-        ctx, {n * sizeof(gpu::GpuBvhRay), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::GpuOnly, "bench rays", "bench"},
-        gpuRays.data(), n * sizeof(gpu::GpuBvhRay));
-    vk::Buffer hitBuffer = ctx.createBuffer(
-        {n * sizeof(gpu::GpuBvhHit), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::GpuOnly, "bench hits", "bench"});
-    vk::TimestampQueries queries(ctx, 1);
-    auto record = [&](VkCommandBuffer cmd) { trace(cmd, rayBuffer.address, hitBuffer.address, n); };
-    timeGpu(ctx, queries, record);
-    double wall = 0.0;
-    for (auto _ : state) state.SetIterationTime(timeGpu(ctx, queries, record, &wall));
-    const std::vector<gpu::GpuBvhHit> hits = vk::downloadBuffer<gpu::GpuBvhHit>(ctx, hitBuffer, n);
-    const std::vector<bvh::Hit>& expected = diffuse ? *s.diffuseHits : *s.primaryHits;
-    double mismatches = 0;
-    for (uint32_t i = 0; i < n; ++i) mismatches += (hits[i].triangleId != expected[i].triangleId || hits[i].t != expected[i].t) ? 1 : 0;
-    ctx.destroy(rayBuffer);
-    ctx.destroy(hitBuffer);
-    state.counters["mismatches"] = mismatches;
-    state.counters["submit_wall_ms"] = wall * 1e3 / double(state.iterations());
-    state.SetItemsProcessed(state.iterations() * int64_t(n));
-    state.counters["rays"] = double(n);
-}
-
 bool skipWithError(benchmark::State& state, const std::string& why) {
     state.SkipWithError(why.c_str());
     for (auto _ : state) {
@@ -75,7 +44,7 @@ void BM_BvhTraceGpuWide(benchmark::State& state, const char* scene, bool diffuse
     const render::GpuBlas binary(ctx, {nodes, refs, s.mesh->positions, bvh::requiredStackSize(s.blas->nodes)}, "bench blas");
     const bvh::Bvh8 wide = bvh::buildBvh8(nodes, refs);
     const render::GpuWideBlas gpuWide(ctx, wide, binary, "bench wide blas");
-    runTrace(state, s, diffuse, [&](VkCommandBuffer cmd, VkDeviceAddress rays, VkDeviceAddress hits, uint32_t n) {
+    runGpuTrace(state, s, diffuse, [&](VkCommandBuffer cmd, VkDeviceAddress rays, VkDeviceAddress hits, uint32_t n) {
         render::recordTraceRaysWide(cmd, {ctx, *shaders()}, gpuWide, render::TraceMode::Closest, rays, hits, n);
     });
     state.counters["wide_nodes"] = double(wide.nodes.size());
@@ -104,7 +73,7 @@ void BM_BvhTraceGpuRayQuery(benchmark::State& state, const char* scene, bool dif
     const vk::AccelerationStructures accel(ctx, meshes, instances);
     const vk::Pipeline& pipeline = shaders()->compute({vk::ShaderId::bvh_trace_rays_rq_comp, {}, sizeof(gpu::BvhTracePush),
                                                        std::array<uint32_t, 3>{gpu::kBvhTraceGroupSize, 1, 1}});
-    runTrace(state, s, diffuse, [&](VkCommandBuffer cmd, VkDeviceAddress rays, VkDeviceAddress hits, uint32_t n) {
+    runGpuTrace(state, s, diffuse, [&](VkCommandBuffer cmd, VkDeviceAddress rays, VkDeviceAddress hits, uint32_t n) {
         gpu::BvhTracePush push{};
         push.tlas = accel.tlasAddress();
         push.rays = rays;

@@ -40,6 +40,8 @@ std::vector<Ladder> ladderTable(const DeviceCapabilities& c) {
     ladders.push_back(ladder("vrs", "variable-rate shading",
         {{Rung::Native, "VK_KHR_fragment_shading_rate", c.fragmentShadingRate,
           missing(c.fragmentShadingRate, "VK_KHR_fragment_shading_rate")},
+         {Rung::Native, "VK_NV_shading_rate_image", c.shadingRateImageNv,
+          missing(c.shadingRateImageNv, "VK_NV_shading_rate_image")},
          {Rung::Fallback, "compute-side coarse shading", true, ""}}));
     ladders.push_back(ladder("vxgi-atomics", "voxel radiance atomics (VXGI)",
         {{Rung::Native, "float32 image atomic add", c.imageFloat32AtomicAdd,
@@ -60,6 +62,10 @@ std::vector<Ladder> ladderTable(const DeviceCapabilities& c) {
     ladders.push_back(ladder("ray-traversal", "ray traversal",
         {{Rung::Native, "VK_KHR_ray_query", c.rayQuery, missing(c.rayQuery, "VK_KHR_ray_query")},
          {Rung::Fallback, "compute BVH traversal", true, ""}}));
+    ladders.push_back(ladder("subgroup-arithmetic", "subgroup reductions",
+        {{Rung::Native, "subgroupAdd / subgroupMax", c.subgroupArithmetic,
+          missing(c.subgroupArithmetic, "compute-stage subgroup arithmetic")},
+         {Rung::Fallback, "shared-memory tree", true, ""}}));
     return ladders;
 }
 
@@ -105,8 +111,8 @@ std::vector<Ladder> buildLadders(const DeviceCapabilities& caps, const LadderCho
         for (Ladder& ladder : ladders) {
             if (ladder.id != force.ladder) continue;
             const RungOption* option = nullptr;
-            for (const RungOption& o : ladder.options)
-                if (o.rung == force.rung) option = &o;
+            for (const RungOption& o : ladder.options)  // the first runnable option of that rung (vrs has two natives)
+                if (o.rung == force.rung && (option == nullptr || (!option->available && o.available))) option = &o;
             const std::string spec = "--rung " + ladder.id + "=" + rungName(force.rung);
             if (option == nullptr || !option->available) {
                 std::string runnable;

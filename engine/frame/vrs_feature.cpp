@@ -77,10 +77,13 @@ void VrsFeature::beginFrame(FrameContext& f) {
             vkCmdCopyBuffer(pc.commandBuffer(), pc.vkBuffer(rates), pc.vkBuffer(*copied), 1, &region);
         });
     f.graph.markOutput(*copied);
+    if (f.settings.vrs.testShadedOnly && f.settings.output == render::OutputKind::Hdr)
+        f.output = passes::addVrsReconstructPass(f.graph, f.ctx, f.shaders, f.gbuffer, f.frameConstants, f.vrsRates,
+                                                 f.output, true);
 }
 
 void VrsFeature::addReconstructPass(FrameContext& f) {
-    if (!f.vrsRates.valid()) return;
+    if (!f.vrsRates.valid() || f.settings.vrs.testShadedOnly) return;
     f.hdr = passes::addVrsReconstructPass(f.graph, f.ctx, f.shaders, f.gbuffer, f.frameConstants, f.vrsRates, f.hdr);
 }
 
@@ -94,6 +97,21 @@ void VrsFeature::addClassifyPasses(FrameContext& f) {
     previousViewProjection_ = f.viewProjection;
     hasPrevious_ = true;
 
+    if (f.settings.vrs.fixedRate >= 0) {
+        // Every tile at one rate: the rates part of the buffer filled with the palette index.
+        graph::BufferHandle rates = f.vrsRates;
+        auto written = std::make_shared<graph::BufferHandle>();
+        const uint32_t rate = uint32_t(f.settings.vrs.fixedRate), tiles = tiles_;
+        f.graph.addPass(
+            "vrs_fixed_rates", [&](graph::PassBuilder& b) { *written = b.write(rates, graph::Access::TransferDst); },
+            [written, rate, tiles](graph::PassContext& pc) {
+                vkCmdFillBuffer(pc.commandBuffer(), pc.vkBuffer(*written), sizeof(gpu::VrsRatesHeader),
+                                VkDeviceSize(tiles) * 4, rate);
+            });
+        f.graph.markOutput(*written);
+        if (f.settings.vrs.debug) f.hdr = passes::addVrsOverlayPass(f.graph, f.ctx, f.shaders, *written, f.hdr);
+        return;
+    }
     passes::VrsClassifyParams params;
     params.tileSize = tileSize_;
     params.subgroupReduce = f.ctx.ladder("subgroup-arithmetic").chosen == vk::Rung::Native;

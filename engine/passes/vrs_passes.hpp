@@ -37,7 +37,8 @@ graph::BufferHandle addVrsCameraMotionPass(graph::RenderGraph& graph, vk::Contex
 // vrs_reconstruct.cpp: fills the non-anchor pixels of `target` (software rung); returns its new version.
 graph::TextureHandle addVrsReconstructPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                            const GBufferOutputs& gbuffer, graph::BufferHandle frame,
-                                           graph::BufferHandle rates, graph::TextureHandle target);
+                                           graph::BufferHandle rates, graph::TextureHandle target,
+                                           bool fillSentinel = false);  // test hook: kVrsSentinel everywhere
 
 // vrs_overlay.cpp: tints `target` by the rates (--vrs-debug); returns its new version.
 graph::TextureHandle addVrsOverlayPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,

@@ -10,11 +10,12 @@ namespace idk::passes {
 
 graph::TextureHandle addVrsReconstructPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                            const GBufferOutputs& gbuffer, graph::BufferHandle frame,
-                                           graph::BufferHandle rates, graph::TextureHandle target) {
+                                           graph::BufferHandle rates, graph::TextureHandle target,
+                                           bool fillSentinel) {
     auto written = std::make_shared<graph::TextureHandle>();
     const graph::TextureHandle depth = gbuffer.depth, normal = gbuffer.normal;
     graph.addPass(
-        "vrs_reconstruct",
+        fillSentinel ? "vrs_sentinel" : "vrs_reconstruct",
         [&](graph::PassBuilder& b) {
             constexpr VkPipelineStageFlags2 kCs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
             b.read(depth, graph::Access::StorageRead, kCs);
@@ -23,7 +24,7 @@ graph::TextureHandle addVrsReconstructPass(graph::RenderGraph& graph, vk::Contex
             b.read(rates, graph::Access::StorageRead, kCs);
             *written = b.write(target, graph::Access::StorageReadWrite, kCs);
         },
-        [&ctx, &shaders, depth, normal, frame, rates, written](graph::PassContext& pc) {
+        [&ctx, &shaders, depth, normal, frame, rates, written, fillSentinel](graph::PassContext& pc) {
             VkCommandBuffer cmd = pc.commandBuffer();
             vk::ComputePipelineDesc desc;
             desc.shader = vk::ShaderId::vrs_reconstruct_comp;
@@ -37,6 +38,7 @@ graph::TextureHandle addVrsReconstructPass(graph::RenderGraph& graph, vk::Contex
             push.depth = pc.texture(depth).storageIndex;
             push.normal = pc.texture(normal).storageIndex;
             push.target = pc.texture(*written).storageIndex;
+            push.fillSentinel = fillSentinel ? 1u : 0u;
             vk::pushConstants(cmd, ctx, push);
             VkExtent3D extent = pc.texture(*written).extent;
             vkCmdDispatch(cmd, vk::groupCount(extent.width, 8), vk::groupCount(extent.height, 8), 1);

@@ -85,9 +85,10 @@ struct VrsReconstructPush {
     uint depth;              // R32F
     uint normal;             // R32UI octahedral
     uint target;             // RGBA16F, shaded at the cell anchors
-    uint pad;
+    uint fillSentinel;       // test hook: 1 writes kVrsSentinel to every pixel instead (run before lighting)
 };
 IDK_GPU_SIZE(VrsReconstructPush, 32);
+IDK_CONST(float, kVrsSentinel, -1.0f);  // a radiance no pass writes
 
 // overlay.comp (--vrs-debug): tints each tile of the HDR image by its rate.
 struct VrsOverlayPush {

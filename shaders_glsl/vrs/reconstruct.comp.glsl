@@ -26,6 +26,10 @@ void main() {
     GpuFrame f = FrameBuffer(p.frame).frame;
     uvec2 pixel = gl_GlobalInvocationID.xy;
     if (any(greaterThanEqual(pixel, f.extent))) return;
+    if (p.fillSentinel != 0u) {  // test hook: marks every pixel, so that the shaded ones can be counted
+        imageStore(gImagesRgba16f[p.target], ivec2(pixel), vec4(kVrsSentinel));
+        return;
+    }
     VrsRatesRef r = VrsRatesRef(p.rates);
     uvec2 cell = vrsCellSize(vrsTileRate(r, pixel));
     uvec2 anchor = pixel / cell * cell;

@@ -33,6 +33,9 @@ void VrsFeature::beginFrame(FrameContext& f) {
         hasPrevious_ = false;
         return;
     }
+    // The software rung is the only one the frame runs (vk/features.cpp says why); consulting the ladder puts it in
+    // --json's "rungs". A hardware rung would take its tile from the device's shading-rate texel size.
+    f.ctx.ladder("vrs");
     const uint32_t tileSize = gpu::kVrsDefaultTileSize;  // the software rung's tile (the original's 16x16)
     const uint32_t tilesX = (f.width + tileSize - 1) / tileSize, tilesY = (f.height + tileSize - 1) / tileSize;
     if (!rates_ || tilesX * tilesY != tiles_ || tilesX != tilesX_ || tileSize != tileSize_ ||

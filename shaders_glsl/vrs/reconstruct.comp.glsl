@@ -15,11 +15,12 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(push_constant, scalar) uniform Push { VrsReconstructPush p; };
 
-// View-ray distance of a depth sample (the reconstructed point's distance from the eye).
-float viewDistance(GpuFrame f, uvec2 pixel, float depth) {
+// View depth of a depth sample: clip w, the reciprocal of the unprojected point's w (one row of the inverse
+// view-projection instead of a full unprojection: this pass runs for most pixels at coarse rates).
+float viewDepth(GpuFrame f, uvec2 pixel, float depth) {
     vec2 ndc = (vec2(pixel) + 0.5) / vec2(f.extent) * 2.0 - 1.0;
-    vec4 h = f.inverseViewProjection * vec4(ndc, depth, 1.0);
-    return distance(h.xyz / h.w, f.cameraPosition);
+    mat4 m = f.inverseViewProjection;
+    return 1.0 / abs(dot(vec4(m[0][3], m[1][3], m[2][3], m[3][3]), vec4(ndc, depth, 1.0)));
 }
 
 void main() {
@@ -38,7 +39,7 @@ void main() {
     float depth = imageLoad(gImagesR32f[p.depth], ivec2(pixel)).r;
     bool sky = depth >= 1.0;
     vec3 n = sky ? vec3(0.0) : octDecode(unpackSnorm2x16(imageLoad(gImagesR32ui[p.normal], ivec2(pixel)).r));
-    float dist = sky ? 0.0 : viewDistance(f, pixel, depth);
+    float dist = sky ? 0.0 : viewDepth(f, pixel, depth);
     vec2 t = vec2(pixel - anchor) / vec2(cell);
 
     vec3 sum = vec3(0.0);
@@ -54,7 +55,7 @@ void main() {
             vec3 an = octDecode(unpackSnorm2x16(imageLoad(gImagesR32ui[p.normal], ivec2(a)).r));
             float agree = max(dot(n, an), 0.0);
             agree *= agree; agree *= agree; agree *= agree;  // cos^8: ~0.34 at 15 degrees
-            float rel = abs(viewDistance(f, a, aDepth) - dist) / max(dist, 1e-6);
+            float rel = abs(viewDepth(f, a, aDepth) - dist) / max(dist, 1e-6);
             w *= agree / (1.0 + 100.0 * rel);  // 1% farther: half weight
         }
         sum += w * imageLoad(gImagesRgba16f[p.target], ivec2(a)).rgb;

@@ -11,9 +11,13 @@
 #include "frame/frame_inputs.hpp"
 #include "frame/vrs_oracle.hpp"
 #include "passes/vrs_passes.hpp"
+#include "shared/deferred_types.h"
 #include "vk/transfer.hpp"
 
 namespace idk::frame {
+
+// The software rung packs each 8x8 lighting/sky workgroup's anchors (include/vrs_rates.glsl): one rate per group.
+static_assert(gpu::kVrsDefaultTileSize % gpu::kLightingGroupSize == 0 && gpu::kLightingGroupSize == 8);
 
 VrsFeature::~VrsFeature() { release(); }
 

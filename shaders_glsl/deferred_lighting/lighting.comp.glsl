@@ -18,8 +18,8 @@ layout(push_constant, scalar) uniform Push { LightingPush p; };
 void main() {
     GpuFrame f = FrameBuffer(p.frame).frame;
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (!vrsAnchorOfInvocation(p.vrsRates, pixel)) return;  // software VRS: vrs/reconstruct.comp fills the rest
     if (any(greaterThanEqual(uvec2(pixel), f.extent))) return;
-    if (!vrsShades(p.vrsRates, uvec2(pixel))) return;  // software VRS: vrs/reconstruct.comp fills it
     float depth = imageLoad(gImagesR32f[p.depth], pixel).r;
     if (depth >= 1.0) return;  // background: the sky pass writes it
 

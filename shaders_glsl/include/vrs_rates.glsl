@@ -22,9 +22,20 @@ bool vrsIsAnchor(VrsRatesRef r, uvec2 pixel) {
     return pixel.x % cell.x == 0u && pixel.y % cell.y == 0u;
 }
 
-// rates == 0: VRS off, every pixel is shaded.
-bool vrsShades(uint64_t rates, uvec2 pixel) {
-    return rates == 0ul || vrsIsAnchor(VrsRatesRef(rates), pixel);
+// The software rung in an 8x8-workgroup compute pass (lighting, sky): invocation i of the workgroup takes the i-th
+// anchor of its 8x8 block (one rate per block: tiles are multiples of 8), so the shading work is packed into the
+// first invocations and whole subgroups past the anchor count exit at once. Skipping non-anchor pixels in place
+// would save nothing on SIMD hardware (lavapipe's 8 lanes or a GPU's 32/64 run masked lanes at full cost).
+// Returns false for invocations without an anchor; rates == 0 (VRS off) keeps every pixel.
+bool vrsAnchorOfInvocation(uint64_t rates, inout ivec2 pixel) {
+    if (rates == 0ul) return true;
+    VrsRatesRef r = VrsRatesRef(rates);
+    uvec2 origin = gl_WorkGroupID.xy * 8u;
+    uvec2 perRow = 8u / vrsCellSize(vrsTileRate(r, origin));
+    uint i = gl_LocalInvocationIndex;
+    if (i >= perRow.x * perRow.y) return false;
+    pixel = ivec2(origin + uvec2(i % perRow.x, i / perRow.x) * (8u / perRow));
+    return true;
 }
 
 #endif

@@ -590,6 +590,15 @@ def farm_section(results_dir):
         return f.read().rstrip().splitlines() + [""]
 
 
+def vrs_section(results_dir):
+    """The VRS section bench/vrs_report.py wrote (bench/results/vrs_section.md), if any."""
+    path = os.path.join(results_dir, "vrs_section.md")
+    if not os.path.exists(path):
+        return []
+    with open(path) as f:
+        return f.read().rstrip().splitlines() + [""]
+
+
 def main(argv):
     args = [a for a in argv[1:] if not a.startswith("--")]
     if len(args) != 2:
@@ -615,6 +624,7 @@ def main(argv):
     lines += pathtrace_section(os.path.dirname(os.path.abspath(results_path)))
     lines += soak_section(os.path.dirname(os.path.abspath(results_path)))
     lines += farm_section(os.path.dirname(os.path.abspath(results_path)))
+    lines += vrs_section(os.path.dirname(os.path.abspath(results_path)))
     with open(out_path, "w") as f:
         f.write("\n".join(lines).rstrip() + "\n")
     print(f"bench_report.py: wrote {out_path} ({sum(len(r) for r in groups.values())} rows)")

@@ -96,6 +96,7 @@ nlohmann::json statsJson(const render::FrameResult& frame, const vk::Context& ct
     for (const passes::IndirectDrawLog::Entry& e : frame.indirectDraws)
         draws[e.pass] = {{"indirectCalls", e.calls}, {"draws", e.draws}};
     j["indirectDraws"] = draws;
+    if (settings.shading == render::Shading::Pbr) j["shadingInvocations"] = frame.shadingInvocations;  // lighting + sky
     j["memoryBytes"] = memory.bytesByCategory;
     j["deviceMemoryObjects"] = memory.deviceMemoryCount;
     j["reservedBlockBytes"] = memory.blockBytes;
@@ -200,6 +201,8 @@ int runRender(const std::vector<std::string>& argv, std::vector<vk::Ladder>* run
         std::optional<tools::VideoWriter> video;
         if (orbitVideo) video.emplace(*args.get("--video"), width, height, videoOptionsFromCli(args, fps));
         for (size_t k = 0; k < views.size(); ++k) {
+            // VRS shades at the rates the previous frame classified: a first frame classifies, as the viewer's would.
+            if (k == 0 && settings.vrs.enabled) renderer.renderOffscreen(views[k], width, height);
             frame = renderer.renderOffscreen(views[k], width, height);
             if (video) {
                 video->addFrame(frame.display);

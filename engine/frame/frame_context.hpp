@@ -44,6 +44,7 @@ struct FrameContext {
     passes::GBufferOutputs gbuffer;
     graph::TextureHandle hdr;                      // the lit HDR image (RGBA16F), updated by each pass that adds light
     graph::TextureHandle output;                   // the frame's target (imported); the recipe's last write
+    graph::BufferHandle vrsRates;                  // VRS software rung: last frame's rates (invalid: VRS off)
 };
 
 }  // namespace idk::frame

@@ -39,10 +39,14 @@ graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Fe
     // sampled array (the G-buffer's) as reading the cubes, so their write must not follow such a draw.
     x.pointShadows.addPasses(f, scene);                               // f.pointShadows
     f.gbuffer = passes::addGBufferPass(f.graph, f.ctx, f.shaders, f.scene, f.frameConstants, &f.log);
+    x.vrs.beginFrame(f);                                              // f.vrsRates: last frame's shading rates
     f.hdr = passes::addDeferredLightingPass(f.graph, f.ctx, f.shaders, f.gbuffer, f.frameConstants, f.scene.lights,
-                                            f.environment, hdrTarget(f), f.pointShadows);
-    f.hdr = passes::addSkyPass(f.graph, f.ctx, f.shaders, f.gbuffer.depth, f.frameConstants, f.environment, f.hdr);
+                                            f.environment, hdrTarget(f), f.pointShadows, f.vrsRates);
+    f.hdr = passes::addSkyPass(f.graph, f.ctx, f.shaders, f.gbuffer.depth, f.frameConstants, f.environment, f.hdr,
+                               f.vrsRates);
+    x.vrs.addReconstructPass(f);                                      // VRS: fills the pixels not shaded
     x.transparency.addPasses(f, scene);                               // blends into f.hdr
+    x.vrs.addClassifyPasses(f);                                       // VRS: rates for the next frame
     return finish(f);                                                 // tonemap (Display) into f.output
 }
 

@@ -40,6 +40,20 @@ std::vector<SettingOption> buildTable() {
                  OptionKind::Choice, 0.0, 0.0, {"128", "256", "512", "1024", "2048"},
                  [](const RenderSettings& s) { return cubeSizeIndex(s.pointShadows.resolution); },
                  [](RenderSettings& s, double v) { s.pointShadows.resolution = kShadowCubeSizes[size_t(v)]; }});
+    // Variable-rate shading (frame/vrs_feature.hpp).
+    t.push_back({"--vrs", "Variable-rate shading", "variable-rate shading",
+                 "lighting and sky at per-tile rates classified from the previous frame", OptionKind::Choice, 0.0,
+                 0.0, {"off", "on"}, [](const RenderSettings& s) { return s.vrs.enabled ? 1.0 : 0.0; },
+                 [](RenderSettings& s, double v) { s.vrs.enabled = v != 0.0; }});
+    t.push_back({"--vrs-debug", "Variable-rate shading", "rate overlay",
+                 "tint each tile by its shading rate (none 1x1, blue 2x1, green 2x2, yellow 4x2, red 4x4)",
+                 OptionKind::Toggle, 0.0, 1.0, {}, [](const RenderSettings& s) { return s.vrs.debug ? 1.0 : 0.0; },
+                 [](RenderSettings& s, double v) { s.vrs.debug = v != 0.0; }});
+    t.push_back({"--vrs-rate", "Variable-rate shading", "fixed rate",
+                 "every tile at one rate instead of the classifier's (comparisons, benchmarks)", OptionKind::Choice,
+                 0.0, 0.0, {"auto", "1x1", "2x1", "2x2", "4x2", "4x4"},
+                 [](const RenderSettings& s) { return double(s.vrs.fixedRate + 1); },
+                 [](RenderSettings& s, double v) { s.vrs.fixedRate = int(v) - 1; }});
     return t;
 }
 

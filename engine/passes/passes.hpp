@@ -104,12 +104,13 @@ PointShadowOutputs addPointShadowPass(graph::RenderGraph& graph, vk::Context& ct
 graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                              const GBufferOutputs& gbuffer, graph::BufferHandle frame,
                                              graph::BufferHandle lights, graph::TextureHandle environment,
-                                             graph::TextureHandle target, const PointShadowOutputs& shadows = {});
+                                             graph::TextureHandle target, const PointShadowOutputs& shadows = {},
+                                             graph::BufferHandle vrsRates = {});  // software VRS (vrs_passes.hpp)
 
 // sky.cpp: writes the environment into the background pixels of `target` (depth == 1); returns its new version.
 graph::TextureHandle addSkyPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                 graph::TextureHandle depth, graph::BufferHandle frame, graph::TextureHandle environment,
-                                graph::TextureHandle target);
+                                graph::TextureHandle target, graph::BufferHandle vrsRates = {});
 
 // transparency.cpp: BLEND draws back to front (render/blend_draws.hpp), forward-shaded and "over"-blended into
 // the HDR `target` after sky, depth-tested against the G-buffer depth; returns the target's new version.

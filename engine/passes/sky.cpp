@@ -12,7 +12,7 @@ namespace idk::passes {
 
 graph::TextureHandle addSkyPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                 graph::TextureHandle depth, graph::BufferHandle frame, graph::TextureHandle environment,
-                                graph::TextureHandle target) {
+                                graph::TextureHandle target, graph::BufferHandle vrsRates) {
     auto written = std::make_shared<graph::TextureHandle>();
     graph.addPass(
         "sky",
@@ -21,9 +21,10 @@ graph::TextureHandle addSkyPass(graph::RenderGraph& graph, vk::Context& ctx, vk:
             b.read(depth, graph::Access::StorageRead, kCs);
             b.read(environment, graph::Access::SampledRead, kCs);
             b.read(frame, graph::Access::StorageRead, kCs);
+            if (vrsRates.valid()) b.read(vrsRates, graph::Access::StorageRead, kCs);
             *written = b.write(target, graph::Access::StorageWrite, kCs);
         },
-        [&ctx, &shaders, depth, frame, written](graph::PassContext& pc) {
+        [&ctx, &shaders, depth, frame, written, vrsRates](graph::PassContext& pc) {
             VkCommandBuffer cmd = pc.commandBuffer();
             vk::ComputePipelineDesc desc;
             desc.shader = vk::ShaderId::sky_sky_comp;
@@ -35,6 +36,7 @@ graph::TextureHandle addSkyPass(graph::RenderGraph& graph, vk::Context& ctx, vk:
             push.frame = pc.buffer(frame).address;
             push.depth = pc.texture(depth).storageIndex;
             push.target = pc.texture(*written).storageIndex;
+            push.vrsRates = vrsRates.valid() ? pc.buffer(vrsRates).address : 0;
             vk::pushConstants(cmd, ctx, push);
             VkExtent3D extent = pc.texture(*written).extent;
             vkCmdDispatch(cmd, vk::groupCount(extent.width, gpu::kLightingGroupSize),

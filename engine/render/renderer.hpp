@@ -38,6 +38,9 @@ struct FrameResult {
     std::vector<passes::IndirectDrawLog::Entry> indirectDraws;  // per pass: vkCmdDraw*Indirect calls and draws
     std::string graphText;                   // RenderGraph::toText() of the frame
     std::string graphDot;                    // RenderGraph::toGraphviz() of the frame
+    // PBR: pixels shaded by the passes VRS applies to (deferred lighting + sky): width * height with VRS off,
+    // the coarse cells' anchors with VRS on (frame/vrs_feature.hpp), whatever the rung. 0 for Lambert.
+    uint64_t shadingInvocations = 0;
 };
 
 // renderFrame's target: the caller's colour image (e.g. a swapchain image). The frame is rendered exactly as
@@ -88,6 +91,8 @@ public:
     GpuScene* gpuScene() noexcept { return gpuScene_.get(); }
     // The point-shadow cubes of the last frame (nullptr when no light cast one): tests read them back.
     const PointShadowMaps* pointShadowMaps() const noexcept { return features_.pointShadows.maps(); }
+    // Variable-rate shading's state (the rates the last frame used): tests and the viewer's overlay read it.
+    const frame::VrsFeature& vrs() const noexcept { return features_.vrs; }
     // Runs inside each frame's command buffer before the frame's graph is built (TextureStreamer::pump goes
     // here: textures it makes ready reach this frame's materials through the scene_update pass).
     void setBeforeFrame(std::function<void(VkCommandBuffer)> hook) { beforeFrame_ = std::move(hook); }

@@ -150,6 +150,7 @@ void Viewer::handleEvents() {
 }
 
 void Viewer::update(float dt) {
+    renderer->settings().vrs.frameSeconds = std::max(dt, 1e-4f);  // VRS: screen motion per frame -> per second
     if (state.replaying && replay) {
         state.replayTime += dt;
         double duration = tools::captureDuration(*replay);

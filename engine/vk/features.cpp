@@ -28,6 +28,12 @@ namespace {
 
 std::string missing(bool available, const char* what) { return available ? "" : std::string("device lacks ") + what; }
 
+std::string vrsHardwareNote(bool available, const char* extension) {
+    return available ? std::string("not wired: the frame lights in compute (no fragment lighting pass for ") +
+                           extension + " yet)"
+                     : std::string("device lacks ") + extension;
+}
+
 // The table, rungs best first, nothing chosen yet.
 std::vector<Ladder> ladderTable(const DeviceCapabilities& c) {
     auto ladder = [](const char* id, const char* feature, std::vector<RungOption> options) {
@@ -38,8 +44,12 @@ std::vector<Ladder> ladderTable(const DeviceCapabilities& c) {
         {{Rung::Native, "VK_EXT_mesh_shader", c.meshShaderExt, missing(c.meshShaderExt, "VK_EXT_mesh_shader")},
          {Rung::Fallback, "multi-draw-indirect with count", true, ""}}));
     ladders.push_back(ladder("vrs", "variable-rate shading",
-        {{Rung::Native, "VK_KHR_fragment_shading_rate", c.fragmentShadingRate,
-          missing(c.fragmentShadingRate, "VK_KHR_fragment_shading_rate")},
+        // The hardware rungs need the lighting and sky as fragment passes with a shading-rate attachment; the frame
+        // shades them in compute today, so they stay unavailable (the note says which) until that pass exists.
+        {{Rung::Native, "VK_KHR_fragment_shading_rate", false,
+          vrsHardwareNote(c.fragmentShadingRate, "VK_KHR_fragment_shading_rate")},
+         {Rung::Native, "VK_NV_shading_rate_image", false,
+          vrsHardwareNote(c.shadingRateImageNv, "VK_NV_shading_rate_image")},
          {Rung::Fallback, "compute-side coarse shading", true, ""}}));
     ladders.push_back(ladder("vxgi-atomics", "voxel radiance atomics (VXGI)",
         {{Rung::Native, "float32 image atomic add", c.imageFloat32AtomicAdd,
@@ -60,6 +70,10 @@ std::vector<Ladder> ladderTable(const DeviceCapabilities& c) {
     ladders.push_back(ladder("ray-traversal", "ray traversal",
         {{Rung::Native, "VK_KHR_ray_query", c.rayQuery, missing(c.rayQuery, "VK_KHR_ray_query")},
          {Rung::Fallback, "compute BVH traversal", true, ""}}));
+    ladders.push_back(ladder("subgroup-arithmetic", "subgroup reductions",
+        {{Rung::Native, "subgroupAdd / subgroupMax", c.subgroupArithmetic,
+          missing(c.subgroupArithmetic, "compute-stage subgroup arithmetic")},
+         {Rung::Fallback, "shared-memory tree", true, ""}}));
     return ladders;
 }
 
@@ -105,8 +119,8 @@ std::vector<Ladder> buildLadders(const DeviceCapabilities& caps, const LadderCho
         for (Ladder& ladder : ladders) {
             if (ladder.id != force.ladder) continue;
             const RungOption* option = nullptr;
-            for (const RungOption& o : ladder.options)
-                if (o.rung == force.rung) option = &o;
+            for (const RungOption& o : ladder.options)  // the first runnable option of that rung (vrs has two natives)
+                if (o.rung == force.rung && (option == nullptr || (!option->available && o.available))) option = &o;
             const std::string spec = "--rung " + ladder.id + "=" + rungName(force.rung);
             if (option == nullptr || !option->available) {
                 std::string runnable;
@@ -127,7 +141,10 @@ std::vector<std::string> ladderRungList() {
     std::vector<std::string> list;
     for (const Ladder& ladder : ladderTable(DeviceCapabilities{})) {
         std::string line = ladder.id + ": ";
-        for (const RungOption& o : ladder.options) line += std::string(&o == &ladder.options.front() ? "" : "|") + rungName(o.rung);
+        for (const RungOption& o : ladder.options) {
+            if (&o != &ladder.options.front() && (&o - 1)->rung == o.rung) continue;  // vrs: two native mechanisms
+            line += std::string(&o == &ladder.options.front() ? "" : "|") + rungName(o.rung);
+        }
         list.push_back(line);
     }
     return list;

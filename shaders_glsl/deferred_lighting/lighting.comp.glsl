@@ -10,6 +10,7 @@
 #include "octahedral.glsl"
 #include "color.glsl"
 #include "surface_lighting.glsl"
+#include "vrs_rates.glsl"
 
 layout(local_size_x = kLightingGroupSize, local_size_y = kLightingGroupSize) in;
 layout(push_constant, scalar) uniform Push { LightingPush p; };
@@ -17,6 +18,7 @@ layout(push_constant, scalar) uniform Push { LightingPush p; };
 void main() {
     GpuFrame f = FrameBuffer(p.frame).frame;
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (!vrsAnchorOfInvocation(p.vrsRates, pixel)) return;  // software VRS: vrs/reconstruct.comp fills the rest
     if (any(greaterThanEqual(uvec2(pixel), f.extent))) return;
     float depth = imageLoad(gImagesR32f[p.depth], pixel).r;
     if (depth >= 1.0) return;  // background: the sky pass writes it

@@ -58,16 +58,18 @@ struct LightingPush {
     uint depth;      // R32F: 0 near .. 1 far (1 = background)
     uint target;     // RGBA16F: linear radiance
     DeviceAddress pointShadows;  // GpuPointShadow[lightCount] (shared/shadow_types.h), 0: no light casts one
+    DeviceAddress vrsRates;      // software VRS: shade only cell anchors (shared/vrs_types.h); 0: every pixel
 };
-IDK_GPU_SIZE(LightingPush, 40);
+IDK_GPU_SIZE(LightingPush, 48);
 
 // sky.comp: writes the environment where depth == 1.
 struct SkyPush {
     DeviceAddress frame;
     uint depth;      // R32F storage image
     uint target;     // RGBA16F storage image
+    DeviceAddress vrsRates;  // as LightingPush::vrsRates
 };
-IDK_GPU_SIZE(SkyPush, 16);
+IDK_GPU_SIZE(SkyPush, 24);
 
 // tonemap.frag: AgX of exposure * radiance, sRGB-encoded into an RGBA8 colour attachment. A fragment pass, not
 // compute: the displayed image is then no storage image, so it needs no layout change after the compute passes

@@ -44,6 +44,27 @@ case "$case_name" in
     "$idk" render --size 16x16 --out "$tmp/g.png" --graph "$tmp/frame.dot" || fail "render with --graph failed"
     grep -q "digraph" "$tmp/frame.dot" || fail "--graph .dot is not graphviz: $(head -3 "$tmp/frame.dot")"
     ;;
+  vrs)
+    # Issue 14: --vrs on shades fewer pixels (shadingInvocations: lighting + sky) than off (64x48 = 3072); a fixed
+    # 4x4 rate shades exactly 16 x 12; the shared-memory reduction gives the same rates as the subgroup one.
+    inv() { grep -o '"shadingInvocations": [0-9]*' "$1" | grep -o '[0-9]*$'; }
+    "$idk" render --size 64x48 --out "$tmp/off.png" --stats --json >"$tmp/off.json" 2>/dev/null || fail "render failed"
+    [ "$(inv "$tmp/off.json")" = 3072 ] || fail "VRS off: shadingInvocations $(inv "$tmp/off.json"), expected 3072"
+    "$idk" render --size 64x48 --out "$tmp/on.png" --vrs on --stats --json >"$tmp/on.json" 2>/dev/null || fail "--vrs on failed"
+    on=$(inv "$tmp/on.json")
+    [ -n "$on" ] && [ "$on" -lt 3072 ] || fail "--vrs on: shadingInvocations '$on', expected < 3072"
+    grep -q '"vrs_classify"' "$tmp/on.json" || fail "--vrs on ran no classifier"
+    grep -q '"id": "vrs"' "$tmp/on.json" || fail "--vrs on does not report the vrs rung"
+    "$idk" render --size 64x48 --out "$tmp/sh.png" --vrs on --rung subgroup-arithmetic=fallback --stats --json \
+      >"$tmp/sh.json" 2>/dev/null || fail "--rung subgroup-arithmetic=fallback failed"
+    [ "$(inv "$tmp/sh.json")" = "$on" ] || fail "shared-memory reduction: $(inv "$tmp/sh.json") invocations, subgroup: $on"
+    "$idk" render --size 64x48 --out "$tmp/f.png" --vrs on --vrs-rate 4x4 --vrs-debug --json >"$tmp/f.json" 2>/dev/null \
+      || fail "--vrs-rate 4x4 --vrs-debug failed"
+    [ "$(inv "$tmp/f.json")" = 192 ] || fail "--vrs-rate 4x4: $(inv "$tmp/f.json") invocations, expected 192"
+    grep -q '"vrs_overlay"' "$tmp/f.json" || fail "--vrs-debug drew no overlay"
+    "$idk" render --size 8x8 --out "$tmp/x.png" --vrs maybe 2>"$tmp/err"; [ $? -eq 2 ] || fail "--vrs maybe should exit 2"
+    grep -q -- "--vrs 'maybe'" "$tmp/err" || fail "error does not name --vrs: $(cat "$tmp/err")"
+    ;;
   info_json)
     "$idk" info --json >"$tmp/info.json" || fail "idk info --json failed"
     for key in '"device"' '"ladders"' '"subgroupSize"' '"chosen"' '"apiVersion"'; do

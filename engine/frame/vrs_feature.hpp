@@ -1,0 +1,50 @@
+// vrs_feature.hpp: variable-rate shading (issue 14; IDKEngine's LightingShadingRateClassifier, reference 2.13).
+// Each frame classifies 16x16 tiles of its lit image (mean speed, luminance coefficient of variation) into a
+// rate per tile; the NEXT frame's deferred lighting and sky shade at those rates. The "vrs" ladder picks how:
+// the portable software rung (here, on every device today) shades one anchor pixel per coarse cell in the
+// compute lighting and sky passes and reconstructs the rest edge-aware from the G-buffer. Resources exist only
+// while VRS is on.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "frame/frame_context.hpp"
+#include "vk/resources.hpp"
+
+namespace idk::frame {
+
+class VrsFeature {
+public:
+    explicit VrsFeature(vk::Context& ctx) : ctx_(ctx) {}
+    ~VrsFeature();
+    VrsFeature(const VrsFeature&) = delete;
+    VrsFeature& operator=(const VrsFeature&) = delete;
+
+    // Before lighting: last frame's rates into f.vrsRates (invalid when VRS is off).
+    void beginFrame(FrameContext& f);
+    // After lighting and sky: the software rung's reconstruction of the pixels they skipped (into f.hdr).
+    void addReconstructPass(FrameContext& f);
+    // After the lit image is complete: camera motion, the classifier (rates for the next frame), the overlay.
+    void addClassifyPasses(FrameContext& f);
+
+    // Pixels lighting + sky shaded in the last frame recorded (read once that frame has completed): the anchors
+    // its rates imply, or width * height with VRS off. The same count whatever the rung.
+    uint64_t lastShadingInvocations() const;
+    // The rates the last frame used (palette index per tile), empty with VRS off; for tests and the viewer.
+    std::vector<uint32_t> lastRates() const;
+    uint32_t tileSize() const noexcept { return tileSize_; }
+
+private:
+    void release();
+
+    vk::Context& ctx_;
+    vk::Buffer rates_;                  // VrsRatesHeader + rates, persistent: written by frame N, read by N + 1
+    std::vector<vk::Buffer> readback_;  // per frame slot: the rates that slot's frame used
+    uint32_t width_ = 0, height_ = 0, tileSize_ = 0, tiles_ = 0, tilesX_ = 0;
+    uint32_t lastSlot_ = 0;
+    bool lastEnabled_ = false;
+    glm::mat4 previousViewProjection_{1.0f};
+    bool hasPrevious_ = false;
+};
+
+}  // namespace idk::frame

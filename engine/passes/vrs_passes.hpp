@@ -1,0 +1,47 @@
+// vrs_passes.hpp: the passes of variable-rate shading (issue 14; frame/vrs_feature.* drives them): the camera-
+// motion stand-in for motion vectors, the per-tile rate classifier, the software rung's reconstruction and the
+// --vrs-debug overlay. Shaders in shaders_glsl/vrs/, shared structs in shaders_glsl/shared/vrs_types.h.
+#pragma once
+#include <glm/glm.hpp>
+
+#include "graph/render_graph.hpp"
+#include "passes/passes.hpp"
+#include "shared/vrs_types.h"
+
+namespace idk::passes {
+
+// Classifier parameters (one workgroup per tile; tileSize 8, 16 or 32).
+struct VrsClassifyParams {
+    uint32_t tileSize = gpu::kVrsDefaultTileSize;
+    bool subgroupReduce = true;  // false: the shared-memory tree (devices without subgroup arithmetic)
+    float frameSeconds = 1.0f / 60.0f;
+    float speedFactor = gpu::kVrsSpeedFactor;
+    float lumVarianceFactor = gpu::kVrsLumVarianceFactor;
+};
+
+// Records the classifier outside a graph (tests): `lit` an RGBA16F storage-image index, addresses of the velocity
+// (0: none) and of a rate buffer whose header the caller has written.
+void recordVrsClassify(VkCommandBuffer cmd, vk::Context& ctx, vk::ShaderLibrary& shaders, const VrsClassifyParams& params,
+                       uint32_t lit, uint32_t width, uint32_t height, VkDeviceAddress velocity, VkDeviceAddress rates);
+
+// vrs_classify.cpp: rates for the next frame from the lit image and the velocity; returns the rates' new version.
+graph::BufferHandle addVrsClassifyPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                       const VrsClassifyParams& params, graph::TextureHandle lit,
+                                       graph::BufferHandle velocity, graph::BufferHandle rates);
+
+// vrs_camera_motion.cpp: vec2 UV-per-frame motion of each pixel from depth and the two view-projections (the
+// stand-in for issue 12's motion vectors); returns a transient buffer.
+graph::BufferHandle addVrsCameraMotionPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                           graph::TextureHandle depth, const glm::mat4& currentToPrevious);
+
+// vrs_reconstruct.cpp: fills the non-anchor pixels of `target` (software rung); returns its new version.
+graph::TextureHandle addVrsReconstructPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                           const GBufferOutputs& gbuffer, graph::BufferHandle frame,
+                                           graph::BufferHandle rates, graph::TextureHandle target,
+                                           bool fillSentinel = false);  // test hook: kVrsSentinel everywhere
+
+// vrs_overlay.cpp: tints `target` by the rates (--vrs-debug); returns its new version.
+graph::TextureHandle addVrsOverlayPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                       graph::BufferHandle rates, graph::TextureHandle target);
+
+}  // namespace idk::passes

@@ -1,0 +1,178 @@
+// vrs_types.h: variable-rate shading (issue 14), shared by C++ and GLSL: the rate buffer's layout, the passes'
+// push blocks, and the per-tile rate decision of the classifier (vrs/classify.comp.glsl), which the CPU oracle
+// (engine/frame/vrs_classify_cpu.cpp) calls too. Ports IDKEngine's ShadingRateClassification/compute.glsl
+// (reference internals 2.13): palette {1x1, 2x1, 2x2, 4x2, 4x4}; rate = round(lerp(0,4, meanSpeed * 0.2) +
+// lerp(0,4, 0.04 / CV)) clamped to [0, 4]; tiles of mean luminance <= 0.001 get 4x4; luminance = mean of RGB.
+//
+// Exactness: the tile sums are integers (fixed point), so subgroup and shared-memory reductions, in any order and
+// for any subgroup size, give bit-identical sums, and so does the CPU. Luminance is quantised per tile to B bits
+// of the tile's maximum (B = (32 - log2 pixels) / 2: the sum of squares fits 32 bits); the scale is a power of
+// two taken from the maximum's exponent, so L * scale is exact and floor() is the only rounding. Speed (UV units
+// per second) is clamped to kVrsMaxSpeed (the speed term saturates at 5 already) in 26 - log2(pixels) fraction
+// bits. What is left inexact is the final sqrt and two divisions per tile, which a GPU may round differently
+// from the CPU by an ulp: a tile whose value lies within such an error of a rounding boundary may then differ.
+#ifndef IDK_VRS_TYPES_H
+#define IDK_VRS_TYPES_H
+#include "interop.h"
+
+#ifdef __cplusplus
+#include <cmath>
+namespace idk::gpu {
+using glm::floatBitsToUint;
+using glm::uintBitsToFloat;
+using std::floor;
+using std::sqrt;
+}  // namespace idk::gpu
+#define IDK_PRECISE
+#else
+#define IDK_PRECISE precise
+#endif
+
+IDK_GPU_BEGIN
+
+IDK_CONST(uint, kVrsDefaultTileSize, 16);     // pixels per tile side without hardware VRS (the original's)
+IDK_CONST(uint, kVrsRateCount, 5);            // palette entries: 1x1, 2x1, 2x2, 4x2, 4x4
+IDK_CONST(float, kVrsSpeedFactor, 0.2f);      // the original's SpeedFactor
+IDK_CONST(float, kVrsLumVarianceFactor, 0.04f);  // the original's LumVarianceFactor
+IDK_CONST(float, kVrsDarkLuminance, 0.001f);  // mean luminance at or below: 4x4
+IDK_CONST(float, kVrsMaxLuminance, 65504.0f); // larger (and +inf) luminance is clamped (RGBA16F's largest)
+IDK_CONST(float, kVrsMaxSpeed, 32.0f);        // UV units per second; larger is clamped (saturated long before)
+IDK_CONST(uint, kVrsGroupSize, 256);          // classifier invocations per workgroup (one workgroup per tile)
+
+// Specialization constants of classify.comp.
+IDK_CONST(uint, kSpecVrsTileSize, 0);         // pixels per tile side: 8, 16 or 32
+IDK_CONST(uint, kSpecVrsSubgroupReduce, 1);   // 1: subgroupMax/subgroupAdd + shared slots; 0: shared-memory tree
+
+// The rate buffer: this header, then one uint palette index per tile, row-major. The classifier of frame N writes
+// it, frame N + 1's lighting and sky read it.
+struct VrsRatesHeader {
+    uint tileSize;
+    uint tilesX;
+    uint tilesY;
+    uint pad;
+};
+IDK_GPU_SIZE(VrsRatesHeader, 16);
+
+// classify.comp: lit image + per-pixel velocity -> rates (one workgroup per tile).
+struct VrsClassifyPush {
+    DeviceAddress rates;     // VrsRatesHeader + uint[tilesX * tilesY]
+    DeviceAddress velocity;  // vec2[width * height], UV units per frame; 0: no motion
+    uint lit;                // RGBA16F storage image: the lit frame (after transparency)
+    uint width;
+    uint height;
+    float invFrameSeconds;   // 1 / frame time: UV per frame -> UV per second
+    float speedFactor;
+    float lumVarianceFactor;
+};
+IDK_GPU_SIZE(VrsClassifyPush, 40);
+
+// camera_motion.comp: the stand-in for the motion vectors of issue 12 (camera motion only): for each pixel, the
+// UV movement of its surface point (from depth) between the previous and the current view-projection.
+struct VrsMotionPush {
+    mat4 currentToPrevious;  // previous viewProjection * inverse(current viewProjection)
+    DeviceAddress velocity;  // vec2[width * height]
+    uint depth;              // R32F G-buffer depth
+    uint width;
+    uint height;
+    uint pad;
+};
+IDK_GPU_SIZE(VrsMotionPush, 88);
+
+// reconstruct.comp: fills the pixels the coarse lighting and sky did not shade, edge-aware from the G-buffer.
+struct VrsReconstructPush {
+    DeviceAddress frame;     // GpuFrame
+    DeviceAddress rates;
+    uint depth;              // R32F
+    uint normal;             // R32UI octahedral
+    uint target;             // RGBA16F, shaded at the cell anchors
+    uint fillSentinel;       // test hook: 1 writes kVrsSentinel to every pixel instead (run before lighting)
+};
+IDK_GPU_SIZE(VrsReconstructPush, 32);
+IDK_CONST(float, kVrsSentinel, -1.0f);  // a radiance no pass writes
+
+// overlay.comp (--vrs-debug): tints each tile of the HDR image by its rate.
+struct VrsOverlayPush {
+    DeviceAddress rates;
+    uint target;
+    uint pad;
+};
+IDK_GPU_SIZE(VrsOverlayPush, 16);
+
+// Coarse cell of a palette index, in pixels (x, y).
+IDK_INLINE uvec2 vrsCellSize(uint rate) {
+    return rate == 0u ? uvec2(1u, 1u)
+         : rate == 1u ? uvec2(2u, 1u)
+         : rate == 2u ? uvec2(2u, 2u)
+         : rate == 3u ? uvec2(4u, 2u)
+                      : uvec2(4u, 4u);
+}
+
+IDK_INLINE uint vrsLog2(uint v) {  // v a power of two
+    uint l = 0u;
+    while ((1u << l) < v) l++;
+    return l;
+}
+
+// Luminance fraction bits B for tiles of `tilePixels` pixels (a power of two): n * (2^B - 1)^2 < 2^32.
+IDK_INLINE uint vrsLumBits(uint tilePixels) { return (32u - vrsLog2(tilePixels)) / 2u; }
+// Speed fraction bits: n * kVrsMaxSpeed * 2^bits <= 2^31.
+IDK_INLINE uint vrsSpeedBits(uint tilePixels) { return 26u - vrsLog2(tilePixels); }
+
+// The pixel's luminance (mean of RGB, as the original), NaN and negative -> 0, above kVrsMaxLuminance clamped.
+IDK_INLINE float vrsLuminance(vec3 rgb) {
+    IDK_PRECISE float sum = (rgb.x + rgb.y) + rgb.z;
+    IDK_PRECISE float l = sum * (1.0f / 3.0f);
+    if (!(l >= 0.0f)) return 0.0f;
+    return l > kVrsMaxLuminance ? kVrsMaxLuminance : l;
+}
+
+// The pixel's speed in fixed point (UV units per second * 2^speedBits), NaN -> 0, clamped to kVrsMaxSpeed.
+IDK_INLINE uint vrsSpeedFixed(vec2 velocity, float invFrameSeconds, uint tilePixels) {
+    IDK_PRECISE float sq = velocity.x * velocity.x + velocity.y * velocity.y;
+    IDK_PRECISE float s = sqrt(sq) * invFrameSeconds;
+    if (!(s >= 0.0f)) return 0u;
+    if (s > kVrsMaxSpeed) s = kVrsMaxSpeed;
+    IDK_PRECISE float scaled = s * float(1u << vrsSpeedBits(tilePixels));  // a power of two: exact
+    return uint(scaled);
+}
+
+// 2^(bits - e) where the tile maximum is f * 2^e, f in [0.5, 1): luminance * scale < 2^bits, exact.
+IDK_INLINE float vrsLumScale(uint maxLumBits, uint bits) {
+    int e = int((maxLumBits >> 23u) & 0xffu) - 126;
+    return uintBitsToFloat(uint(127 + int(bits) - e) << 23u);
+}
+
+IDK_INLINE uint vrsLumFixed(float luminance, float scale) {
+    IDK_PRECISE float q = luminance * scale;
+    return uint(q);
+}
+
+// The rate value before rounding (large for dark or flat tiles): lerp(0,4, meanSpeed * speedFactor) +
+// lerp(0,4, lumVarianceFactor / CV). n = pixels of the tile inside the image; maxLumBits = the tile's maximum
+// sanitised luminance as float bits; s1, s2 = sums of the fixed-point luminance and its square; speedSum = sum of
+// vrsSpeedFixed.
+IDK_INLINE float vrsRateValue(uint n, uint tilePixels, uint maxLumBits, uint s1, uint s2, uint speedSum,
+                              float speedFactor, float lumVarianceFactor) {
+    if (n == 0u || maxLumBits < floatBitsToUint(kVrsDarkLuminance)) return 1.0e30f;  // max <= 0.001: dark
+    float scale = vrsLumScale(maxLumBits, vrsLumBits(tilePixels));
+    IDK_PRECISE float darkSum = kVrsDarkLuminance * float(n) * scale;
+    if (float(s1) <= darkSum) return 1.0e30f;  // mean <= 0.001
+    IDK_PRECISE float meanSpeed = float(speedSum) * uintBitsToFloat(uint(127 - int(vrsSpeedBits(tilePixels))) << 23u)
+                                / float(n);
+    IDK_PRECISE float speedTerm = 4.0f * (meanSpeed * speedFactor);
+    // CV = sqrt(E[L^2] - E[L]^2) / E[L] = sqrt(n S2 - S1^2) / S1, with the difference exact in 64 bits.
+    uint64_t varianceNumerator = uint64_t(n) * uint64_t(s2) - uint64_t(s1) * uint64_t(s1);
+    if (varianceNumerator == uint64_t(0)) return 1.0e30f;  // constant tile: CV = 0, the term is infinite
+    IDK_PRECISE float cv = sqrt(float(varianceNumerator)) / float(s1);
+    IDK_PRECISE float lumTerm = 4.0f * (lumVarianceFactor / cv);
+    return speedTerm + lumTerm;
+}
+
+// Palette index from the rate value: round half up, clamped to [0, 4].
+IDK_INLINE uint vrsRateFromValue(float x) {
+    IDK_PRECISE float r = floor(x + 0.5f);
+    return r >= 4.0f ? 4u : (r <= 0.0f ? 0u : uint(r));
+}
+
+IDK_GPU_END
+#endif

@@ -21,8 +21,12 @@ TEST(SettingsTable, FlagsAreUniqueAndEveryRowIsComplete) {
         EXPECT_EQ(std::string(o.flag).rfind("--", 0), 0u) << o.flag;
         EXPECT_NE(o.get, nullptr) << o.flag;
         EXPECT_NE(o.set, nullptr) << o.flag;
-        if (o.kind == OptionKind::Choice) EXPECT_GE(o.choices.size(), 2u) << o.flag;
-        if (o.kind == OptionKind::Number || o.kind == OptionKind::Integer) EXPECT_LT(o.min, o.max) << o.flag;
+        if (o.kind == OptionKind::Choice) {
+            EXPECT_GE(o.choices.size(), 2u) << o.flag;
+        }
+        if (o.kind == OptionKind::Number || o.kind == OptionKind::Integer) {
+            EXPECT_LT(o.min, o.max) << o.flag;
+        }
     }
 }
 

@@ -96,6 +96,13 @@ nlohmann::json statsJson(const render::FrameResult& frame, const vk::Context& ct
     for (const passes::IndirectDrawLog::Entry& e : frame.indirectDraws)
         draws[e.pass] = {{"indirectCalls", e.calls}, {"draws", e.draws}};
     j["indirectDraws"] = draws;
+    if (!frame.culling.empty()) {
+        nlohmann::json views = nlohmann::json::object();
+        for (const passes::CullingViewStats& v : frame.culling)
+            views[v.view] = {{"instancesTested", v.instancesTested}, {"instancesDrawn", v.instancesDrawn},
+                             {"trianglesDrawn", v.trianglesDrawn}};
+        j["culling"] = views;
+    }
     j["memoryBytes"] = memory.bytesByCategory;
     j["deviceMemoryObjects"] = memory.deviceMemoryCount;
     j["reservedBlockBytes"] = memory.blockBytes;

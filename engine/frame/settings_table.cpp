@@ -40,6 +40,11 @@ std::vector<SettingOption> buildTable() {
                  OptionKind::Choice, 0.0, 0.0, {"128", "256", "512", "1024", "2048"},
                  [](const RenderSettings& s) { return cubeSizeIndex(s.pointShadows.resolution); },
                  [](RenderSettings& s, double v) { s.pointShadows.resolution = kShadowCubeSizes[size_t(v)]; }});
+    // GPU culling (frame/culling_feature.hpp).
+    t.push_back({"--culling", "Culling", "culling", "GPU culling of the draws (off: draw every instance)",
+                 OptionKind::Choice, 0.0, 0.0, {"off", "frustum", "hiz"},
+                 [](const RenderSettings& s) { return double(s.culling.mode); },
+                 [](RenderSettings& s, double v) { s.culling.mode = frame::CullingMode(v); }});
     return t;
 }
 

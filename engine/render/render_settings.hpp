@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "render/point_shadow_maps.hpp"
+#include "frame/culling_settings.hpp"
 
 namespace idk::render {
 
@@ -25,6 +26,7 @@ struct RenderSettings {
     // A file that cannot be read falls back to the constant with a warning.
     std::optional<std::filesystem::path> environment;
     PointShadowSettings pointShadows;  // which lights cast cube shadows, and the cube resolution
+    frame::CullingSettings culling;    // GPU culling of the draws (frame/culling_feature.hpp)
 };
 
 }  // namespace idk::render

@@ -38,6 +38,7 @@ struct FrameResult {
     std::vector<passes::IndirectDrawLog::Entry> indirectDraws;  // per pass: vkCmdDraw*Indirect calls and draws
     std::string graphText;                   // RenderGraph::toText() of the frame
     std::string graphDot;                    // RenderGraph::toGraphviz() of the frame
+    std::vector<passes::CullingViewStats> culling;  // GPU culling's counters per view (empty: culling off)
 };
 
 // renderFrame's target: the caller's colour image (e.g. a swapchain image). The frame is rendered exactly as

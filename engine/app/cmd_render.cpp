@@ -101,6 +101,11 @@ nlohmann::json statsJson(const render::FrameResult& frame, const vk::Context& ct
         for (const passes::CullingViewStats& v : frame.culling)
             views[v.view] = {{"instancesTested", v.instancesTested}, {"instancesDrawn", v.instancesDrawn},
                              {"trianglesDrawn", v.trianglesDrawn}};
+        for (const passes::CullingViewStats& v : frame.culling)
+            if (v.meshlets) {
+                views[v.view]["meshletsTested"] = v.meshletsTested;
+                views[v.view]["meshletsDrawn"] = v.meshletsDrawn;
+            }
         j["culling"] = views;
     }
     j["memoryBytes"] = memory.bytesByCategory;

@@ -2,10 +2,12 @@
 // camera view's culled G-buffer (see culling_feature.hpp).
 #include "frame/culling_feature.hpp"
 
+#include <algorithm>
 #include <string>
 
 #include "frame/frame_inputs.hpp"
 #include "render/culling_math.hpp"
+#include "render/meshlets.hpp"
 #include "vk/transfer.hpp"
 
 namespace idk::frame {
@@ -13,6 +15,7 @@ namespace {
 
 constexpr uint32_t kMaxViews = 1;   // the camera
 constexpr uint32_t kMaxPhases = 2;  // early and late
+constexpr uint32_t kCountersPerPhase = 2;  // the culling pass's and (mesh rung) the task shader's
 
 vk::Buffer createBuffer(vk::Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, vk::MemoryUsage memory,
                         const std::string& name) {
@@ -31,7 +34,9 @@ CullingFeature::~CullingFeature() { release(); }
 
 void CullingFeature::release() {
     if (draws_) ctx_.destroyDeferred(draws_);
-    if (visibility_) ctx_.destroyDeferred(visibility_);
+    for (vk::Buffer* b : {&visibility_, &meshlets_, &meshletVertices_, &meshletTriangles_})
+        if (*b) ctx_.destroyDeferred(*b);
+    meshlets_ = meshletVertices_ = meshletTriangles_ = {};
     for (vk::Buffer& b : views_) ctx_.destroyDeferred(b);
     for (vk::Buffer& b : stats_) ctx_.destroyDeferred(b);
     draws_ = visibility_ = {};
@@ -44,7 +49,21 @@ void CullingFeature::setScene() { release(); }
 
 void CullingFeature::createResources(const render::GpuScene& scene, uint32_t framesInFlight) {
     if (!draws_) {
-        const std::vector<gpu::GpuCullDraw> records = render::packCullDraws(scene.data());
+        meshRung_ = ctx_.ladder("mesh-shading").chosen == vk::Rung::Native;
+        render::MeshletData meshlets;
+        if (meshRung_) {
+            meshlets = render::buildMeshlets(scene.data());
+            auto upload = [&](vk::Buffer& b, const auto& v, const char* name) {
+                const VkDeviceSize bytes = std::max<VkDeviceSize>(v.size() * sizeof(v[0]), 4);
+                b = createBuffer(ctx_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::GpuOnly, name);
+                if (!v.empty()) vk::uploadBuffer(ctx_, b, v.data(), v.size() * sizeof(v[0]));
+            };
+            upload(meshlets_, meshlets.meshlets, "meshlets");
+            upload(meshletVertices_, meshlets.vertices, "meshlet vertices");
+            upload(meshletTriangles_, meshlets.triangles, "meshlet triangles");
+        }
+        const std::vector<gpu::GpuCullDraw> records =
+            render::packCullDraws(scene.data(), meshRung_ ? &meshlets : nullptr);
         const VkDeviceSize bytes = records.size() * sizeof(gpu::GpuCullDraw);
         draws_ = createBuffer(ctx_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::GpuOnly, "cull draws");
         vk::uploadBuffer(ctx_, draws_, records.data(), bytes);
@@ -58,7 +77,7 @@ void CullingFeature::createResources(const render::GpuScene& scene, uint32_t fra
         const std::string n = std::to_string(views_.size());
         views_.push_back(createBuffer(ctx_, kMaxViews * sizeof(gpu::GpuCullView), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                       vk::MemoryUsage::Upload, "cull views " + n));
-        stats_.push_back(createBuffer(ctx_, kMaxViews * kMaxPhases * sizeof(gpu::GpuCullCounters),
+        stats_.push_back(createBuffer(ctx_, kMaxViews * kMaxPhases * kCountersPerPhase * sizeof(gpu::GpuCullCounters),
                                       VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUsage::Readback, "cull stats " + n));
     }
 }
@@ -80,12 +99,27 @@ passes::GBufferOutputs CullingFeature::addGBuffer(FrameContext& f, const render:
         in.draws = importBuffer(f.graph, "cull draws", draws_);
         in.views = importBuffer(f.graph, "cull views", views_[f.slot]);
         in.drawCount = scene.drawCount();
+        in.meshTasks = meshRung_;
+        const graph::BufferHandle meshlets = importBuffer(f.graph, "meshlets", meshlets_);
+        const graph::BufferHandle meshletVertices = importBuffer(f.graph, "meshlet vertices", meshletVertices_);
+        const graph::BufferHandle meshletTriangles = importBuffer(f.graph, "meshlet triangles", meshletTriangles_);
+        std::vector<graph::BufferHandle> counters;  // per phase: the culling pass's, then the task shader's
+        // One view's culled G-buffer draw for `in.phase`, over `drawOver` in the late phase.
+        auto draw = [&](const std::string& name, const passes::GBufferOutputs* drawOver, bool keepDepth) {
+            passes::CulledDraws c = passes::addCullPass(f.graph, f.ctx, f.shaders, in, name);
+            c.keepDepth = keepDepth;
+            c.meshlets = meshlets;
+            c.meshletVertices = meshletVertices;
+            c.meshletTriangles = meshletTriangles;
+            const passes::GBufferOutputs out = passes::addGBufferPass(f.graph, f.ctx, f.shaders, f.scene,
+                                                                      f.frameConstants, &f.log, &c, drawOver);
+            counters.push_back(c.counters);
+            if (meshRung_) counters.push_back(*c.meshCountersWritten);
+            f.cameraDraws = c;
+            return out;
+        };
         if (mode == CullingMode::Frustum) {
-            f.cameraDraws = passes::addCullPass(f.graph, f.ctx, f.shaders, in, "camera");
-            f.gbuffer = passes::addGBufferPass(f.graph, f.ctx, f.shaders, f.scene, f.frameConstants, &f.log,
-                                               &f.cameraDraws);
-            passes::addCullStatsCopyPass(f.graph, {f.cameraDraws.counters}, stats);
-            lastPhases_ = 1;
+            f.gbuffer = draw("camera", nullptr, false);
         } else {
             // The last frame's late phase wrote the bits (compute); this frame's early phase reads them.
             in.visibility = importBuffer(f.graph, "cull visibility", visibility_,
@@ -93,19 +127,14 @@ passes::GBufferOutputs CullingFeature::addGBuffer(FrameContext& f, const render:
                                                                  graph::ResourceKind::Buffer,
                                                                  VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT));
             in.phase = gpu::kCullEarly;
-            passes::CulledDraws early = passes::addCullPass(f.graph, f.ctx, f.shaders, in, "camera early");
-            early.keepDepth = true;
-            const passes::GBufferOutputs first =
-                passes::addGBufferPass(f.graph, f.ctx, f.shaders, f.scene, f.frameConstants, &f.log, &early);
+            const passes::GBufferOutputs early = draw("camera early", nullptr, true);
             in.phase = gpu::kCullLate;
-            in.pyramid = passes::addDepthPyramidPass(f.graph, f.ctx, f.shaders, first.depth, {f.width, f.height},
+            in.pyramid = passes::addDepthPyramidPass(f.graph, f.ctx, f.shaders, early.depth, {f.width, f.height},
                                                      "depth_pyramid_early");
-            f.cameraDraws = passes::addCullPass(f.graph, f.ctx, f.shaders, in, "camera late");
-            f.gbuffer = passes::addGBufferPass(f.graph, f.ctx, f.shaders, f.scene, f.frameConstants, &f.log,
-                                               &f.cameraDraws, &first);
-            passes::addCullStatsCopyPass(f.graph, {early.counters, f.cameraDraws.counters}, stats);
-            lastPhases_ = 2;
+            f.gbuffer = draw("camera late", &early, false);
         }
+        passes::addCullStatsCopyPass(f.graph, counters, stats);
+        lastPhases_ = mode == CullingMode::Frustum ? 1 : 2;
         lastSlot_ = f.slot;
     }
     f.depthPyramid = passes::addDepthPyramidPass(f.graph, f.ctx, f.shaders, f.gbuffer.depth, {f.width, f.height},
@@ -115,11 +144,22 @@ passes::GBufferOutputs CullingFeature::addGBuffer(FrameContext& f, const render:
 
 std::vector<passes::CullingViewStats> CullingFeature::lastStats() const {
     if (lastPhases_ == 0) return {};
-    const auto c = vk::downloadBuffer<gpu::GpuCullCounters>(ctx_, stats_[lastSlot_], lastPhases_);
-    passes::CullingViewStats camera{"camera", c.back().instancesTested, 0, 0};  // the late phase tests every draw
-    for (const gpu::GpuCullCounters& phase : c) {
-        camera.instancesDrawn += phase.drawCount;
-        camera.trianglesDrawn += phase.trianglesDrawn;
+    const uint32_t perPhase = meshRung_ ? 2 : 1;
+    const auto c = vk::downloadBuffer<gpu::GpuCullCounters>(ctx_, stats_[lastSlot_], lastPhases_ * perPhase);
+    passes::CullingViewStats camera;
+    camera.view = "camera";
+    camera.meshlets = meshRung_;
+    for (uint32_t phase = 0; phase < lastPhases_; ++phase) {
+        const gpu::GpuCullCounters& cull = c[phase * perPhase];
+        camera.instancesTested = cull.instancesTested;  // every phase tests every draw: count them once
+        camera.instancesDrawn += cull.drawCount;
+        camera.trianglesDrawn += cull.trianglesDrawn;  // 0 on the mesh rung: the task shader counts
+        if (meshRung_) {
+            const gpu::GpuCullCounters& task = c[phase * perPhase + 1];
+            camera.meshletsTested += task.meshletsTested;
+            camera.meshletsDrawn += task.meshletsDrawn;
+            camera.trianglesDrawn += task.trianglesDrawn;
+        }
     }
     return {camera};
 }

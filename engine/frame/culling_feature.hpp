@@ -6,8 +6,10 @@
 // missed. The first frame (no visibility yet) and camera cuts stay exact: whatever the early phase misses, the
 // late phase finds, because the early depth is never nearer than the final one. The per-draw records, visibility
 // bits, view planes and stats readback exist only while culling is on. Fills FrameContext::gbuffer,
-// depthPyramid and cameraDraws. Ports IDKEngine's GPU culling (reference 2.7) without its single-phase
-// previous-frame Hi-Z (which could drop newly visible objects).
+// depthPyramid and cameraDraws. On the mesh-shading ladder's native rung the culled instances are drawn as
+// meshlets (render/meshlets.hpp, built at the first culled frame), which the task shader culls again (frustum,
+// normal cone, Hi-Z in the late phase); the MDI rung draws whole instances. Ports IDKEngine's GPU culling
+// (reference 2.6, 2.7) without its single-phase previous-frame Hi-Z (which could drop newly visible objects).
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -38,6 +40,8 @@ private:
     vk::Context& ctx_;
     vk::Buffer draws_;                       // GpuCullDraw per scene draw (static)
     vk::Buffer visibility_;                  // uint per scene draw: drawn last frame (Hiz)
+    bool meshRung_ = false;                  // meshlets and the mesh-shader G-buffer (ladder "mesh-shading")
+    vk::Buffer meshlets_, meshletVertices_, meshletTriangles_;  // render::MeshletData (mesh rung only)
     std::vector<vk::Buffer> views_, stats_;  // per frame slot, host-visible: GpuCullView[], GpuCullCounters[]
     uint32_t lastSlot_ = 0;
     uint32_t lastPhases_ = 0;                // counters the last culled frame wrote (0: it did not cull)

@@ -4,6 +4,7 @@
 // in RasterPipeline (MeshCulling/Camera/Cull/compute.glsl) without its per-pass CPU re-upload of the commands.
 #include "passes/culling.hpp"
 
+#include <array>
 #include <memory>
 
 #include "vk/bindless.hpp"
@@ -26,20 +27,39 @@ CulledDraws addCullPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderL
     const CullInputs in = inputs;
     auto out = std::make_shared<CulledDraws>();
     out->maxDraws = in.drawCount;
+    out->meshTasks = in.meshTasks;
+    out->draws = in.draws;
+    out->views = in.views;
+    out->view = in.view;
+    out->phase = in.phase;
+    out->pyramid = in.pyramid;
     graph::BufferDesc desc;
     desc.size = sizeof(gpu::GpuCullCounters);
     graph::BufferHandle counters = graph.createBuffer(viewName + " cull counters", desc);
-    desc.size = VkDeviceSize(in.drawCount) * sizeof(VkDrawIndexedIndirectCommand);
+    desc.size = VkDeviceSize(in.drawCount) *
+                (in.meshTasks ? sizeof(gpu::MeshTaskCommand) : sizeof(VkDrawIndexedIndirectCommand));
     graph::BufferHandle commands = graph.createBuffer(viewName + " culled commands", desc);
 
-    auto zeroed = std::make_shared<graph::BufferHandle>();
+    graph::BufferHandle meshCounters, drawInstance;
+    if (in.meshTasks) {
+        desc.size = sizeof(gpu::GpuCullCounters);
+        meshCounters = graph.createBuffer(viewName + " task counters", desc);
+        desc.size = VkDeviceSize(in.drawCount) * sizeof(uint32_t);
+        drawInstance = graph.createBuffer(viewName + " culled instances", desc);
+    }
+    auto zeroed = std::make_shared<std::array<graph::BufferHandle, 2>>();
     const std::string phase = in.phase == gpu::kCullEarly ? "_early" : in.phase == gpu::kCullLate ? "_late" : "";
     graph.addPass(
         "cull_reset" + phase,
-        [&](graph::PassBuilder& b) { *zeroed = b.write(counters, graph::Access::TransferDst); },
+        [&](graph::PassBuilder& b) {
+            (*zeroed)[0] = b.write(counters, graph::Access::TransferDst);
+            if (meshCounters.valid()) (*zeroed)[1] = b.write(meshCounters, graph::Access::TransferDst);
+        },
         [zeroed](graph::PassContext& pc) {
-            vkCmdFillBuffer(pc.commandBuffer(), pc.vkBuffer(*zeroed), 0, sizeof(gpu::GpuCullCounters), 0);
+            for (graph::BufferHandle h : *zeroed)
+                if (h.valid()) vkCmdFillBuffer(pc.commandBuffer(), pc.vkBuffer(h), 0, sizeof(gpu::GpuCullCounters), 0);
         });
+    out->meshCounters = (*zeroed)[1];
     graph.addPass(
         "cull" + phase,
         [&](graph::PassBuilder& b) {
@@ -52,8 +72,9 @@ CulledDraws addCullPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderL
                 out->visibility = b.write(in.visibility, graph::Access::StorageReadWrite, kCs);
                 b.read(in.pyramid, graph::Access::StorageRead, kCs);
             }
-            out->counters = b.write(*zeroed, graph::Access::StorageReadWrite, kCs);
+            out->counters = b.write((*zeroed)[0], graph::Access::StorageReadWrite, kCs);
             out->commands = b.write(commands, graph::Access::StorageWrite, kCs);
+            if (drawInstance.valid()) out->drawInstance = b.write(drawInstance, graph::Access::StorageWrite, kCs);
         },
         [&ctx, &shaders, in, out](graph::PassContext& pc) {
             gpu::CullPush push{};
@@ -65,6 +86,8 @@ CulledDraws addCullPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderL
             push.drawCount = in.drawCount;
             push.view = in.view;
             push.phase = in.phase;
+            push.meshTasks = in.meshTasks ? 1u : 0u;
+            if (in.meshTasks) push.drawInstance = pc.buffer(out->drawInstance).address;
             if (in.phase == gpu::kCullEarly) push.visibility = pc.buffer(in.visibility).address;
             if (in.phase == gpu::kCullLate) {
                 push.visibility = pc.buffer(out->visibility).address;

@@ -63,7 +63,8 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
     graph.addPass(
         load ? "gbuffer_late" : "gbuffer",
         [&](graph::PassBuilder& b) {
-            constexpr VkPipelineStageFlags2 kVs = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT;
+            // The geometry stages: vertex, or task + mesh on the mesh rung.
+            const VkPipelineStageFlags2 kVs = c.meshTasks ? kTaskMeshStages : VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT;
             constexpr VkPipelineStageFlags2 kFs = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
             if (load) {
                 out->albedo = b.write(over.albedo, graph::Access::ColorReadWrite);
@@ -90,6 +91,7 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
             if (c.commands.valid()) {
                 b.read(c.commands, graph::Access::IndirectRead);
                 b.read(c.counters, graph::Access::IndirectRead);
+                if (c.meshTasks) declareMeshDraws(b, c);
             } else {
                 b.read(s.drawCommands, graph::Access::IndirectRead);
             }
@@ -125,6 +127,7 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
                 desc.depthCompare = VK_COMPARE_OP_LESS;  // scene::camera convention: depth 0 near, 1 far
                 desc.cull = VK_CULL_MODE_NONE;           // facing is decided per material in the fragment shader
                 desc.pushBytes = sizeof(gpu::GBufferPush);
+                if (c.meshTasks) useMeshShaders(desc);
                 const vk::Pipeline& pipeline = shaders.graphics(desc);
 
                 vk::bindPipeline(cmd, pipeline);
@@ -138,7 +141,10 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
                                       s.uv1.valid() ? pc.buffer(s.uv1).address : 0};
                 vk::pushConstants(cmd, ctx, push);
                 vkCmdBindIndexBuffer(cmd, pc.vkBuffer(s.indices), 0, VK_INDEX_TYPE_UINT32);
-                if (c.commands.valid()) {
+                if (c.meshTasks) {
+                    recordMeshDraws(pc, ctx, c, push);
+                    if (log) log->record(pc.passName(), c.maxDraws);
+                } else if (c.commands.valid()) {
                     vkCmdDrawIndexedIndirectCount(cmd, pc.vkBuffer(c.commands), 0, pc.vkBuffer(c.counters), 0,
                                                   c.maxDraws, sizeof(VkDrawIndexedIndirectCommand));
                     if (log) log->record(pc.passName(), c.maxDraws);  // the most it may draw; the GPU count is a stat

@@ -3,6 +3,7 @@
 
 #include "render/depth_pyramid.hpp"
 #include "render/draw_bounds.hpp"
+#include "render/meshlets.hpp"
 
 namespace idk::render {
 
@@ -21,7 +22,7 @@ gpu::GpuCullView frustumView(const glm::mat4& m, glm::uvec2 viewport) {
     return v;
 }
 
-std::vector<gpu::GpuCullDraw> packCullDraws(const GpuSceneData& scene) {
+std::vector<gpu::GpuCullDraw> packCullDraws(const GpuSceneData& scene, const MeshletData* meshlets) {
     const std::vector<scene::Aabb> boxes = meshBounds(scene);
     std::vector<gpu::GpuCullDraw> out(scene.draws.size());
     for (size_t i = 0; i < scene.draws.size(); ++i) {
@@ -34,6 +35,15 @@ std::vector<gpu::GpuCullDraw> packCullDraws(const GpuSceneData& scene) {
         if (d.instanceCount == 0) c.flags |= gpu::kCullSkip;
         if (mesh >= scene.meshes.size() || d.vertexOffset != scene.meshes[mesh].baseVertex)
             c.flags |= gpu::kCullAlwaysVisible;
+        if (mesh < scene.meshes.size()) {
+            const uint32_t material = scene.meshes[mesh].material;
+            if (material < scene.materials.size() && !(scene.materials[material].flags & gpu::kMaterialDoubleSided))
+                c.flags |= gpu::kCullSingleSided;
+            if (meshlets) {
+                c.firstMeshlet = meshlets->firstMeshlet[mesh];
+                c.meshletCount = meshlets->meshletCount[mesh];
+            }
+        }
         if (mesh < boxes.size() && !boxes[mesh].empty()) {
             c.boxCenter = boxes[mesh].centre();
             c.boxExtent = 0.5f * (boxes[mesh].max - boxes[mesh].min);

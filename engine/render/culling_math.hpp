@@ -16,7 +16,9 @@ gpu::GpuCullView frustumView(const glm::mat4& viewProjection, glm::uvec2 viewpor
 // One GpuCullDraw per scene draw: BLEND draws (instanceCount 0) are skipped; draws of deformed vertex copies
 // (skinned or morphed: their vertexOffset is not the mesh's baseVertex) are never culled, since their rest-pose
 // box does not bound the animated vertices.
-std::vector<gpu::GpuCullDraw> packCullDraws(const GpuSceneData& scene);
+// `meshlets` (optional, render/meshlets.hpp) fills the meshlet ranges of the mesh rung.
+struct MeshletData;
+std::vector<gpu::GpuCullDraw> packCullDraws(const GpuSceneData& scene, const MeshletData* meshlets = nullptr);
 
 // The oracle: per draw, whether the culling kernel draws it in `view` (false for skipped draws) in `phase`
 // (gpu::kCull*). Early and late phases read `visibility` (one uint per draw), the late phase rewrites it and tests

@@ -8,6 +8,7 @@
 #include "scene_buffers.glsl"
 #include "culling_types.h"
 #include "depth_pyramid.h"
+#include "meshlet_types.h"
 
 layout(local_size_x = kCullGroupSize) in;
 layout(push_constant, scalar) uniform Push { CullPush p; };
@@ -22,6 +23,8 @@ struct DrawCommand {
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer CullDraws { GpuCullDraw data[]; };
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer CullViews { GpuCullView data[]; };
 layout(buffer_reference, scalar, buffer_reference_align = 4) writeonly buffer Commands { DrawCommand data[]; };
+layout(buffer_reference, scalar, buffer_reference_align = 4) writeonly buffer TaskCommands { MeshTaskCommand data[]; };
+layout(buffer_reference, scalar, buffer_reference_align = 4) writeonly buffer DrawInstances { uint data[]; };
 layout(buffer_reference, scalar, buffer_reference_align = 4) buffer Counters { GpuCullCounters c; };
 layout(buffer_reference, scalar, buffer_reference_align = 4) buffer Visibility { uint data[]; };
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer Pyramid { float data[]; };
@@ -65,6 +68,11 @@ void main() {
     // The order of the compacted commands varies between runs; the image does not (depth test LESS, and each
     // pixel's nearest fragment does not depend on draw order unless two fragments tie exactly in depth).
     uint slot = atomicAdd(Counters(p.counters).c.drawCount, 1u);
-    atomicAdd(Counters(p.counters).c.trianglesDrawn, d.indexCount / 3u);
-    Commands(p.commands).data[slot] = DrawCommand(d.indexCount, 1u, d.firstIndex, d.vertexOffset, i);
+    if (p.meshTasks == 0u) atomicAdd(Counters(p.counters).c.trianglesDrawn, d.indexCount / 3u);  // else per meshlet
+    if (p.meshTasks != 0u) {
+        TaskCommands(p.commands).data[slot] = MeshTaskCommand((d.meshletCount + kTaskGroupSize - 1u) / kTaskGroupSize, 1u, 1u);
+        DrawInstances(p.drawInstance).data[slot] = i;
+    } else {
+        Commands(p.commands).data[slot] = DrawCommand(d.indexCount, 1u, d.firstIndex, d.vertexOffset, i);
+    }
 }

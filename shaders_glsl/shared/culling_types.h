@@ -12,6 +12,7 @@ IDK_CONST(uint, kCullGroupSize, 64);  // invocations per workgroup (IDKEngine: 6
 
 IDK_CONST(uint, kCullSkip, 1u);         // GpuCullDraw::flags: never drawn by this pass (BLEND draws)
 IDK_CONST(uint, kCullAlwaysVisible, 2u);  // no trustworthy box (skinned/morphed vertices move at run time)
+IDK_CONST(uint, kCullSingleSided, 4u);    // the material is single-sided: its meshlets may be normal-cone culled
 
 // One scene draw as the culling pass sees it: draw i places GpuInstance i.
 struct GpuCullDraw {
@@ -21,8 +22,10 @@ struct GpuCullDraw {
     uint firstIndex;
     int vertexOffset;
     uint flags;      // kCull*
+    uint firstMeshlet;  // mesh rung: the mesh's meshlets (shared/meshlet_types.h)
+    uint meshletCount;
 };
-IDK_GPU_SIZE(GpuCullDraw, 40);
+IDK_GPU_SIZE(GpuCullDraw, 48);
 
 // One view: six world-space planes (xyz normal pointing inside, w offset), inside when dot(n, p) + w >= 0.
 // Extracted from the view-projection matrix (Gribb-Hartmann, Vulkan depth 0..1): left, right, top, bottom, near,
@@ -47,10 +50,12 @@ IDK_CONST(uint, kCullLate, 2);
 struct GpuCullCounters {
     uint drawCount;         // commands written = instances drawn
     uint instancesTested;   // draws that were tested (not kCullSkip)
-    uint trianglesDrawn;    // sum of indexCount / 3 over the drawn commands
-    uint pad;
+    uint trianglesDrawn;    // MDI: indexCount / 3 of the drawn commands; mesh rung: triangles of drawn meshlets
+    uint meshletsTested;    // mesh rung (task shader): meshlets of the drawn instances
+    uint meshletsDrawn;     // mesh rung: meshlets that passed frustum, normal cone (and Hi-Z in the late phase)
+    uint pad0, pad1, pad2;
 };
-IDK_GPU_SIZE(GpuCullCounters, 16);
+IDK_GPU_SIZE(GpuCullCounters, 32);
 
 struct CullPush {
     DeviceAddress instances;     // GpuInstance[drawCount] (the scene's, after this frame's pose upload)
@@ -61,12 +66,13 @@ struct CullPush {
     DeviceAddress counters;      // GpuCullCounters, zeroed before the pass
     DeviceAddress visibility;    // uint[drawCount], 1 = drawn last frame (kCullEarly reads, kCullLate rewrites)
     DeviceAddress pyramid;       // float[]: the Hi-Z pyramid of the early phase's depth (kCullLate; depth_pyramid.h)
+    DeviceAddress drawInstance;  // meshTasks: out: uint[drawCount], the instance of each command
     uint drawCount;
     uint view;                   // index into views
     uint phase;                  // kCull*
-    uint pad;
+    uint meshTasks;              // 1: write MeshTaskCommands (mesh rung) instead of VkDrawIndexedIndirectCommands
 };
-IDK_GPU_SIZE(CullPush, 72);
+IDK_GPU_SIZE(CullPush, 80);
 
 // The world box of an object box under `model` (centre transformed, extent through |mat3(model)|): a box that
 // contains every transformed point of the object box (conservative, exact for axis-aligned transforms).

@@ -2,12 +2,15 @@
 // occluder scene (a wall, hundreds of boxes behind it, some peeking over its edge, some behind the camera) and on
 // shared glTF scenes (instanced, skinned), along a camera path that moves and cuts, the culled image equals the
 // --culling off image byte for byte (zero false culls), and the GPU counters read back equal the CPU oracle's
-// counts (render::cullOracle) and really cull.
+// counts (render::cullOracle) and really cull. Both rungs of the "mesh-shading" ladder run: the mesh-shader rung
+// (task shader culling meshlets) on the shared context, the multi-draw-indirect rung on a --fallback context; their
+// images are identical too.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "render/culling_math.hpp"
+#include "render/meshlets.hpp"
 #include "render/renderer.hpp"
 #include "scene/camera.hpp"
 #include "scene/gltf_loader.hpp"
@@ -58,6 +61,7 @@ scene::CameraView lookAt(glm::vec3 eye, glm::vec3 target, float zfar = 0.0f) {
 
 struct PathStats {
     std::vector<uint32_t> frustumDrawn, hizDrawn, tested;
+    std::vector<std::vector<uint8_t>> images;  // the hiz frames
 };
 
 class CullingFrameTest : public GpuTest {
@@ -67,24 +71,29 @@ protected:
     // counters against the CPU oracle exactly, and that two-phase occlusion draws a subset of the frustum's.
     void comparePath(const scene::Scene& scene, const std::vector<scene::CameraView>& cameras, const char* what,
                      PathStats& stats) {
-        render::Renderer off(ctx(), shaders()), frustum(ctx(), shaders()), hiz(ctx(), shaders());
+        comparePathOn(ctx(), shaders(), scene, cameras, what, stats);
+    }
+    static void comparePathOn(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene::Scene& scene,
+                              const std::vector<scene::CameraView>& cameras, const char* what, PathStats& stats) {
+        render::Renderer off(ctx, shaders), frustum(ctx, shaders), hiz(ctx, shaders);
         frustum.settings().culling.mode = frame::CullingMode::Frustum;
         hiz.settings().culling.mode = frame::CullingMode::Hiz;
         off.setScene(scene);
         frustum.setScene(scene);
         hiz.setScene(scene);
         const render::GpuSceneData data = render::packGpuScene(scene, {});
-        const std::vector<gpu::GpuCullDraw> records = render::packCullDraws(data);
+        const render::MeshletData meshlets = render::buildMeshlets(data);
+        const std::vector<gpu::GpuCullDraw> records = render::packCullDraws(data, &meshlets);
         for (size_t c = 0; c < cameras.size(); ++c) {
             render::FrameResult a = off.renderOffscreen(cameras[c], kSize, kSize);
             EXPECT_TRUE(a.culling.empty());
             const glm::mat4 viewProjection = scene::projectionMatrix(cameras[c], 1.0f) * scene::viewMatrix(cameras[c]);
             const std::vector<bool> visible =
                 render::cullOracle(records, data.instances, render::frustumView(viewProjection));
-            uint32_t tested = 0, drawn = 0, triangles = 0;
+            uint32_t tested = 0, drawn = 0, triangles = 0, meshletsOfDrawn = 0;
             for (size_t i = 0; i < records.size(); ++i) {
                 tested += (records[i].flags & gpu::kCullSkip) ? 0 : 1;
-                if (visible[i]) ++drawn, triangles += records[i].indexCount / 3;
+                if (visible[i]) ++drawn, triangles += records[i].indexCount / 3, meshletsOfDrawn += records[i].meshletCount;
             }
             for (render::Renderer* r : {&frustum, &hiz}) {
                 const char* mode = r == &frustum ? "frustum" : "hiz";
@@ -99,9 +108,17 @@ protected:
                 EXPECT_EQ(s.instancesTested, tested) << what << " camera " << c << " " << mode;
                 if (r == &frustum) {
                     EXPECT_EQ(s.instancesDrawn, drawn) << what << " camera " << c;
-                    EXPECT_EQ(s.trianglesDrawn, triangles) << what << " camera " << c;
+                    if (s.meshlets) {
+                        // The task shader sees every meshlet of the drawn instances and draws a subset.
+                        EXPECT_EQ(s.meshletsTested, meshletsOfDrawn) << what << " camera " << c;
+                        EXPECT_LE(s.meshletsDrawn, s.meshletsTested);
+                        EXPECT_LE(s.trianglesDrawn, triangles);
+                    } else {
+                        EXPECT_EQ(s.trianglesDrawn, triangles) << what << " camera " << c;
+                    }
                     stats.frustumDrawn.push_back(s.instancesDrawn);
                 } else {
+                    stats.images.push_back(b.display);
                     EXPECT_LE(s.instancesDrawn, drawn) << what << " camera " << c << ": occlusion drew more than the frustum";
                     stats.hizDrawn.push_back(s.instancesDrawn);
                 }
@@ -151,6 +168,34 @@ TEST_F(CullingFrameTest, SharedScenesAreUnchanged) {
         PathStats stats;
         comparePath(s, {scene::defaultCamera(s), scene::defaultCamera(s)}, "BrainStem", stats);
     }
+}
+
+// The mesh rung (shared context, where the device has VK_EXT_mesh_shader) and the MDI rung (--fallback context)
+// draw identical frames along the occluder path, and each equals its unculled frame.
+TEST_F(CullingFrameTest, MeshAndMdiRungsGiveIdenticalImages) {
+    if (ctx().ladder("mesh shading").chosen != vk::Rung::Native)
+        GTEST_SKIP() << "device lacks VK_EXT_mesh_shader: only the MDI rung runs (the other tests cover it)";
+    const scene::Scene scene = occluderScene();
+    const std::vector<scene::CameraView> path = {lookAt({0, 4, 12}, {0, 3, 0}), lookAt({2, 4, 11}, {0, 3, -1}),
+                                                 lookAt({-20, 6, -12}, {0, 0, -12})};
+    PathStats mesh, mdi;
+    comparePath(scene, path, "mesh rung", mesh);
+    vk::ContextDesc desc = ctx().desc();
+    desc.forceFallbackRungs = true;  // what `idk render --fallback` selects
+    uint32_t fallbackErrors = 0;
+    {
+        vk::Context fallbackCtx(desc);
+        vk::ShaderLibrary fallbackShaders(fallbackCtx);
+        EXPECT_EQ(fallbackCtx.ladder("mesh shading").chosen, vk::Rung::Fallback);
+        comparePathOn(fallbackCtx, fallbackShaders, scene, path, "mdi rung", mdi);
+        fallbackCtx.waitIdle();
+        fallbackErrors = fallbackCtx.validationErrors();
+    }
+    EXPECT_EQ(fallbackErrors, 0u) << "validation errors on the fallback context";
+    ASSERT_EQ(mesh.images.size(), mdi.images.size());
+    for (size_t c = 0; c < mesh.images.size(); ++c)
+        EXPECT_TRUE(mesh.images[c] == mdi.images[c]) << "camera " << c << ": the rungs' images differ";
+    EXPECT_EQ(mesh.hizDrawn, mdi.hizDrawn) << "both rungs cull the same instances";
 }
 
 }  // namespace

@@ -43,6 +43,7 @@ void CullingFeature::release() {
     views_.clear();
     stats_.clear();
     lastPhases_ = 0;
+    frozen_.reset();
 }
 
 void CullingFeature::setScene() { release(); }
@@ -84,13 +85,18 @@ void CullingFeature::createResources(const render::GpuScene& scene, uint32_t fra
 
 passes::GBufferOutputs CullingFeature::addGBuffer(FrameContext& f, const render::GpuScene& scene) {
     lastPhases_ = 0;
-    const CullingMode mode = f.settings.culling.mode;
+    if (!f.settings.culling.freeze) frozen_.reset();
+    const bool frozen = f.settings.culling.freeze && frozen_.has_value();
+    const CullingMode mode = frozen && f.settings.culling.mode == CullingMode::Hiz ? CullingMode::Frustum
+                                                                                     : f.settings.culling.mode;
     if (mode == CullingMode::Off || scene.drawCount() == 0) {
         f.gbuffer = passes::addGBufferPass(f.graph, f.ctx, f.shaders, f.scene, f.frameConstants, &f.log);
     } else {
         createResources(scene, f.framesInFlight);
         // This slot's buffers: the frame ring has waited until the GPU finished the slot's previous frame.
-        const gpu::GpuCullView camera = render::frustumView(f.viewProjection, {f.width, f.height});
+        const gpu::GpuCullView camera =
+            frozen ? *frozen_ : render::frustumView(f.viewProjection, {f.width, f.height});
+        if (f.settings.culling.freeze) frozen_ = camera;
         vk::uploadBuffer(ctx_, views_[f.slot], &camera, sizeof(camera));
         graph::BufferHandle stats = importBuffer(f.graph, "cull stats", stats_[f.slot]);
 

@@ -12,6 +12,7 @@
 // (reference 2.6, 2.7) without its single-phase previous-frame Hi-Z (which could drop newly visible objects).
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "frame/frame_context.hpp"
@@ -45,6 +46,7 @@ private:
     std::vector<vk::Buffer> views_, stats_;  // per frame slot, host-visible: GpuCullView[], GpuCullCounters[]
     uint32_t lastSlot_ = 0;
     uint32_t lastPhases_ = 0;                // counters the last culled frame wrote (0: it did not cull)
+    std::optional<gpu::GpuCullView> frozen_;  // CullingSettings::freeze: the view culling keeps using
 };
 
 }  // namespace idk::frame

@@ -45,6 +45,10 @@ std::vector<SettingOption> buildTable() {
                  OptionKind::Choice, 0.0, 0.0, {"off", "frustum", "hiz"},
                  [](const RenderSettings& s) { return double(s.culling.mode); },
                  [](RenderSettings& s, double v) { s.culling.mode = frame::CullingMode(v); }});
+    t.push_back({"--cull-freeze", "Culling", "freeze culling camera",
+                 "keep culling with the camera of the frame this was turned on (occlusion pauses)", OptionKind::Toggle,
+                 0.0, 1.0, {}, [](const RenderSettings& s) { return s.culling.freeze ? 1.0 : 0.0; },
+                 [](RenderSettings& s, double v) { s.culling.freeze = v != 0.0; }});
     return t;
 }
 

@@ -7,6 +7,7 @@
 // images are identical too.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "render/culling_math.hpp"
@@ -168,6 +169,34 @@ TEST_F(CullingFrameTest, SharedScenesAreUnchanged) {
         PathStats stats;
         comparePath(s, {scene::defaultCamera(s), scene::defaultCamera(s)}, "BrainStem", stats);
     }
+}
+
+// --cull-freeze: culling keeps the frustum of the frame it was turned on while the camera moves on, and follows
+// the camera again once it is turned off (counts against the CPU oracle of each view).
+TEST_F(CullingFrameTest, FreezeKeepsTheFrozenFrustum) {
+    const scene::Scene scene = occluderScene();
+    const render::GpuSceneData data = render::packGpuScene(scene, {});
+    const std::vector<gpu::GpuCullDraw> records = render::packCullDraws(data);
+    auto oracleDrawn = [&](const scene::CameraView& c) {
+        const glm::mat4 vp = scene::projectionMatrix(c, 1.0f) * scene::viewMatrix(c);
+        const std::vector<bool> v = render::cullOracle(records, data.instances, render::frustumView(vp));
+        return uint32_t(std::count(v.begin(), v.end(), true));
+    };
+    const scene::CameraView a = lookAt({0, 4, 12}, {0, 3, 0}), b = lookAt({0, 2, 30}, {0, 1, 14});
+    ASSERT_NE(oracleDrawn(a), oracleDrawn(b));
+    render::Renderer r(ctx(), shaders());
+    r.settings().culling.mode = frame::CullingMode::Hiz;  // occlusion pauses while frozen: frustum counts apply
+    r.settings().culling.freeze = true;
+    r.setScene(scene);
+    r.renderOffscreen(a, kSize, kSize);
+    render::FrameResult frozen = r.renderOffscreen(b, kSize, kSize);
+    ASSERT_EQ(frozen.culling.size(), 1u);
+    EXPECT_EQ(frozen.culling[0].instancesDrawn, oracleDrawn(a)) << "culled with the frozen view a";
+    r.settings().culling.mode = frame::CullingMode::Frustum;
+    r.settings().culling.freeze = false;
+    render::FrameResult live = r.renderOffscreen(b, kSize, kSize);
+    ASSERT_EQ(live.culling.size(), 1u);
+    EXPECT_EQ(live.culling[0].instancesDrawn, oracleDrawn(b)) << "culled with the live view b";
 }
 
 // The mesh rung (shared context, where the device has VK_EXT_mesh_shader) and the MDI rung (--fallback context)

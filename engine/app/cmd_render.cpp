@@ -97,6 +97,18 @@ nlohmann::json statsJson(const render::FrameResult& frame, const vk::Context& ct
         draws[e.pass] = {{"indirectCalls", e.calls}, {"draws", e.draws}};
     j["indirectDraws"] = draws;
     if (settings.shading == render::Shading::Pbr) j["shadingInvocations"] = frame.shadingInvocations;  // lighting + sky
+    if (!frame.culling.empty()) {
+        nlohmann::json views = nlohmann::json::object();
+        for (const passes::CullingViewStats& v : frame.culling)
+            views[v.view] = {{"instancesTested", v.instancesTested}, {"instancesDrawn", v.instancesDrawn},
+                             {"trianglesDrawn", v.trianglesDrawn}};
+        for (const passes::CullingViewStats& v : frame.culling)
+            if (v.meshlets) {
+                views[v.view]["meshletsTested"] = v.meshletsTested;
+                views[v.view]["meshletsDrawn"] = v.meshletsDrawn;
+            }
+        j["culling"] = views;
+    }
     j["memoryBytes"] = memory.bytesByCategory;
     j["deviceMemoryObjects"] = memory.deviceMemoryCount;
     j["reservedBlockBytes"] = memory.blockBytes;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "graph/render_graph.hpp"
+#include "passes/culling.hpp"
 #include "passes/passes.hpp"
 #include "render/render_settings.hpp"
 #include "scene/camera.hpp"
@@ -45,6 +46,11 @@ struct FrameContext {
     graph::TextureHandle hdr;                      // the lit HDR image (RGBA16F), updated by each pass that adds light
     graph::TextureHandle output;                   // the frame's target (imported); the recipe's last write
     graph::BufferHandle vrsRates;                  // VRS software rung: last frame's rates (invalid: VRS off)
+    passes::CulledDraws cameraDraws;               // GPU culling's compacted camera draws (invalid: culling off)
+    // The Hi-Z pyramid of the final G-buffer depth (shared/depth_pyramid.h): a float buffer of levels 0..n-1,
+    // level 0 = ceil(width / 2) x ceil(height / 2), each texel the MAXIMUM (farthest) depth of the 2^(k+1)-square
+    // of depth pixels it covers; depth 0 near .. 1 far (not reversed), background 1. Built only if a pass reads it.
+    graph::BufferHandle depthPyramid;
 };
 
 }  // namespace idk::frame

@@ -30,6 +30,7 @@ graph::TextureHandle finish(FrameContext& f) {
 void Features::setScene(vk::Context& ctx, const render::GpuScene& scene, uint32_t framesInFlight) {
     pointShadows.reset();
     transparency.setScene(ctx, scene, framesInFlight);
+    culling.setScene();
 }
 
 graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Features& x) {
@@ -38,7 +39,7 @@ graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Fe
     // Shadows before the G-buffer: the installed validation layer counts every draw that uses the bindless
     // sampled array (the G-buffer's) as reading the cubes, so their write must not follow such a draw.
     x.pointShadows.addPasses(f, scene);                               // f.pointShadows
-    f.gbuffer = passes::addGBufferPass(f.graph, f.ctx, f.shaders, f.scene, f.frameConstants, &f.log);
+    f.gbuffer = x.culling.addGBuffer(f, scene);                       // GPU culling; f.depthPyramid
     x.vrs.beginFrame(f);                                              // f.vrsRates: last frame's shading rates
     f.hdr = passes::addDeferredLightingPass(f.graph, f.ctx, f.shaders, f.gbuffer, f.frameConstants, f.scene.lights,
                                             f.environment, hdrTarget(f), f.pointShadows, f.vrsRates);

@@ -2,6 +2,7 @@
 // persistent state. To add a feature: a settings struct and a class in its own files under engine/frame/, a member
 // here, one line in recordPbrFrame at its place in the frame, its options in settings_table.cpp.
 #pragma once
+#include "frame/culling_feature.hpp"
 #include "frame/environment_feature.hpp"
 #include "frame/frame_context.hpp"
 #include "frame/frame_inputs.hpp"
@@ -13,7 +14,7 @@
 namespace idk::frame {
 
 struct Features {
-    explicit Features(vk::Context& ctx) : inputs(ctx), environment(ctx), vrs(ctx) {}
+    explicit Features(vk::Context& ctx) : inputs(ctx), environment(ctx), vrs(ctx), culling(ctx) {}
     void setScene(vk::Context& ctx, const render::GpuScene& scene, uint32_t framesInFlight);
 
     FrameInputs inputs;
@@ -21,6 +22,7 @@ struct Features {
     PointShadowFeature pointShadows;
     TransparencyFeature transparency;
     VrsFeature vrs;
+    CullingFeature culling;
 };
 
 // Declares the whole PBR frame into f.graph, ending in f.output (imported by the caller): the tonemapped image

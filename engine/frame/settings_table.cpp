@@ -54,6 +54,15 @@ std::vector<SettingOption> buildTable() {
                  0.0, 0.0, {"auto", "1x1", "2x1", "2x2", "4x2", "4x4"},
                  [](const RenderSettings& s) { return double(s.vrs.fixedRate + 1); },
                  [](RenderSettings& s, double v) { s.vrs.fixedRate = int(v) - 1; }});
+    // GPU culling (frame/culling_feature.hpp).
+    t.push_back({"--culling", "Culling", "culling", "GPU culling of the draws (off: draw every instance)",
+                 OptionKind::Choice, 0.0, 0.0, {"off", "frustum", "hiz"},
+                 [](const RenderSettings& s) { return double(s.culling.mode); },
+                 [](RenderSettings& s, double v) { s.culling.mode = frame::CullingMode(v); }});
+    t.push_back({"--cull-freeze", "Culling", "freeze culling camera",
+                 "keep culling with the camera of the frame this was turned on (occlusion pauses)", OptionKind::Toggle,
+                 0.0, 1.0, {}, [](const RenderSettings& s) { return s.culling.freeze ? 1.0 : 0.0; },
+                 [](RenderSettings& s, double v) { s.culling.freeze = v != 0.0; }});
     return t;
 }
 

@@ -2,8 +2,10 @@
 // (gl_DrawID selects instance and material) into albedo, normal, material and emissive targets plus depth.
 // Ports IDKEngine's RasterPipeline G-buffer step (GBuffer/VertexPath/vertex.glsl + GBuffer/fragment.glsl).
 // Deviation: IDKEngine draws twice (single-sided with culling, then double-sided); here one draw with culling
-// off and back faces of single-sided materials rejected in the fragment shader. No GPU culling yet.
+// off and back faces of single-sided materials rejected in the fragment shader. With GPU culling (passes/cull.cpp)
+// it draws the compacted commands with vkCmdDrawIndexedIndirectCount instead.
 #include "passes/passes.hpp"
+#include "passes/culling.hpp"
 #include "passes/rendering.hpp"
 
 #include <memory>
@@ -51,20 +53,34 @@ graph::TextureHandle target(graph::PassBuilder& b, const char* name, VkFormat fo
 }  // namespace
 
 GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
-                              const SceneBuffers& scene, graph::BufferHandle frame, IndirectDrawLog* log) {
+                              const SceneBuffers& scene, graph::BufferHandle frame, IndirectDrawLog* log,
+                              const CulledDraws* culled, const GBufferOutputs* drawOver) {
     auto out = std::make_shared<GBufferOutputs>();
     const SceneBuffers s = scene;
+    const CulledDraws c = culled ? *culled : CulledDraws{};
+    const bool load = drawOver != nullptr;
+    const GBufferOutputs over = load ? *drawOver : GBufferOutputs{};
     graph.addPass(
-        "gbuffer",
+        load ? "gbuffer_late" : "gbuffer",
         [&](graph::PassBuilder& b) {
-            constexpr VkPipelineStageFlags2 kVs = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT;
+            // The geometry stages: vertex, or task + mesh on the mesh rung.
+            const VkPipelineStageFlags2 kVs = c.meshTasks ? kTaskMeshStages : VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT;
             constexpr VkPipelineStageFlags2 kFs = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
-            out->albedo = target(b, "gbuffer albedo", kAlbedoFormat, graph::Access::ColorWrite);
-            out->normal = target(b, "gbuffer normal", kNormalFormat, graph::Access::ColorWrite);
-            out->material = target(b, "gbuffer material", kMaterialFormat, graph::Access::ColorWrite);
-            out->emissive = target(b, "gbuffer emissive", kEmissiveFormat, graph::Access::ColorWrite);
-            out->depth = target(b, "gbuffer depth", kDepthCopyFormat, graph::Access::ColorWrite);
-            out->depthAttachment = target(b, "gbuffer depth attachment", kDepthFormat, graph::Access::DepthWrite);
+            if (load) {
+                out->albedo = b.write(over.albedo, graph::Access::ColorReadWrite);
+                out->normal = b.write(over.normal, graph::Access::ColorReadWrite);
+                out->material = b.write(over.material, graph::Access::ColorReadWrite);
+                out->emissive = b.write(over.emissive, graph::Access::ColorReadWrite);
+                out->depth = b.write(over.depth, graph::Access::ColorReadWrite);
+                out->depthAttachment = b.write(over.depthAttachment, graph::Access::DepthWrite);
+            } else {
+                out->albedo = target(b, "gbuffer albedo", kAlbedoFormat, graph::Access::ColorWrite);
+                out->normal = target(b, "gbuffer normal", kNormalFormat, graph::Access::ColorWrite);
+                out->material = target(b, "gbuffer material", kMaterialFormat, graph::Access::ColorWrite);
+                out->emissive = target(b, "gbuffer emissive", kEmissiveFormat, graph::Access::ColorWrite);
+                out->depth = target(b, "gbuffer depth", kDepthCopyFormat, graph::Access::ColorWrite);
+                out->depthAttachment = target(b, "gbuffer depth attachment", kDepthFormat, graph::Access::DepthWrite);
+            }
             b.read(frame, graph::Access::StorageRead, kVs);
             if (s.drawCount == 0) return;
             b.read(s.vertices, graph::Access::StorageRead, kVs);
@@ -72,11 +88,17 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
             b.read(s.instances, graph::Access::StorageRead, kVs | kFs);
             b.read(s.meshes, graph::Access::StorageRead, kFs);
             b.read(s.materials, graph::Access::StorageRead, kFs);
-            b.read(s.drawCommands, graph::Access::IndirectRead);
+            if (c.commands.valid()) {
+                b.read(c.commands, graph::Access::IndirectRead);
+                b.read(c.counters, graph::Access::IndirectRead);
+                if (c.meshTasks) declareMeshDraws(b, c);
+            } else {
+                b.read(s.drawCommands, graph::Access::IndirectRead);
+            }
             if (s.colors.valid()) b.read(s.colors, graph::Access::StorageRead, kVs);
             if (s.uv1.valid()) b.read(s.uv1, graph::Access::StorageRead, kVs);
         },
-        [&ctx, &shaders, s, frame, out, log](graph::PassContext& pc) {
+        [&ctx, &shaders, s, c, load, frame, out, log](graph::PassContext& pc) {
             VkCommandBuffer cmd = pc.commandBuffer();
             VkExtent2D extent = pc.outputExtent();
 
@@ -85,22 +107,27 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
                 colorAttachment(pc.view(out->material)), colorAttachment(pc.view(out->emissive)),
                 colorAttachment(pc.view(out->depth))};
             colors[4].clearValue.color = {{1.0f, 0.0f, 0.0f, 0.0f}};  // background depth
+            if (load)
+                for (VkRenderingAttachmentInfo& a : colors) a.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
             VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
             depth.imageView = pc.view(out->depthAttachment);
             depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-            depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-            depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;  // readers use the R32F copy
+            depth.loadOp = load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
+            // Readers use the R32F copy; only a later pass drawing over this one needs the attachment kept.
+            depth.storeOp = c.keepDepth ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
             depth.clearValue.depthStencil = {1.0f, 0};
             beginRendering(cmd, extent, colors, &depth);
             if (s.drawCount > 0) {
                 vk::GraphicsPipelineDesc desc;
-                desc.vertex = vk::ShaderId::gbuffer_gbuffer_vert;
+                desc.vertex = c.commands.valid() ? vk::ShaderId::gbuffer_gbuffer_culled_vert
+                                                 : vk::ShaderId::gbuffer_gbuffer_vert;
                 desc.fragment = vk::ShaderId::gbuffer_gbuffer_frag;
                 desc.colorFormats = {kAlbedoFormat, kNormalFormat, kMaterialFormat, kEmissiveFormat, kDepthCopyFormat};
                 desc.depthFormat = kDepthFormat;
                 desc.depthCompare = VK_COMPARE_OP_LESS;  // scene::camera convention: depth 0 near, 1 far
                 desc.cull = VK_CULL_MODE_NONE;           // facing is decided per material in the fragment shader
                 desc.pushBytes = sizeof(gpu::GBufferPush);
+                if (c.meshTasks) useMeshShaders(desc);
                 const vk::Pipeline& pipeline = shaders.graphics(desc);
 
                 vk::bindPipeline(cmd, pipeline);
@@ -114,9 +141,18 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
                                       s.uv1.valid() ? pc.buffer(s.uv1).address : 0};
                 vk::pushConstants(cmd, ctx, push);
                 vkCmdBindIndexBuffer(cmd, pc.vkBuffer(s.indices), 0, VK_INDEX_TYPE_UINT32);
-                vkCmdDrawIndexedIndirect(cmd, pc.vkBuffer(s.drawCommands), 0, s.drawCount,
-                                         sizeof(VkDrawIndexedIndirectCommand));
-                if (log) log->record(pc.passName(), s.drawCount);
+                if (c.meshTasks) {
+                    recordMeshDraws(pc, ctx, c, push);
+                    if (log) log->record(pc.passName(), c.maxDraws);
+                } else if (c.commands.valid()) {
+                    vkCmdDrawIndexedIndirectCount(cmd, pc.vkBuffer(c.commands), 0, pc.vkBuffer(c.counters), 0,
+                                                  c.maxDraws, sizeof(VkDrawIndexedIndirectCommand));
+                    if (log) log->record(pc.passName(), c.maxDraws);  // the most it may draw; the GPU count is a stat
+                } else {
+                    vkCmdDrawIndexedIndirect(cmd, pc.vkBuffer(s.drawCommands), 0, s.drawCount,
+                                             sizeof(VkDrawIndexedIndirectCommand));
+                    if (log) log->record(pc.passName(), s.drawCount);
+                }
             }
             vkCmdEndRendering(cmd);
         });

@@ -87,8 +87,13 @@ struct GBufferOutputs {
     graph::TextureHandle depth;     // R32F copy of the depth, 0 near .. 1 far (cleared to 1)
     graph::TextureHandle depthAttachment;  // D32 (transient, not stored)
 };
+// `culled` (passes/culling.hpp, optional): draw the culling pass's compacted commands with
+// vkCmdDrawIndexedIndirectCount instead of every scene draw. `drawOver` (optional, with `culled`): load and keep
+// drawing into these targets (the late phase of occlusion culling) instead of clearing new ones.
+struct CulledDraws;
 GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
-                              const SceneBuffers& scene, graph::BufferHandle frame, IndirectDrawLog* log);
+                              const SceneBuffers& scene, graph::BufferHandle frame, IndirectDrawLog* log,
+                              const CulledDraws* culled = nullptr, const GBufferOutputs* drawOver = nullptr);
 
 // point_shadows.cpp: one depth cube per shadow-casting light (render/point_shadow_maps.hpp), one instanced
 // indirect draw per light (native rung) or six (fallback); uploads the per-light GpuPointShadow table.

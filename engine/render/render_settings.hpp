@@ -8,6 +8,7 @@
 
 #include "frame/vrs_settings.hpp"
 #include "render/point_shadow_maps.hpp"
+#include "frame/culling_settings.hpp"
 
 namespace idk::render {
 
@@ -27,6 +28,7 @@ struct RenderSettings {
     std::optional<std::filesystem::path> environment;
     PointShadowSettings pointShadows;  // which lights cast cube shadows, and the cube resolution
     frame::VrsSettings vrs;            // variable-rate shading of lighting and sky (off by default)
+    frame::CullingSettings culling;    // GPU culling of the draws (frame/culling_feature.hpp)
 };
 
 }  // namespace idk::render

@@ -123,6 +123,7 @@ FrameResult Renderer::renderOffscreen(const scene::CameraView& camera, uint32_t 
     result.passTimes = backend_.passTimings();
     result.indirectDraws = log.entries;
     if (pbr) result.shadingInvocations = features_.vrs.lastShadingInvocations();
+    if (pbr) result.culling = features_.culling.lastStats();
 
     std::vector<uint8_t> bytes = vk::readbackImage(ctx_, target, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
     result.image.width = width;

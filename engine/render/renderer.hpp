@@ -41,6 +41,7 @@ struct FrameResult {
     // PBR: pixels shaded by the passes VRS applies to (deferred lighting + sky): width * height with VRS off,
     // the coarse cells' anchors with VRS on (frame/vrs_feature.hpp), whatever the rung. 0 for Lambert.
     uint64_t shadingInvocations = 0;
+    std::vector<passes::CullingViewStats> culling;  // GPU culling's counters per view (empty: culling off)
 };
 
 // renderFrame's target: the caller's colour image (e.g. a swapchain image). The frame is rendered exactly as

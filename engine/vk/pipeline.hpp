@@ -56,6 +56,7 @@ struct GraphicsPipelineDesc {
     uint32_t viewMask = 0;
     std::vector<SpecConstant> spec;
     uint32_t pushBytes = 0;
+    uint32_t fragmentPushBytes = 0;  // the fragment stage's push block when it reads only a prefix (0: pushBytes)
 };
 
 // Checks one module against the engine's conventions; throws PipelineError naming the shader.

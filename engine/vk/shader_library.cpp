@@ -58,7 +58,7 @@ std::string keyOf(const GraphicsPipelineDesc& d) {
     for (BlendMode b : d.blend) out << int(b) << ',';
     out << '|' << d.depthFormat << '|' << d.depthCompare << '|' << d.depthWrite << d.depthTest << '|' << d.cull << '|'
         << d.frontFace << '|' << d.topology << '|' << d.polygonMode << '|' << d.viewMask << '|' << specKey(d.spec)
-        << '|' << d.pushBytes;
+        << '|' << d.pushBytes << '|' << d.fragmentPushBytes;
     return out.str();
 }
 
@@ -116,7 +116,8 @@ VkPipeline ShaderLibrary::build(const Entry& e, const std::map<ShaderId, const M
     auto add = [&](ShaderId id) {
         const Module& m = get(id);
         std::string shaderName = shaders::shaderEntry(id).name;
-        validateShader(shaderName, m.info, d.pushBytes, std::nullopt);
+        const bool prefix = m.info.stage == shader::ShaderStage::Fragment && d.fragmentPushBytes != 0;
+        validateShader(shaderName, m.info, prefix ? d.fragmentPushBytes : d.pushBytes, std::nullopt);
         stages.push_back({vkStage(m.info.stage), m.words});
         name += (name.empty() ? "" : "+") + shaderName;
     };

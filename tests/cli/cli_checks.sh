@@ -457,6 +457,27 @@ PY
         ;;
     esac
     ;;
+  culling)
+    # --culling off|frustum|hiz gives the same PNG; --json reports the GPU counters per view only when culling.
+    scene="$(dirname "$0")/../../../shared/scenes/SimpleInstancing/glTF-Binary/SimpleInstancing.glb"
+    for mode in off frustum hiz; do
+      "$idk" render "$scene" --size 48x32 --out "$tmp/$mode.png" --culling $mode --camera eye=3,2,6:target=-2,0,0 \
+        --json >"$tmp/$mode.json" || fail "--culling $mode failed"
+      grep -q "\"culling\": \"$mode\"" "$tmp/$mode.json" || fail "--json settings lack culling $mode"
+    done
+    cmp -s "$tmp/off.png" "$tmp/frustum.png" || fail "frustum culling changed the image"
+    cmp -s "$tmp/off.png" "$tmp/hiz.png" || fail "hiz culling changed the image"
+    grep -q '"instancesDrawn"' "$tmp/off.json" && fail "--culling off reports culling counters"
+    # 125 cubes; the view looks past most of them (the exact counts are checked against the CPU oracle by
+    # tests/gpu/culling).
+    grep -q '"instancesTested": 125' "$tmp/frustum.json" || fail "frustum --json lacks instancesTested 125"
+    drawn=$(sed -n 's/.*"instancesDrawn": \([0-9]*\).*/\1/p' "$tmp/frustum.json")
+    [ -n "$drawn" ] && [ "$drawn" -gt 0 ] && [ "$drawn" -lt 125 ] || fail "frustum drew '$drawn' of 125"
+    grep -q '"trianglesDrawn"' "$tmp/hiz.json" || fail "hiz --json lacks trianglesDrawn"
+    "$idk" render --size 8x8 --out "$tmp/x.png" --culling sometimes 2>"$tmp/err"; [ $? -eq 2 ] \
+      || fail "--culling sometimes should exit 2"
+    grep -q -- "off|frustum|hiz" "$tmp/err" || fail "error does not list the modes: $(cat "$tmp/err")"
+    ;;
   *) fail "unknown case" ;;
 esac
 echo "ok ($case_name)"

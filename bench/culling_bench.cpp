@@ -1,0 +1,138 @@
+// culling_bench.cpp: GPU culling (issue 10) at 1280x720: frame time and triangles drawn with --culling off /
+// frustum / hiz, on the mesh-shader rung (shared context, where the device has VK_EXT_mesh_shader) and the MDI rung
+// (a --fallback context), each against "off" on the same rung as its peer. Scenes: an occluder scene built here
+// (a wall in front of a grid of DamagedHelmets, a few peeking over its top edge, a few behind the camera) and
+// ToyCar. Each iteration renders one frame through a warm Renderer (two frames first, so the hiz rows run with
+// last frame's visibility); the GPU counters of the last frame go into the row's settings.
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <memory>
+#include <string>
+
+#include "bench_support.hpp"
+#include "render/renderer.hpp"
+#include "scene/camera.hpp"
+#include "scene/gltf_loader.hpp"
+
+namespace idk::bench {
+namespace {
+
+constexpr uint32_t kWidth = 1280, kHeight = 720;
+
+// Helmets (the scene's first mesh) on a 10 x 10 grid behind a 24 x 12 wall at z = 0, four of them raised above the
+// wall's top edge, two behind the camera.
+scene::Scene occluderScene() {
+    scene::Scene s = scene::loadGltf(sharedScene("DamagedHelmet"));
+    const scene::Instance helmet = s.instances.at(0);
+    s.instances.clear();
+    auto place = [&](glm::vec3 at, float scale) {
+        scene::Instance i = helmet;
+        i.world = glm::scale(glm::translate(glm::mat4(1.0f), at), glm::vec3(scale)) * helmet.world;
+        s.instances.push_back(i);
+        s.bounds.extend(at - glm::vec3(scale));
+        s.bounds.extend(at + glm::vec3(scale));
+    };
+    for (int x = 0; x < 10; ++x)
+        for (int z = 0; z < 10; ++z) place({-11.0f + 2.4f * float(x), 1.5f, -2.0f - 2.4f * float(z)}, 1.0f);
+    for (int x = 0; x < 4; ++x) place({-9.0f + 6.0f * float(x), 12.4f, -2.0f}, 0.7f);  // peeking over the wall
+    place({-3.0f, 1.0f, 24.0f}, 1.0f);                                                 // behind the camera
+    place({3.0f, 1.0f, 24.0f}, 1.0f);
+
+    scene::Material wallMaterial;
+    wallMaterial.name = "wall";
+    wallMaterial.baseColorFactor = glm::vec4(0.6f, 0.55f, 0.5f, 1.0f);
+    s.materials.push_back(wallMaterial);
+    scene::Primitive p;
+    p.positions = {{-12.0f, 0.0f, 0.0f}, {12.0f, 0.0f, 0.0f}, {12.0f, 12.0f, 0.0f}, {-12.0f, 12.0f, 0.0f}};
+    p.normals.assign(4, glm::vec3(0.0f, 0.0f, 1.0f));
+    p.uv0 = {{0.0f, 1.0f}, {1.0f, 1.0f}, {1.0f, 0.0f}, {0.0f, 0.0f}};
+    p.indices = {0, 1, 2, 0, 2, 3};
+    p.material = uint32_t(s.materials.size() - 1);
+    scene::Mesh wall;
+    wall.name = "wall";
+    wall.primitives.push_back(std::move(p));
+    s.meshes.push_back(std::move(wall));
+    scene::Instance w = helmet;
+    w.mesh = uint32_t(s.meshes.size() - 1);
+    w.world = glm::mat4(1.0f);
+    s.instances.push_back(w);
+    s.lights.clear();
+    return s;
+}
+
+struct FallbackDevice {
+    std::unique_ptr<vk::Context> ctx;
+    std::unique_ptr<vk::ShaderLibrary> shaders;
+};
+FallbackDevice& fallbackDevice() {  // `idk render --fallback`: the MDI rung of "mesh-shading"
+    static FallbackDevice d;
+    if (!d.ctx) {
+        vk::ContextDesc desc = context()->desc();
+        desc.forceFallbackRungs = true;
+        d.ctx = std::make_unique<vk::Context>(desc);
+        d.shaders = std::make_unique<vk::ShaderLibrary>(*d.ctx);
+    }
+    return d;
+}
+
+// Args: scene (0 occluder, 1 ToyCar), mode (frame::CullingMode), rung (0 native mesh shaders, 1 fallback MDI).
+void BM_Culling(benchmark::State& state) {
+    if (!requireDevice(state)) return;
+    const bool toyCar = state.range(0) == 1;
+    const auto mode = frame::CullingMode(state.range(1));
+    const bool fallback = state.range(2) == 1;
+    vk::Context& ctx = fallback ? *fallbackDevice().ctx : *context();
+    vk::ShaderLibrary& shaders = fallback ? *fallbackDevice().shaders : *bench::shaders();
+    const scene::Scene scene = toyCar ? scene::loadGltf(std::filesystem::path(IDK_BENCH_SOURCE_DIR) /
+                                                        "../shared/scenes/ToyCar/glTF/ToyCar.gltf")
+                                      : occluderScene();
+    scene::CameraView camera = scene::defaultCamera(scene);
+    if (!toyCar) {
+        camera.position = {0.0f, 6.0f, 18.0f};
+        camera.forward = glm::normalize(glm::vec3(0.0f, 6.0f, 0.0f) - camera.position);
+        camera.up = glm::normalize(glm::cross(glm::cross(camera.forward, glm::vec3(0, 1, 0)), camera.forward));
+        camera.znear = 0.1f;  // the default camera fits the helmet's own bounds
+        camera.zfar = 0.0f;
+    }
+    ctx.clearConsultedLadders();
+    double gpuMs = 0.0;
+    passes::CullingViewStats last;
+    uint64_t sceneTriangles = 0;
+    {
+        render::Renderer renderer(ctx, shaders);
+        renderer.settings().culling.mode = mode;
+        renderer.setScene(scene);
+        for (const VkDrawIndexedIndirectCommand& d : renderer.gpuScene()->data().draws)
+            sceneTriangles += d.instanceCount * (d.indexCount / 3);
+        renderer.renderOffscreen(camera, kWidth, kHeight);  // warm-up: pipelines, meshlets, visibility bits
+        renderer.renderOffscreen(camera, kWidth, kHeight);
+        for (auto _ : state) {
+            render::FrameResult frame = renderer.renderOffscreen(camera, kWidth, kHeight);
+            for (const vk::ScopeTiming& t : frame.passTimes) gpuMs += t.milliseconds;
+            if (!frame.culling.empty()) last = frame.culling[0];
+        }
+    }
+    const uint64_t drawn = mode == frame::CullingMode::Off ? sceneTriangles : last.trianglesDrawn;
+    state.counters["gpu_ms"] = gpuMs / double(state.iterations());
+    state.counters["triangles_drawn"] = double(drawn);
+    static const char* kModes[] = {"off", "frustum", "hiz"};
+    std::string settings = std::to_string(kWidth) + "x" + std::to_string(kHeight) + ", --culling " + kModes[int(mode)] +
+                           ", triangles drawn " + std::to_string(drawn) + " of " + std::to_string(sceneTriangles);
+    if (mode != frame::CullingMode::Off)
+        settings += ", instances " + std::to_string(last.instancesDrawn) + " of " + std::to_string(last.instancesTested) +
+                    (last.meshlets ? ", meshlets " + std::to_string(last.meshletsDrawn) + " of " +
+                                         std::to_string(last.meshletsTested)
+                                   : "");
+    const std::string peer = "BM_Culling/" + std::to_string(state.range(0)) + "/0/" + std::to_string(state.range(2));
+    setRow(state, {"culling", toyCar ? "ToyCar" : "occluder scene: 106 DamagedHelmets, 100 behind a wall, 4 peeking over it, 2 behind the camera", settings,
+                   rungsThatRan(ctx.consultedLadders()), mode == frame::CullingMode::Off ? "" : peer,
+                   "ours", "real"});
+}
+BENCHMARK(BM_Culling)
+    ->ArgsProduct({{0, 1}, {0, 1, 2}, {0, 1}})
+    ->UseRealTime()
+    ->Iterations(2)
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace idk::bench

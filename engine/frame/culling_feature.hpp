@@ -1,0 +1,52 @@
+// culling_feature.hpp: GPU culling of the scene's draws (issue 10) and the G-buffer drawn from it. Per view, a
+// compute pass tests every draw's world box and compacts the survivors into the commands that
+// vkCmdDrawIndexedIndirectCount draws (passes/cull.cpp). Hiz adds two-phase occlusion culling (niagara's
+// approach): the early phase draws what was visible last frame, the Hi-Z pyramid of that depth is built, the late
+// phase tests every draw against it, records the result as next frame's visibility and draws what the early phase
+// missed. The first frame (no visibility yet) and camera cuts stay exact: whatever the early phase misses, the
+// late phase finds, because the early depth is never nearer than the final one. The per-draw records, visibility
+// bits, view planes and stats readback exist only while culling is on. Fills FrameContext::gbuffer,
+// depthPyramid and cameraDraws. On the mesh-shading ladder's native rung the culled instances are drawn as
+// meshlets (render/meshlets.hpp, built at the first culled frame), which the task shader culls again (frustum,
+// normal cone, Hi-Z in the late phase); the MDI rung draws whole instances. Ports IDKEngine's GPU culling
+// (reference 2.6, 2.7) without its single-phase previous-frame Hi-Z (which could drop newly visible objects).
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "frame/frame_context.hpp"
+#include "render/gpu_scene.hpp"
+
+namespace idk::frame {
+
+class CullingFeature {
+public:
+    explicit CullingFeature(vk::Context& ctx) : ctx_(ctx) {}
+    ~CullingFeature();
+    CullingFeature(const CullingFeature&) = delete;
+    CullingFeature& operator=(const CullingFeature&) = delete;
+
+    void setScene();  // a new scene: its records and visibility are rebuilt at the first culled frame
+    // The G-buffer of the camera view: every draw (culling off), the frustum's survivors, or the two phases of
+    // occlusion culling. Also declares f.depthPyramid (of the final depth; built only if a later pass reads it).
+    passes::GBufferOutputs addGBuffer(FrameContext& f, const render::GpuScene& scene);
+    // The counters of the last frame that culled, per view (empty when it did not cull); with Hiz the two phases
+    // are summed (instancesTested counts each draw once). Valid once that frame's GPU work has finished.
+    std::vector<passes::CullingViewStats> lastStats() const;
+
+private:
+    void createResources(const render::GpuScene& scene, uint32_t framesInFlight);
+    void release();
+    vk::Context& ctx_;
+    vk::Buffer draws_;                       // GpuCullDraw per scene draw (static)
+    vk::Buffer visibility_;                  // uint per scene draw: drawn last frame (Hiz)
+    bool meshRung_ = false;                  // meshlets and the mesh-shader G-buffer (ladder "mesh-shading")
+    vk::Buffer meshlets_, meshletVertices_, meshletTriangles_;  // render::MeshletData (mesh rung only)
+    std::vector<vk::Buffer> views_, stats_;  // per frame slot, host-visible: GpuCullView[], GpuCullCounters[]
+    uint32_t lastSlot_ = 0;
+    uint32_t lastPhases_ = 0;                // counters the last culled frame wrote (0: it did not cull)
+    std::optional<gpu::GpuCullView> frozen_;  // CullingSettings::freeze: the view culling keeps using
+};
+
+}  // namespace idk::frame

@@ -1,0 +1,62 @@
+// depth_pyramid.cpp: "depth_pyramid": the Hi-Z pyramid of an R32F depth image (shared/depth_pyramid.h), one
+// dispatch of culling/hiz_build.comp.glsl per level in one pass, with a buffer barrier between levels (each level
+// reads the one before). The portable compute rung: any size, odd and non-power-of-two included. Ports IDKEngine's
+// Hi-Z generation (MeshCulling/Camera/HiZGenerate, a fullscreen draw per mip).
+#include "passes/culling.hpp"
+
+#include <memory>
+
+#include "shared/depth_pyramid.h"
+#include "vk/bindless.hpp"
+
+namespace idk::passes {
+
+void recordDepthPyramid(VkCommandBuffer cmd, vk::Context& ctx, vk::ShaderLibrary& shaders, uint32_t depthStorage,
+                        glm::uvec2 size, VkDeviceAddress pyramid) {
+    vk::ComputePipelineDesc pipeline;
+    pipeline.shader = vk::ShaderId::culling_hiz_build_comp;
+    pipeline.pushBytes = sizeof(gpu::HizBuildPush);
+    pipeline.localSize = {gpu::kHizGroupSize, gpu::kHizGroupSize, 1};
+    vk::bindPipeline(cmd, shaders.compute(pipeline));
+    ctx.bindless().bind(cmd);
+    const uint32_t levels = gpu::hizLevelCount(size);
+    for (uint32_t level = 0; level < levels; ++level) {
+        if (level > 0) {
+            // Level k reads level k - 1's writes (storage buffer, compute to compute).
+            VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+            barrier.srcStageMask = barrier.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+            barrier.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+            barrier.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
+            VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+            dep.memoryBarrierCount = 1;
+            dep.pMemoryBarriers = &barrier;
+            vkCmdPipelineBarrier2(cmd, &dep);
+        }
+        const gpu::HizBuildPush push{pyramid, size, depthStorage, level};
+        vk::pushConstants(cmd, ctx, push);
+        const glm::uvec2 s = gpu::hizLevelSize(size, level);
+        vkCmdDispatch(cmd, vk::groupCount(s.x, gpu::kHizGroupSize), vk::groupCount(s.y, gpu::kHizGroupSize), 1);
+    }
+}
+
+graph::BufferHandle addDepthPyramidPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                        graph::TextureHandle depth, glm::uvec2 size, const std::string& name) {
+    graph::BufferDesc desc;
+    desc.size = VkDeviceSize(gpu::hizLevelOffset(size, gpu::hizLevelCount(size))) * sizeof(float);
+    graph::BufferHandle created = graph.createBuffer(name, desc);
+    auto out = std::make_shared<graph::BufferHandle>();
+    graph.addPass(
+        name,
+        [&](graph::PassBuilder& b) {
+            constexpr VkPipelineStageFlags2 kCs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+            b.read(depth, graph::Access::StorageRead, kCs);
+            *out = b.write(created, graph::Access::StorageReadWrite, kCs);
+        },
+        [&ctx, &shaders, depth, out, size](graph::PassContext& pc) {
+            recordDepthPyramid(pc.commandBuffer(), ctx, shaders, pc.texture(depth).storageIndex, size,
+                               pc.buffer(*out).address);
+        });
+    return *out;
+}
+
+}  // namespace idk::passes

@@ -1,0 +1,17 @@
+// depth_pyramid.hpp: the CPU reference of the Hi-Z depth pyramid (layout and convention in
+// shared/depth_pyramid.h) and of the occlusion test that reads it; conformance tests and the culling oracle use it.
+#pragma once
+#include <vector>
+
+#include "shared/culling_types.h"
+#include "shared/depth_pyramid.h"
+
+namespace idk::render {
+
+// Every level of the pyramid of a w x h depth image (row-major, top row first), as the GPU lays it out.
+std::vector<float> buildDepthPyramid(const std::vector<float>& depth, glm::uvec2 size);
+
+// The late phase's occlusion test of a world box against `pyramid` (of view.viewport's size).
+bool hizBoxVisible(const std::vector<float>& pyramid, const gpu::GpuCullView& view, glm::vec3 center, glm::vec3 extent);
+
+}  // namespace idk::render

@@ -44,6 +44,15 @@ struct FrameContext {
     passes::GBufferOutputs gbuffer;
     graph::TextureHandle hdr;                      // the lit HDR image (RGBA16F), updated by each pass that adds light
     graph::TextureHandle output;                   // the frame's target (imported); the recipe's last write
+
+    // Temporal (temporal_feature.cpp), only with --aa taa: viewProjection above is then jittered by jitterPixels
+    // (the offset of this frame's samples from the pixel centres); motionVectors holds R32UI
+    // packHalf2x16(current uv - previous uv, unjittered) for geometry pixels (background: reproject by camera).
+    glm::mat4 unjitteredViewProjection{1.0f};
+    glm::vec2 jitterPixels{0.0f};
+    graph::BufferHandle temporalConstants;         // gpu::GpuTemporalFrame (shared/temporal_types.h)
+    graph::TextureHandle motionVectors;
+    bool temporalReset = true;                     // no usable history this frame (first frame, reset, resize)
 };
 
 }  // namespace idk::frame

@@ -6,19 +6,21 @@
 #include "frame/frame_context.hpp"
 #include "frame/frame_inputs.hpp"
 #include "frame/point_shadow_feature.hpp"
+#include "frame/temporal_feature.hpp"
 #include "frame/transparency_feature.hpp"
 #include "render/gpu_scene.hpp"
 
 namespace idk::frame {
 
 struct Features {
-    explicit Features(vk::Context& ctx) : inputs(ctx), environment(ctx) {}
+    explicit Features(vk::Context& ctx) : inputs(ctx), environment(ctx), temporal(ctx) {}
     void setScene(vk::Context& ctx, const render::GpuScene& scene, uint32_t framesInFlight);
 
     FrameInputs inputs;
     EnvironmentFeature environment;
     PointShadowFeature pointShadows;
     TransparencyFeature transparency;
+    TemporalFeature temporal;
 };
 
 // Declares the whole PBR frame into f.graph, ending in f.output (imported by the caller): the tonemapped image

@@ -11,6 +11,7 @@ namespace idk::frame {
 namespace {
 
 using render::RenderSettings;
+using AntiAliasing = frame::AntiAliasing;
 
 constexpr std::array<uint32_t, 5> kShadowCubeSizes = {128, 256, 512, 1024, 2048};
 
@@ -40,6 +41,15 @@ std::vector<SettingOption> buildTable() {
                  OptionKind::Choice, 0.0, 0.0, {"128", "256", "512", "1024", "2048"},
                  [](const RenderSettings& s) { return cubeSizeIndex(s.pointShadows.resolution); },
                  [](RenderSettings& s, double v) { s.pointShadows.resolution = kShadowCubeSizes[size_t(v)]; }});
+    // Temporal anti-aliasing (frame/temporal_feature.hpp).
+    t.push_back({"--aa", "Temporal", "anti-aliasing", "anti-aliasing: none, or taa (jittered frames + history)",
+                 OptionKind::Choice, 0.0, 0.0, {"none", "taa"},
+                 [](const RenderSettings& s) { return double(s.temporal.aa); },
+                 [](RenderSettings& s, double v) { s.temporal.aa = AntiAliasing(int(v)); }});
+    t.push_back({"--temporal-frames", "Temporal", "temporal frames",
+                 "jitter phases; a still with --aa taa renders this many frames to converge", OptionKind::Integer,
+                 1.0, 64.0, {}, [](const RenderSettings& s) { return double(s.temporal.frames); },
+                 [](RenderSettings& s, double v) { s.temporal.frames = uint32_t(v); }});
     return t;
 }
 

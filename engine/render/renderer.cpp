@@ -140,6 +140,13 @@ FrameResult Renderer::renderOffscreen(const scene::CameraView& camera, uint32_t 
     return result;
 }
 
+FrameResult Renderer::renderStill(const scene::CameraView& camera, uint32_t width, uint32_t height) {
+    const uint32_t frames = settings_.shading == Shading::Pbr ? frame::TemporalFeature::stillFrames(settings_) : 1;
+    if (frames > 1) features_.temporal.resetHistory();
+    for (uint32_t i = 1; i < frames; ++i) renderOffscreen(camera, width, height);
+    return renderOffscreen(camera, width, height);
+}
+
 // ---- renderFrame: the viewer's path (same frame graph, no readback, caller's passes after it) ----
 
 FrameInfo Renderer::renderFrame(const scene::CameraView& camera, const FrameTarget& target) {

@@ -46,6 +46,7 @@ graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Fe
     f.hdr = passes::addSkyPass(f.graph, f.ctx, f.shaders, f.gbuffer.depth, f.frameConstants, f.environment, f.hdr);
     x.transparency.addPasses(f, scene);                               // blends into f.hdr
     x.temporal.addResolve(f);                                         // TAA: f.hdr
+    x.bloom.addPasses(f);                                             // blends into f.hdr
     return finish(f);                                                 // tonemap (Display) into f.output
 }
 

@@ -2,6 +2,7 @@
 // persistent state. To add a feature: a settings struct and a class in its own files under engine/frame/, a member
 // here, one line in recordPbrFrame at its place in the frame, its options in settings_table.cpp.
 #pragma once
+#include "frame/bloom_feature.hpp"
 #include "frame/environment_feature.hpp"
 #include "frame/frame_context.hpp"
 #include "frame/frame_inputs.hpp"
@@ -21,6 +22,7 @@ struct Features {
     PointShadowFeature pointShadows;
     TransparencyFeature transparency;
     TemporalFeature temporal;
+    BloomFeature bloom;
 };
 
 // Declares the whole PBR frame into f.graph, ending in f.output (imported by the caller): the tonemapped image

@@ -50,6 +50,13 @@ std::vector<SettingOption> buildTable() {
                  "jitter phases; a still with --aa taa renders this many frames to converge", OptionKind::Integer,
                  1.0, 64.0, {}, [](const RenderSettings& s) { return double(s.temporal.frames); },
                  [](RenderSettings& s, double v) { s.temporal.frames = uint32_t(v); }});
+    // Bloom (frame/bloom_feature.hpp).
+    t.push_back({"--bloom", "Bloom", "bloom", "energy-conserving bloom (13-tap downsample, tent upsample)",
+                 OptionKind::Toggle, 0.0, 1.0, {}, [](const RenderSettings& s) { return s.bloom.enabled ? 1.0 : 0.0; },
+                 [](RenderSettings& s, double v) { s.bloom.enabled = v != 0.0; }});
+    t.push_back({"--bloom-strength", "Bloom", "bloom strength", "blend toward the blurred image", OptionKind::Number,
+                 0.0, 1.0, {}, [](const RenderSettings& s) { return double(s.bloom.strength); },
+                 [](RenderSettings& s, double v) { s.bloom.strength = float(v); }});
     return t;
 }
 

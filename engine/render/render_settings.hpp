@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <optional>
 
+#include "frame/bloom_settings.hpp"
 #include "frame/temporal_settings.hpp"
 #include "render/point_shadow_maps.hpp"
 
@@ -27,6 +28,7 @@ struct RenderSettings {
     std::optional<std::filesystem::path> environment;
     PointShadowSettings pointShadows;  // which lights cast cube shadows, and the cube resolution
     frame::TemporalSettings temporal;  // --aa, --temporal-frames (frame/temporal_feature.hpp)
+    frame::BloomSettings bloom;        // --bloom, --bloom-strength (frame/bloom_feature.hpp)
 };
 
 }  // namespace idk::render

@@ -53,6 +53,7 @@ struct FrameContext {
     graph::BufferHandle temporalConstants;         // gpu::GpuTemporalFrame (shared/temporal_types.h)
     graph::TextureHandle motionVectors;
     bool temporalReset = true;                     // no usable history this frame (first frame, reset, resize)
+    graph::TextureHandle ambientOcclusion;         // R32F ambient visibility (ssao_feature.cpp); invalid: none
 };
 
 }  // namespace idk::frame

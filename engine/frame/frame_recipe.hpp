@@ -7,6 +7,7 @@
 #include "frame/frame_context.hpp"
 #include "frame/frame_inputs.hpp"
 #include "frame/point_shadow_feature.hpp"
+#include "frame/ssao_feature.hpp"
 #include "frame/temporal_feature.hpp"
 #include "frame/transparency_feature.hpp"
 #include "render/gpu_scene.hpp"
@@ -14,7 +15,7 @@
 namespace idk::frame {
 
 struct Features {
-    explicit Features(vk::Context& ctx) : inputs(ctx), environment(ctx), temporal(ctx) {}
+    explicit Features(vk::Context& ctx) : inputs(ctx), environment(ctx), temporal(ctx), ssao(ctx) {}
     void setScene(vk::Context& ctx, const render::GpuScene& scene, uint32_t framesInFlight);
 
     FrameInputs inputs;
@@ -23,6 +24,7 @@ struct Features {
     TransparencyFeature transparency;
     TemporalFeature temporal;
     BloomFeature bloom;
+    SsaoFeature ssao;
 };
 
 // Declares the whole PBR frame into f.graph, ending in f.output (imported by the caller): the tonemapped image

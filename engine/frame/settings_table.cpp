@@ -57,6 +57,16 @@ std::vector<SettingOption> buildTable() {
     t.push_back({"--bloom-strength", "Bloom", "bloom strength", "blend toward the blurred image", OptionKind::Number,
                  0.0, 1.0, {}, [](const RenderSettings& s) { return double(s.bloom.strength); },
                  [](RenderSettings& s, double v) { s.bloom.strength = float(v); }});
+    // Screen-space ambient occlusion (frame/ssao_feature.hpp).
+    t.push_back({"--ssao", "SSAO", "ambient occlusion", "screen-space ambient occlusion of the ambient light",
+                 OptionKind::Toggle, 0.0, 1.0, {}, [](const RenderSettings& s) { return s.ssao.enabled ? 1.0 : 0.0; },
+                 [](RenderSettings& s, double v) { s.ssao.enabled = v != 0.0; }});
+    t.push_back({"--ssao-radius", "SSAO", "radius", "world-space reach of the occlusion rays", OptionKind::Number,
+                 0.001, 100.0, {}, [](const RenderSettings& s) { return double(s.ssao.radius); },
+                 [](RenderSettings& s, double v) { s.ssao.radius = float(v); }, true});
+    t.push_back({"--ssao-samples", "SSAO", "samples", "occlusion rays per pixel per frame", OptionKind::Integer, 1.0,
+                 64.0, {}, [](const RenderSettings& s) { return double(s.ssao.samples); },
+                 [](RenderSettings& s, double v) { s.ssao.samples = uint32_t(v); }});
     return t;
 }
 

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "frame/bloom_settings.hpp"
+#include "frame/ssao_settings.hpp"
 #include "frame/temporal_settings.hpp"
 #include "render/point_shadow_maps.hpp"
 
@@ -29,6 +30,7 @@ struct RenderSettings {
     PointShadowSettings pointShadows;  // which lights cast cube shadows, and the cube resolution
     frame::TemporalSettings temporal;  // --aa, --temporal-frames (frame/temporal_feature.hpp)
     frame::BloomSettings bloom;        // --bloom, --bloom-strength (frame/bloom_feature.hpp)
+    frame::SsaoSettings ssao;          // --ssao, --ssao-radius, --ssao-samples (frame/ssao_feature.hpp)
 };
 
 }  // namespace idk::render

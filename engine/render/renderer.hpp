@@ -93,6 +93,7 @@ public:
     const PointShadowMaps* pointShadowMaps() const noexcept { return features_.pointShadows.maps(); }
     // Jitter, motion vectors and TAA (tests capture the motion vectors through it).
     frame::TemporalFeature& temporal() noexcept { return features_.temporal; }
+    frame::SsaoFeature& ssao() noexcept { return features_.ssao; }  // tests capture its inputs and output
     // Runs inside each frame's command buffer before the frame's graph is built (TextureStreamer::pump goes
     // here: textures it makes ready reach this frame's materials through the scene_update pass).
     void setBeforeFrame(std::function<void(VkCommandBuffer)> hook) { beforeFrame_ = std::move(hook); }

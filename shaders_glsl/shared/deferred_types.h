@@ -58,8 +58,11 @@ struct LightingPush {
     uint depth;      // R32F: 0 near .. 1 far (1 = background)
     uint target;     // RGBA16F: linear radiance
     DeviceAddress pointShadows;  // GpuPointShadow[lightCount] (shared/shadow_types.h), 0: no light casts one
+    uint ambientOcclusion;       // R32F storage: SSAO visibility of the ambient light; kLightingNoAo: none
+    uint pad;
 };
-IDK_GPU_SIZE(LightingPush, 40);
+IDK_GPU_SIZE(LightingPush, 48);
+IDK_CONST(uint, kLightingNoAo, 0xFFFFFFFFu);
 
 // sky.comp: writes the environment where depth == 1.
 struct SkyPush {

@@ -439,9 +439,9 @@ PY
   temporal_flags)
     # Issue 12: --aa taa runs --temporal-frames jittered frames for a still (TAA passes listed), --bloom adds the
     # bloom chain; both are recorded in --json's settings; a bad choice exits 2 naming the flag.
-    "$idk" render --size 16x16 --out "$tmp/t.png" --aa taa --temporal-frames 3 --bloom --json >"$tmp/t.json" \
+    "$idk" render --size 16x16 --out "$tmp/t.png" --aa taa --temporal-frames 3 --bloom --ssao --json >"$tmp/t.json" \
       || fail "render with --aa taa --bloom failed"
-    for key in '"aa": "taa"' '"temporal-frames": 3' '"bloom": true' '"taa_resolve"' '"motion_vectors"' '"bloom_composite"'; do
+    for key in '"aa": "taa"' '"temporal-frames": 3' '"bloom": true' '"ssao": true' '"taa_resolve"' '"motion_vectors"' '"bloom_composite"'; do
       grep -q "$key" "$tmp/t.json" || fail "--json lacks $key: $(cat "$tmp/t.json")"
     done
     "$idk" render --size 16x16 --out "$tmp/n.png" --json >"$tmp/n.json" || fail "plain render failed"

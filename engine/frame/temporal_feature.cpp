@@ -158,8 +158,9 @@ void TemporalFeature::addMotionVectors(FrameContext& f, render::GpuScene& scene)
     // A static frame: the same camera, no pose uploaded or vertices deformed this frame (the animation passes
     // write new versions of the scene buffers only when the pose changed), the same lights.
     const bool lightsSame = f.lights && f.lights->size() == previousLights_.size() &&
-                            std::memcmp(f.lights->data(), previousLights_.data(),
-                                        previousLights_.size() * sizeof(gpu::GpuLight)) == 0;
+                            (previousLights_.empty() ||  // memcmp's pointers must not be null, even for 0 bytes
+                             std::memcmp(f.lights->data(), previousLights_.data(),
+                                         previousLights_.size() * sizeof(gpu::GpuLight)) == 0);
     frameStatic_ = cameraStill_ && lightsSame && f.scene.vertices.version == 0 && f.scene.instances.version == 0;
     if (f.lights) previousLights_ = *f.lights;
     passes::MotionVectorInputs in;

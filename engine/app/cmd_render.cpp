@@ -213,9 +213,8 @@ int runRender(const std::vector<std::string>& argv, std::vector<vk::Ladder>* run
         std::optional<tools::VideoWriter> video;
         if (orbitVideo) video.emplace(*args.get("--video"), width, height, videoOptionsFromCli(args, fps));
         for (size_t k = 0; k < views.size(); ++k) {
-            // VRS shades at the rates the previous frame classified: a first frame classifies, as the viewer's would.
-            if (k == 0 && settings.vrs.enabled) renderer.renderOffscreen(views[k], width, height);
-            frame = renderer.renderOffscreen(views[k], width, height);
+            // A video is one moving camera (per-frame history); each still converges on its own.
+            frame = video ? renderer.renderOffscreen(views[k], width, height) : renderer.renderStill(views[k], width, height);
             if (video) {
                 video->addFrame(frame.display);
                 continue;
@@ -223,7 +222,7 @@ int runRender(const std::vector<std::string>& argv, std::vector<vk::Ladder>* run
             if (transparent && settings.output == render::OutputKind::Display) {
                 // The same frame as linear HDR: its alpha is the geometry coverage the EXR stores.
                 renderer.settings().output = render::OutputKind::Hdr;
-                const render::FrameResult hdr = renderer.renderOffscreen(views[k], width, height);
+                const render::FrameResult hdr = renderer.renderStill(views[k], width, height);
                 renderer.settings().output = render::OutputKind::Display;
                 for (size_t i = 3; i < frame.image.pixels.size(); i += 4) frame.image.pixels[i] = hdr.image.pixels[i];
             }

@@ -51,6 +51,16 @@ struct FrameContext {
     // level 0 = ceil(width / 2) x ceil(height / 2), each texel the MAXIMUM (farthest) depth of the 2^(k+1)-square
     // of depth pixels it covers; depth 0 near .. 1 far (not reversed), background 1. Built only if a pass reads it.
     graph::BufferHandle depthPyramid;
+
+    // Temporal (temporal_feature.cpp), only with --aa taa: viewProjection above is then jittered by jitterPixels
+    // (the offset of this frame's samples from the pixel centres); motionVectors holds R32UI
+    // packHalf2x16(current uv - previous uv, unjittered) for geometry pixels (background: reproject by camera).
+    glm::mat4 unjitteredViewProjection{1.0f};
+    glm::vec2 jitterPixels{0.0f};
+    graph::BufferHandle temporalConstants;         // gpu::GpuTemporalFrame (shared/temporal_types.h)
+    graph::TextureHandle motionVectors;
+    bool temporalReset = true;                     // no usable history this frame (first frame, reset, resize)
+    graph::TextureHandle ambientOcclusion;         // R32F ambient visibility (ssao_feature.cpp); invalid: none
 };
 
 }  // namespace idk::frame

@@ -34,20 +34,26 @@ void Features::setScene(vk::Context& ctx, const render::GpuScene& scene, uint32_
 }
 
 graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Features& x) {
+    x.temporal.beginFrame(f);                                         // jitters f.viewProjection (--aa taa)
     x.environment.addPasses(f);                                       // f.environment
     x.inputs.addPasses(f, scene, x.environment.current(f.settings));  // f.frameConstants, f.scene, f.lights
     // Shadows before the G-buffer: the installed validation layer counts every draw that uses the bindless
     // sampled array (the G-buffer's) as reading the cubes, so their write must not follow such a draw.
     x.pointShadows.addPasses(f, scene);                               // f.pointShadows
     f.gbuffer = x.culling.addGBuffer(f, scene);                       // GPU culling; f.depthPyramid
+    x.temporal.addMotionVectors(f, scene);                            // f.motionVectors
     x.vrs.beginFrame(f);                                              // f.vrsRates: last frame's shading rates
+    x.ssao.addPasses(f);                                              // f.ambientOcclusion
     f.hdr = passes::addDeferredLightingPass(f.graph, f.ctx, f.shaders, f.gbuffer, f.frameConstants, f.scene.lights,
-                                            f.environment, hdrTarget(f), f.pointShadows, f.vrsRates);
+                                            f.environment, hdrTarget(f), f.pointShadows, f.vrsRates,
+                                            f.ambientOcclusion);
     f.hdr = passes::addSkyPass(f.graph, f.ctx, f.shaders, f.gbuffer.depth, f.frameConstants, f.environment, f.hdr,
                                f.vrsRates);
     x.vrs.addReconstructPass(f);                                      // VRS: fills the pixels not shaded
     x.transparency.addPasses(f, scene);                               // blends into f.hdr
     x.vrs.addClassifyPasses(f);                                       // VRS: rates for the next frame
+    x.temporal.addResolve(f);                                         // TAA: f.hdr
+    x.bloom.addPasses(f);                                             // blends into f.hdr
     return finish(f);                                                 // tonemap (Display) into f.output
 }
 

@@ -3,10 +3,13 @@
 // here, one line in recordPbrFrame at its place in the frame, its options in settings_table.cpp.
 #pragma once
 #include "frame/culling_feature.hpp"
+#include "frame/bloom_feature.hpp"
 #include "frame/environment_feature.hpp"
 #include "frame/frame_context.hpp"
 #include "frame/frame_inputs.hpp"
 #include "frame/point_shadow_feature.hpp"
+#include "frame/ssao_feature.hpp"
+#include "frame/temporal_feature.hpp"
 #include "frame/transparency_feature.hpp"
 #include "frame/vrs_feature.hpp"
 #include "render/gpu_scene.hpp"
@@ -14,7 +17,8 @@
 namespace idk::frame {
 
 struct Features {
-    explicit Features(vk::Context& ctx) : inputs(ctx), environment(ctx), vrs(ctx), culling(ctx) {}
+    explicit Features(vk::Context& ctx)
+        : inputs(ctx), environment(ctx), vrs(ctx), culling(ctx), temporal(ctx), ssao(ctx) {}
     void setScene(vk::Context& ctx, const render::GpuScene& scene, uint32_t framesInFlight);
 
     FrameInputs inputs;
@@ -23,6 +27,9 @@ struct Features {
     TransparencyFeature transparency;
     VrsFeature vrs;
     CullingFeature culling;
+    TemporalFeature temporal;
+    BloomFeature bloom;
+    SsaoFeature ssao;
 };
 
 // Declares the whole PBR frame into f.graph, ending in f.output (imported by the caller): the tonemapped image

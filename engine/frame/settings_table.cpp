@@ -11,6 +11,7 @@ namespace idk::frame {
 namespace {
 
 using render::RenderSettings;
+using AntiAliasing = frame::AntiAliasing;
 
 constexpr std::array<uint32_t, 5> kShadowCubeSizes = {128, 256, 512, 1024, 2048};
 
@@ -63,6 +64,32 @@ std::vector<SettingOption> buildTable() {
                  "keep culling with the camera of the frame this was turned on (occlusion pauses)", OptionKind::Toggle,
                  0.0, 1.0, {}, [](const RenderSettings& s) { return s.culling.freeze ? 1.0 : 0.0; },
                  [](RenderSettings& s, double v) { s.culling.freeze = v != 0.0; }});
+    // Temporal anti-aliasing (frame/temporal_feature.hpp).
+    t.push_back({"--aa", "Temporal", "anti-aliasing", "anti-aliasing: none, or taa (jittered frames + history)",
+                 OptionKind::Choice, 0.0, 0.0, {"none", "taa"},
+                 [](const RenderSettings& s) { return double(s.temporal.aa); },
+                 [](RenderSettings& s, double v) { s.temporal.aa = AntiAliasing(int(v)); }});
+    t.push_back({"--temporal-frames", "Temporal", "temporal frames",
+                 "jitter phases; a still with --aa taa renders this many frames to converge", OptionKind::Integer,
+                 1.0, 64.0, {}, [](const RenderSettings& s) { return double(s.temporal.frames); },
+                 [](RenderSettings& s, double v) { s.temporal.frames = uint32_t(v); }});
+    // Bloom (frame/bloom_feature.hpp).
+    t.push_back({"--bloom", "Bloom", "bloom", "energy-conserving bloom (13-tap downsample, tent upsample)",
+                 OptionKind::Toggle, 0.0, 1.0, {}, [](const RenderSettings& s) { return s.bloom.enabled ? 1.0 : 0.0; },
+                 [](RenderSettings& s, double v) { s.bloom.enabled = v != 0.0; }});
+    t.push_back({"--bloom-strength", "Bloom", "bloom strength", "blend toward the blurred image", OptionKind::Number,
+                 0.0, 1.0, {}, [](const RenderSettings& s) { return double(s.bloom.strength); },
+                 [](RenderSettings& s, double v) { s.bloom.strength = float(v); }});
+    // Screen-space ambient occlusion (frame/ssao_feature.hpp).
+    t.push_back({"--ssao", "SSAO", "ambient occlusion", "screen-space ambient occlusion of the ambient light",
+                 OptionKind::Toggle, 0.0, 1.0, {}, [](const RenderSettings& s) { return s.ssao.enabled ? 1.0 : 0.0; },
+                 [](RenderSettings& s, double v) { s.ssao.enabled = v != 0.0; }});
+    t.push_back({"--ssao-radius", "SSAO", "radius", "world-space reach of the occlusion rays", OptionKind::Number,
+                 0.001, 100.0, {}, [](const RenderSettings& s) { return double(s.ssao.radius); },
+                 [](RenderSettings& s, double v) { s.ssao.radius = float(v); }, true});
+    t.push_back({"--ssao-samples", "SSAO", "samples", "occlusion rays per pixel per frame", OptionKind::Integer, 1.0,
+                 64.0, {}, [](const RenderSettings& s) { return double(s.ssao.samples); },
+                 [](RenderSettings& s, double v) { s.ssao.samples = uint32_t(v); }});
     return t;
 }
 

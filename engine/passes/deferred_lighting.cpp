@@ -15,7 +15,8 @@ graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Cont
                                              const GBufferOutputs& gbuffer, graph::BufferHandle frame,
                                              graph::BufferHandle lights, graph::TextureHandle environment,
                                              graph::TextureHandle target, const PointShadowOutputs& shadows,
-                                             graph::BufferHandle vrsRates) {
+                                             graph::BufferHandle vrsRates,
+                                             graph::TextureHandle ambientOcclusion) {
     auto written = std::make_shared<graph::TextureHandle>();
     const GBufferOutputs g = gbuffer;
     graph.addPass(
@@ -32,9 +33,10 @@ graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Cont
                 for (graph::TextureHandle cube : shadows.cubes) b.read(cube, graph::Access::SampledRead, kCs);
             }
             if (vrsRates.valid()) b.read(vrsRates, graph::Access::StorageRead, kCs);
+            if (ambientOcclusion.valid()) b.read(ambientOcclusion, graph::Access::StorageRead, kCs);
             *written = b.write(target, graph::Access::StorageWrite, kCs);
         },
-        [&ctx, &shaders, g, frame, written, table = shadows.table, vrsRates](graph::PassContext& pc) {
+        [&ctx, &shaders, g, frame, written, table = shadows.table, vrsRates, ambientOcclusion](graph::PassContext& pc) {
             VkCommandBuffer cmd = pc.commandBuffer();
             vk::ComputePipelineDesc desc;
             desc.shader = vk::ShaderId::deferred_lighting_lighting_comp;
@@ -52,6 +54,7 @@ graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Cont
             push.target = pc.texture(*written).storageIndex;
             push.pointShadows = table.valid() ? pc.buffer(table).address : 0;
             push.vrsRates = vrsRates.valid() ? pc.buffer(vrsRates).address : 0;
+            push.ambientOcclusion = ambientOcclusion.valid() ? pc.texture(ambientOcclusion).storageIndex : gpu::kLightingNoAo;
             vk::pushConstants(cmd, ctx, push);
             VkExtent3D extent = pc.texture(*written).extent;
             vkCmdDispatch(cmd, vk::groupCount(extent.width, gpu::kLightingGroupSize),

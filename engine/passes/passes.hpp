@@ -110,7 +110,8 @@ graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Cont
                                              const GBufferOutputs& gbuffer, graph::BufferHandle frame,
                                              graph::BufferHandle lights, graph::TextureHandle environment,
                                              graph::TextureHandle target, const PointShadowOutputs& shadows = {},
-                                             graph::BufferHandle vrsRates = {});  // software VRS (vrs_passes.hpp)
+                                             graph::BufferHandle vrsRates = {},  // software VRS (vrs_passes.hpp)
+                                             graph::TextureHandle ambientOcclusion = {});  // SSAO (ssao.hpp)
 
 // sky.cpp: writes the environment into the background pixels of `target` (depth == 1); returns its new version.
 graph::TextureHandle addSkyPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,

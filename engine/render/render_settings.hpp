@@ -7,6 +7,9 @@
 #include <optional>
 
 #include "frame/vrs_settings.hpp"
+#include "frame/bloom_settings.hpp"
+#include "frame/ssao_settings.hpp"
+#include "frame/temporal_settings.hpp"
 #include "render/point_shadow_maps.hpp"
 #include "frame/culling_settings.hpp"
 
@@ -29,6 +32,9 @@ struct RenderSettings {
     PointShadowSettings pointShadows;  // which lights cast cube shadows, and the cube resolution
     frame::VrsSettings vrs;            // variable-rate shading of lighting and sky (off by default)
     frame::CullingSettings culling;    // GPU culling of the draws (frame/culling_feature.hpp)
+    frame::TemporalSettings temporal;  // --aa, --temporal-frames (frame/temporal_feature.hpp)
+    frame::BloomSettings bloom;        // --bloom, --bloom-strength (frame/bloom_feature.hpp)
+    frame::SsaoSettings ssao;          // --ssao, --ssao-radius, --ssao-samples (frame/ssao_feature.hpp)
 };
 
 }  // namespace idk::render

@@ -142,6 +142,15 @@ FrameResult Renderer::renderOffscreen(const scene::CameraView& camera, uint32_t 
     return result;
 }
 
+FrameResult Renderer::renderStill(const scene::CameraView& camera, uint32_t width, uint32_t height) {
+    uint32_t frames = settings_.shading == Shading::Pbr ? frame::TemporalFeature::stillFrames(settings_) : 1;
+    // VRS shades at the rates the previous frame classified: a first frame classifies, as the viewer's would.
+    if (settings_.shading == Shading::Pbr && settings_.vrs.enabled) frames = std::max(frames, 2u);
+    if (frames > 1) features_.temporal.resetHistory();
+    for (uint32_t i = 1; i < frames; ++i) renderOffscreen(camera, width, height);
+    return renderOffscreen(camera, width, height);
+}
+
 // ---- renderFrame: the viewer's path (same frame graph, no readback, caller's passes after it) ----
 
 FrameInfo Renderer::renderFrame(const scene::CameraView& camera, const FrameTarget& target) {

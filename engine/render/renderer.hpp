@@ -75,6 +75,9 @@ public:
     // weights reach the next frame (pose_upload and skinning passes, only when something changed).
     void setPose(const scene::Scene& scene);
     FrameResult renderOffscreen(const scene::CameraView& camera, uint32_t width, uint32_t height);
+    // A still image: with temporal anti-aliasing, a fresh history and settings.temporal.frames jittered frames of
+    // the unmoving camera (the last one is returned); otherwise one renderOffscreen.
+    FrameResult renderStill(const scene::CameraView& camera, uint32_t width, uint32_t height);
     // Renders into target.image (size = its extent) and submits without waiting for the GPU (PBR shading,
     // Display output; throws std::logic_error otherwise). Before recording it waits for this renderer's previous
     // frame, so that frame's pass timings can be read and its resources reused.
@@ -94,6 +97,9 @@ public:
     const PointShadowMaps* pointShadowMaps() const noexcept { return features_.pointShadows.maps(); }
     // Variable-rate shading's state (the rates the last frame used): tests and the viewer's overlay read it.
     const frame::VrsFeature& vrs() const noexcept { return features_.vrs; }
+    // Jitter, motion vectors and TAA (tests capture the motion vectors through it).
+    frame::TemporalFeature& temporal() noexcept { return features_.temporal; }
+    frame::SsaoFeature& ssao() noexcept { return features_.ssao; }  // tests capture its inputs and output
     // Runs inside each frame's command buffer before the frame's graph is built (TextureStreamer::pump goes
     // here: textures it makes ready reach this frame's materials through the scene_update pass).
     void setBeforeFrame(std::function<void(VkCommandBuffer)> hook) { beforeFrame_ = std::move(hook); }

@@ -33,6 +33,7 @@ void main() {
     vec3 n = octDecode(unpackSnorm2x16(imageLoad(gImagesR32ui[p.normal], pixel).r));
     vec4 mro = imageLoad(gImagesRgba8[p.material], pixel);
     float metallic = mro.r, roughness = mro.g, occlusion = mro.b;
+    if (p.ambientOcclusion != kLightingNoAo) occlusion *= imageLoad(gImagesR32f[p.ambientOcclusion], pixel).r;  // SSAO
     if (mro.a < 0.5) {  // KHR_materials_unlit
         imageStore(gImagesRgba16f[p.target], pixel, vec4(baseColor, 1.0));
         return;

@@ -59,8 +59,11 @@ struct LightingPush {
     uint target;     // RGBA16F: linear radiance
     DeviceAddress pointShadows;  // GpuPointShadow[lightCount] (shared/shadow_types.h), 0: no light casts one
     DeviceAddress vrsRates;      // software VRS: shade only cell anchors (shared/vrs_types.h); 0: every pixel
+    uint ambientOcclusion;       // R32F storage: SSAO visibility of the ambient light; kLightingNoAo: none
+    uint pad;
 };
-IDK_GPU_SIZE(LightingPush, 48);
+IDK_GPU_SIZE(LightingPush, 56);
+IDK_CONST(uint, kLightingNoAo, 0xFFFFFFFFu);
 
 // sky.comp: writes the environment where depth == 1.
 struct SkyPush {

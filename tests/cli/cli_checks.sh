@@ -477,6 +477,18 @@ PY
     "$idk" render --size 8x8 --out "$tmp/x.png" --culling sometimes 2>"$tmp/err"; [ $? -eq 2 ] \
       || fail "--culling sometimes should exit 2"
     grep -q -- "off|frustum|hiz" "$tmp/err" || fail "error does not list the modes: $(cat "$tmp/err")"
+  temporal_flags)
+    # Issue 12: --aa taa runs --temporal-frames jittered frames for a still (TAA passes listed), --bloom adds the
+    # bloom chain; both are recorded in --json's settings; a bad choice exits 2 naming the flag.
+    "$idk" render --size 16x16 --out "$tmp/t.png" --aa taa --temporal-frames 3 --bloom --ssao --json >"$tmp/t.json" \
+      || fail "render with --aa taa --bloom failed"
+    for key in '"aa": "taa"' '"temporal-frames": 3' '"bloom": true' '"ssao": true' '"taa_resolve"' '"motion_vectors"' '"bloom_composite"'; do
+      grep -q "$key" "$tmp/t.json" || fail "--json lacks $key: $(cat "$tmp/t.json")"
+    done
+    "$idk" render --size 16x16 --out "$tmp/n.png" --json >"$tmp/n.json" || fail "plain render failed"
+    ! grep -q '"taa_resolve"\|"bloom_composite"' "$tmp/n.json" || fail "TAA or bloom ran while off"
+    "$idk" render --size 8x8 --out "$tmp/x.png" --aa fxaa 2>"$tmp/err"; [ $? -eq 2 ] || fail "--aa fxaa should exit 2"
+    grep -q -- "--aa 'fxaa'" "$tmp/err" || fail "error does not name --aa: $(cat "$tmp/err")"
     ;;
   *) fail "unknown case" ;;
 esac

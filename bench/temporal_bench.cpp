@@ -1,0 +1,112 @@
+// temporal_bench.cpp: the temporal and screen-space passes (issue 12) on the embedded Cornell box: time of a warm
+// 1280x720 frame (renderOffscreen, readback included) with each feature on, against the same frame with all off
+// (the peer, measured in the same run), plus GPU time per pass; and the error of the anti-aliased still against
+// the 16x supersampled truth (the same frame at 4x width and height, box-filtered), measured once per run at
+// 320x180 (the reference is then 1280x720), next to the single-sample frame's: PSNR and FLIP of display-compressed
+// values c / (1 + c).
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <functional>
+#include <map>
+#include <string>
+
+#include "app/default_scene.hpp"
+#include "app/flip.hpp"
+#include "app/image_compare.hpp"
+#include "bench_support.hpp"
+#include "render/renderer.hpp"
+
+namespace idk::bench {
+namespace {
+
+constexpr uint32_t kWidth = 1280, kHeight = 720;
+constexpr uint32_t kErrorWidth = 320, kErrorHeight = 180, kSuper = 4;
+
+core::ImageRgba32f compressed(core::ImageRgba32f image) {
+    for (size_t i = 0; i < image.pixels.size(); ++i)
+        if (i % 4 != 3) image.pixels[i] = std::max(image.pixels[i], 0.0f) / (1.0f + std::max(image.pixels[i], 0.0f));
+    return image;
+}
+
+core::ImageRgba32f boxDownsample(const core::ImageRgba32f& big, uint32_t k) {
+    core::ImageRgba32f out;
+    out.width = big.width / k;
+    out.height = big.height / k;
+    out.pixels.assign(size_t(out.width) * out.height * 4, 0.0f);
+    for (uint32_t y = 0; y < out.height * k; ++y)
+        for (uint32_t x = 0; x < out.width * k; ++x)
+            for (uint32_t c = 0; c < 4; ++c)
+                out.pixels[(size_t(y / k) * out.width + x / k) * 4 + c] +=
+                    big.pixels[(size_t(y) * big.width + x) * 4 + c] / float(k * k);
+    return out;
+}
+
+struct Variant {
+    const char* name;
+    const char* settings;
+    std::function<void(render::RenderSettings&)> apply;
+    bool stillError;  // measure the still's (and the no-AA frame's) error against the supersampled reference
+};
+
+const Variant kVariants[] = {
+    {"off", "all temporal/screen-space passes off (peer)", [](render::RenderSettings&) {}, false},
+    {"taa", "--aa taa, 16 jitter phases; time: one frame with history; error: the converged still and the no-AA frame",
+     [](render::RenderSettings& s) { s.temporal.aa = frame::AntiAliasing::Taa; }, true},
+    {"bloom", "--bloom (strength 0.04)", [](render::RenderSettings& s) { s.bloom.enabled = true; }, false},
+    {"ssao", "--ssao (16 rays x 4 depth tests, radius 0.2)", [](render::RenderSettings& s) { s.ssao.enabled = true; },
+     false},
+    {"all", "--aa taa --bloom --ssao", [](render::RenderSettings& s) {
+         s.temporal.aa = frame::AntiAliasing::Taa;
+         s.bloom.enabled = true;
+         s.ssao.enabled = true;
+     }, false},  // bloom and SSAO change the image: the supersampled no-AA frame is not its truth
+};
+
+void BM_TemporalFrame(benchmark::State& state, const Variant& v) {
+    const scene::Scene scene = app::loadDefaultScene();
+    const scene::CameraView camera = scene::defaultCamera(scene);
+    render::RenderSettings settings;
+    settings.output = render::OutputKind::Hdr;
+    v.apply(settings);
+    std::map<std::string, double> passMs;
+    {
+        render::Renderer renderer(*context(), *shaders(), settings);
+        renderer.setScene(scene);
+        renderer.renderOffscreen(camera, kWidth, kHeight);  // warm-up: pipelines, graph resources, history
+        for (auto _ : state) {
+            render::FrameResult frame = renderer.renderOffscreen(camera, kWidth, kHeight);
+            for (const vk::ScopeTiming& t : frame.passTimes) passMs[t.name] += t.milliseconds;
+            benchmark::DoNotOptimize(frame.image.pixels.data());
+        }
+        if (v.stillError) {
+            render::RenderSettings plain;
+            plain.output = render::OutputKind::Hdr;
+            render::Renderer reference(*context(), *shaders(), plain);
+            reference.setScene(scene);
+            const core::ImageRgba32f truth = compressed(boxDownsample(
+                reference.renderOffscreen(camera, kErrorWidth * kSuper, kErrorHeight * kSuper).image, kSuper));
+            const core::ImageRgba32f still = compressed(renderer.renderStill(camera, kErrorWidth, kErrorHeight).image);
+            const core::ImageRgba32f single = compressed(reference.renderOffscreen(camera, kErrorWidth, kErrorHeight).image);
+            state.counters["psnr_db"] = app::psnr(app::compareImages(still, truth));
+            state.counters["flip"] = app::computeFlip(still, truth).mean;
+            state.counters["noaa_psnr_db"] = app::psnr(app::compareImages(single, truth));
+            state.counters["noaa_flip"] = app::computeFlip(single, truth).mean;
+        }
+    }
+    const auto iterations = double(state.iterations());
+    for (const auto& [name, ms] : passMs) state.counters["pass_ms." + name] = ms / iterations;
+    setRow(state, {"temporal", "embedded Cornell box, 1280x720 (error: 320x180 still vs 16x SSAA)", v.settings, "-",
+                   std::string(v.name) == "off" ? "" : "BM_TemporalFrame/off",
+                   std::string(v.name) == "off" ? "peer" : "ours", "real"});
+}
+
+[[maybe_unused]] const bool kRegistered = [] {
+    for (const Variant& v : kVariants)
+        benchmark::RegisterBenchmark((std::string("BM_TemporalFrame/") + v.name).c_str(), BM_TemporalFrame, v)
+            ->UseRealTime()->Iterations(3)->Repetitions(3)->Unit(benchmark::kMillisecond);
+    return true;
+}();
+
+}  // namespace
+}  // namespace idk::bench

@@ -287,6 +287,12 @@ void Context::pickPhysicalDevice() {
     }
     std::vector<VkPhysicalDevice> devices(count);
     check(vkEnumeratePhysicalDevices(instance_, &count, devices.data()));
+    if (desc_.deviceIndex) {
+        if (*desc_.deviceIndex >= count)
+            throw std::runtime_error(core::concat("device ", *desc_.deviceIndex, " requested but the loader lists only ",
+                                                  count, " Vulkan device(s) (`vulkaninfo --summary` lists them)"));
+        devices = {devices[*desc_.deviceIndex]};  // still checked against the baseline below
+    }
 
     std::string rejected;
     int bestScore = -1;

@@ -53,6 +53,7 @@ struct ContextDesc {
     std::vector<const char*> instanceExtensions;        // window-system extensions; empty = headless
     bool presentation = false;                          // require VK_KHR_swapchain
     std::string deviceNameFilter;                       // substring; also env IDK_DEVICE
+    std::optional<uint32_t> deviceIndex;                // that device of vkEnumeratePhysicalDevices (idk --device N)
     // Probe the GL-interop rung at start-up (a headless GL context and a round trip; gl/interop_probe.hpp). The
     // `idk` commands do; tests that need the rung ask for it. Off: the GL rungs say "not probed".
     bool probeGlInterop = false;

@@ -147,6 +147,16 @@ std::vector<std::string> ladderRungList() {
     return list;
 }
 
+std::vector<Rung> ladderRungs(const std::string& ladderId) {
+    for (const Ladder& ladder : ladderTable(DeviceCapabilities{})) {
+        if (ladder.id != ladderId) continue;
+        std::vector<Rung> rungs;
+        for (const RungOption& o : ladder.options) rungs.push_back(o.rung);
+        return rungs;
+    }
+    throw std::invalid_argument("unknown capability ladder '" + ladderId + "'");
+}
+
 RungForce parseRungForce(const std::string& spec) {
     auto invalid = [&](const std::string& why) {
         std::string names;

@@ -86,6 +86,7 @@ inline std::vector<Ladder> buildLadders(const DeviceCapabilities& caps, bool for
 // independent of the device. Throws std::invalid_argument for an unknown ladder or rung name in `spec`
 // ("LADDER=RUNG"), listing the valid names.
 std::vector<std::string> ladderRungList();
+std::vector<Rung> ladderRungs(const std::string& ladderId);  // best first; throws std::invalid_argument if unknown
 RungForce parseRungForce(const std::string& spec);
 
 }  // namespace idk::vk

@@ -10,12 +10,15 @@
 #include <numeric>
 #include <set>
 
-#include "device_array.hpp"
+#include "conformance/device_array.hpp"
 #include "support/gpu_fixture.hpp"
 #include "vk/shader_library.hpp"
 
 namespace idk::test {
 namespace {
+
+using conformance::DeviceArray;
+using conformance::randomUints;
 
 class SubgroupSizeTest : public GpuTest {};
 

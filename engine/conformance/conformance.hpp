@@ -106,5 +106,6 @@ Outcome run(const PlannedRun& planned, vk::Context& ctx, vk::ShaderLibrary& shad
 // The areas (one list function per *_checks.cpp).
 std::vector<Check> computeChecks();
 std::vector<Check> splatChecks();
+std::vector<Check> ptMathChecks();
 
 }  // namespace idk::conformance

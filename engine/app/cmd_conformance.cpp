@@ -118,13 +118,13 @@ int runConformance(const std::vector<std::string>& argv) {
     const std::filesystem::path shaderDir = args.get("--shader-dir", "");
     if (!shaderDir.empty()) overrideShaders(shaders, shaderDir);
 
-    std::printf("conformance on %s (%s)\n  %-36s %-11s %-6s %-10s %-8s %s\n", ctx->info().name.c_str(),
+    std::printf("conformance on %s (%s)\n  %-48s %-11s %-6s %-10s %-8s %s\n", ctx->info().name.c_str(),
                 ctx->info().driverName.c_str(), "kernel", "rung", "result", "max error", "time", "note");
     std::vector<conformance::Outcome> outcomes;
     std::string failed;
     for (const conformance::PlannedRun& r : runs) {
         conformance::Outcome o = conformance::run(r, *ctx, shaders, shaderDir);
-        std::printf("  %-36s %-11s %-6s %-10.3g %6.2f s  %s\n", o.kernel.c_str(), o.rung.c_str(),
+        std::printf("  %-48s %-11s %-6s %-10.3g %6.2f s  %s\n", o.kernel.c_str(), o.rung.c_str(),
                     conformance::statusName(o.status), o.maxError, o.seconds, o.message.c_str());
         std::fflush(stdout);
         if (o.status == conformance::Status::Fail) failed += "\n  " + r.name() + ": " + o.message;

@@ -107,5 +107,6 @@ Outcome run(const PlannedRun& planned, vk::Context& ctx, vk::ShaderLibrary& shad
 std::vector<Check> computeChecks();
 std::vector<Check> splatChecks();
 std::vector<Check> ptMathChecks();
+std::vector<Check> subgroupChecks();
 
 }  // namespace idk::conformance

@@ -172,6 +172,7 @@ SplatResult runSplatGraph(vk::Context& ctx, vk::ShaderLibrary& shaders, const Sp
     ctx.runImmediate([&](VkCommandBuffer cmd) { graph.execute(cmd); });
 
     SplatResult result;
+    result.rung = r;
     result.bins = vk::downloadBuffer<float>(ctx, buffers[0].vk(), input.binCount);
     result.total = vk::downloadBuffer<float>(ctx, total, 1)[0];
     if (onGl) {

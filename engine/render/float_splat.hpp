@@ -24,6 +24,7 @@ struct SplatInput {
 struct SplatResult {
     std::vector<float> bins;  // binCount sums
     float total = 0.0f;       // their sum, computed by the consuming Vulkan pass
+    vk::Rung rung = vk::Rung::Fallback;  // the rung that ran the splat
 };
 
 // The Vulkan rungs (Native, Fallback) recorded into cmd; the caller orders the inputs before and the bins after

@@ -10,7 +10,9 @@
 #include "gl/gl_compute.hpp"
 #include "gl/interop_probe.hpp"
 #include "gl/shared_memory.hpp"
+#include "render/float_splat.hpp"
 #include "vk/context.hpp"
+#include "vk/shader_library.hpp"
 #include "vk/transfer.hpp"
 
 namespace idk::test {
@@ -98,6 +100,37 @@ TEST(GlInteropTest, ProbeRoundTripPassesAndTheRungIsOffered) {
         EXPECT_EQ(o.available, ctx->capabilities().glAtomicFloat) << o.note;
     }
     expectNoValidationErrors(*ctx);
+}
+
+// --rung float-atomics=gl-interop makes the ladder's own choice the GL pass even though the device has native
+// float atomics: the graph's splat pass runs in GL and its Vulkan consumer (the sum) reads the result.
+TEST(GlInteropTest, ForcedGlRungRunsTheGlPassWhoseOutputVulkanConsumes) {
+    auto ctx = probedContext({vk::RungForce{"float-atomics", vk::Rung::GlInterop}});
+    ASSERT_TRUE(ctx->forcedRungError().empty()) << ctx->forcedRungError();
+    vk::ShaderLibrary shaders(*ctx);
+    render::SplatInput input;
+    input.binCount = 16;
+    for (uint32_t i = 0; i < 4000; ++i) {
+        input.bins.push_back(i % 3 == 0 ? 5u : (i * 7) % 17);  // bin 16 is out of range: dropped
+        input.values.push_back(float(i % 13) * 0.25f);
+    }
+    const render::SplatResult got = render::runSplatGraph(*ctx, shaders, input);
+    const render::SplatResult want = render::splatOracle(input);
+    EXPECT_EQ(got.rung, vk::Rung::GlInterop);
+    EXPECT_EQ(got.bins, want.bins);
+    EXPECT_EQ(got.total, want.total);
+    const std::vector<vk::Ladder> ran = ctx->consultedLadders();
+    ASSERT_EQ(ran.size(), 1u);
+    EXPECT_EQ(ran[0].chosen, vk::Rung::GlInterop);
+    // Without the forcing the device takes its own best rung (native float atomics on lavapipe), with the same bits.
+    auto native = probedContext();
+    vk::ShaderLibrary nativeShaders(*native);
+    const render::SplatResult nat = render::runSplatGraph(*native, nativeShaders, input);
+    EXPECT_NE(nat.rung, vk::Rung::GlInterop);
+    EXPECT_EQ(nat.rung, native->ladder("float-atomics").chosen);
+    EXPECT_EQ(nat.bins, got.bins);
+    expectNoValidationErrors(*ctx);
+    expectNoValidationErrors(*native);
 }
 
 TEST(GlInteropTest, WithoutEglTheRungIsAbsentWithTheReasonAndOtherRungsRun) {

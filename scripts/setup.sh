@@ -15,6 +15,7 @@ PACKAGES=(
   python3-matplotlib
   clang libclang-rt-14-dev
   slurm-wlm munge
+  libegl-dev libgl-dev
 )
 BACKPORT_PACKAGES=(mesa-vulkan-drivers libgl1-mesa-dri libegl-mesa0 libglx-mesa0 libglapi-mesa libgbm1)
 

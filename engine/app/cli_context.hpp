@@ -15,6 +15,7 @@ inline vk::ContextDesc contextDescFromCli(const core::CliArgs& args) {
     vk::ContextDesc desc;
     desc.validation = desc.validation && !args.has("--no-validation");
     desc.forceFallbackRungs = args.has("--fallback");
+    desc.probeGlInterop = true;  // `idk info` shows the GL rungs, and --rung LADDER=gl-interop can run them
     for (const std::string& spec : args.getAll("--rung")) {
         try {
             desc.forcedRungs.push_back(vk::parseRungForce(spec));

@@ -1,6 +1,7 @@
 // cmd_info.cpp: `idk info [--json]`: device, driver, API version, the limits that matter to the engine and
 // the capability-ladder table (which rung each optional feature uses on this device, and why; the same objects
-// `idk render --json` reports for the rungs that ran) and the ladder/rung names --rung accepts.
+// `idk render --json` reports for the rungs that ran), the ladder/rung names --rung accepts, and the GL-interop
+// probe's result (the OpenGL context and how the two APIs synchronise, or why the rung is absent).
 // Shader features: the optional arithmetic types the shaders could use and whether they do (shaderFloat64: unused,
 // every shader is single precision, the BVH traversal included; tests/unit/shader/spirv_capabilities_test.cpp).
 #include <nlohmann/json.hpp>
@@ -80,6 +81,7 @@ nlohmann::json describe(const vk::Context& ctx) {
                    {"timestampPeriodNs", d.timestampPeriodNs},
                    {"bindlessSampledImages", d.maxSampledImagesUpdateAfterBind},
                    {"bindlessStorageBuffers", d.maxStorageBuffersUpdateAfterBind}};
+    j["glInterop"] = {{"available", c.glInterop}, {"note", c.glInteropNote}};
     j["ladders"] = laddersJson(ctx.ladders());
     return j;
 }
@@ -99,6 +101,8 @@ void printText(const nlohmann::json& j) {
     }
     std::printf("\nlimits:\n");
     for (const auto& [key, value] : j["limits"].items()) std::printf("  %-32s %s\n", key.c_str(), value.dump().c_str());
+    std::printf("\ngl interop: %s\n  %s\n", j["glInterop"]["available"].get<bool>() ? "available" : "absent",
+                j["glInterop"]["note"].get<std::string>().c_str());
     std::printf("\ncapability ladders (--rung LADDER=RUNG forces one):\n  %-20s %-44s %-11s %s\n", "ladder",
                 "feature", "rung", "mechanism");
     for (const auto& l : j["ladders"]) {

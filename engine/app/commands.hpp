@@ -16,6 +16,7 @@ int runBvh(const std::vector<std::string>& args);
 int runCompare(const std::vector<std::string>& args);
 int runMerge(const std::vector<std::string>& args);
 int runFarm(const std::vector<std::string>& args);
+int runConformance(const std::vector<std::string>& args);
 
 extern const char* const kInfoHelp;
 extern const char* const kRenderHelp;
@@ -23,5 +24,6 @@ extern const char* const kBvhHelp;
 extern const char* const kCompareHelp;
 extern const char* const kMergeHelp;
 extern const char* const kFarmHelp;
+extern const char* const kConformanceHelp;
 
 }  // namespace idk::app

@@ -24,6 +24,7 @@ const char* const kHelp =
     "  compare  error metrics of an image against a reference (RMSE, relative MSE, PSNR, FLIP) and CI gates\n"
     "  merge    combine path-traced sample ranges (render --sample-range) into one image\n"
     "  farm     split a replay video or a path-traced still into chunks: Slurm job arrays or local processes\n"
+    "  conformance  run every GPU kernel on every rung of this device against its CPU oracle (driver self-test)\n"
     "  help     this text; `idk <command> --help` describes one command\n";
 
 }  // namespace
@@ -43,6 +44,7 @@ int main(int argc, char** argv) {
         if (command == "compare") return idk::app::runCompare(rest);
         if (command == "merge") return idk::app::runMerge(rest);
         if (command == "farm") return idk::app::runFarm(rest);
+        if (command == "conformance") return idk::app::runConformance(rest);
         std::fprintf(stderr, "idk: unknown command '%s' (see `idk help`)\n", command.c_str());
         return 2;
     } catch (const idk::core::CliError& e) {

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "core/log.hpp"
+#include "gl/interop_probe.hpp"
 #include "shared/bindings.h"
 #include "vk/bindless.hpp"
 #include "vk/check.hpp"
@@ -181,6 +182,18 @@ Context::Context(const ContextDesc& desc) : desc_(desc), validation_(std::make_u
     layout.pPushConstantRanges = &push;
     check(vkCreatePipelineLayout(device_, &layout, nullptr, &pipelineLayout_));
     setName(pipelineLayout_, VK_OBJECT_TYPE_PIPELINE_LAYOUT, "global pipeline layout");
+
+    if (desc_.probeGlInterop) {
+        // The probe needs a working context (it round-trips an image), so the GL rungs are decided last.
+        gl::ProbeResult probe = gl::probeGlInterop(*this);
+        caps_.glInterop = probe.context != nullptr;
+        caps_.glAtomicFloat = probe.atomicFloat;
+        caps_.glAtomicFp16Vector = probe.atomicFp16Vector;
+        caps_.glInteropNote = probe.note;
+        gl_ = std::move(probe.context);
+        forcedRungError_.clear();
+        ladders_ = buildLadders(caps_, LadderChoice{desc_.forceFallbackRungs, desc_.forcedRungs}, &forcedRungError_);
+    }
 }
 
 Context::~Context() {
@@ -189,6 +202,7 @@ Context::~Context() {
         for (auto& d : deferred_) d.release();
         deferred_.clear();
         releaseLeftovers();
+        gl_.reset();
         vkDestroyPipelineLayout(device_, pipelineLayout_, nullptr);
         bindless_.reset();
         vkDestroyCommandPool(device_, immediatePool_, nullptr);
@@ -273,6 +287,12 @@ void Context::pickPhysicalDevice() {
     }
     std::vector<VkPhysicalDevice> devices(count);
     check(vkEnumeratePhysicalDevices(instance_, &count, devices.data()));
+    if (desc_.deviceIndex) {
+        if (*desc_.deviceIndex >= count)
+            throw std::runtime_error(core::concat("device ", *desc_.deviceIndex, " requested but the loader lists only ",
+                                                  count, " Vulkan device(s) (`vulkaninfo --summary` lists them)"));
+        devices = {devices[*desc_.deviceIndex]};  // still checked against the baseline below
+    }
 
     std::string rejected;
     int bestScore = -1;
@@ -363,6 +383,7 @@ void Context::createDevice() {
     caps_.geometryShader = supported.core.features.geometryShader;
     caps_.shaderOutputLayer = supported.v12.shaderOutputLayer;
     caps_.externalMemoryFd = contains(exts, VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME);
+    caps_.bufferFloat32AtomicAdd = supported.atomicFloat.shaderBufferFloat32AtomicAdd;
     caps_.shaderFloat16 = supported.v12.shaderFloat16;
     caps_.storage16Bit = supported.v11.storageBuffer16BitAccess;
     caps_.cpuDevice = info_.type == VK_PHYSICAL_DEVICE_TYPE_CPU;

@@ -21,6 +21,10 @@
 #include "vk/memory.hpp"
 #include "vk/resources.hpp"
 
+namespace idk::gl {
+class GlContext;
+}
+
 namespace idk::vk {
 
 class BindlessTable;
@@ -49,6 +53,10 @@ struct ContextDesc {
     std::vector<const char*> instanceExtensions;        // window-system extensions; empty = headless
     bool presentation = false;                          // require VK_KHR_swapchain
     std::string deviceNameFilter;                       // substring; also env IDK_DEVICE
+    std::optional<uint32_t> deviceIndex;                // that device of vkEnumeratePhysicalDevices (idk --device N)
+    // Probe the GL-interop rung at start-up (a headless GL context and a round trip; gl/interop_probe.hpp). The
+    // `idk` commands do; tests that need the rung ask for it. Off: the GL rungs say "not probed".
+    bool probeGlInterop = false;
     DeviceLimitOverrides limitOverrides;                // tests only
 };
 
@@ -102,6 +110,9 @@ public:
     // forced rungs check it and refuse to run (the CLI exits 2).
     const std::string& forcedRungError() const noexcept { return forcedRungError_; }
     const ContextDesc& desc() const noexcept { return desc_; }
+    // The probed OpenGL context of the GL-interop rung; nullptr when not probed or unavailable
+    // (capabilities().glInteropNote says why).
+    const gl::GlContext* glContext() const noexcept { return gl_.get(); }
     MemoryAllocator& allocator() noexcept { return *allocator_; }
     BindlessTable& bindless() noexcept { return *bindless_; }
     VkPipelineLayout pipelineLayout() const noexcept { return pipelineLayout_; }
@@ -165,6 +176,7 @@ private:
     DeviceCapabilities caps_;
     std::vector<Ladder> ladders_;
     std::string forcedRungError_;
+    std::unique_ptr<gl::GlContext> gl_;
     mutable std::mutex consultedMutex_;
     mutable std::vector<size_t> consulted_;  // indices into ladders_
     std::vector<const char*> enabledDeviceExtensions_;

@@ -1,8 +1,8 @@
 // features.cpp: the capability-ladder table. Each ladder lists its rungs best-first; the first available one
 // is chosen, except that a CPU device's ray query (lavapipe emulates it in software) yields to our BVH, and the
 // user's --fallback / --rung LADDER=RUNG override the choice. The GL-interop rung needs both
-// VK_KHR_external_memory_fd and an OpenGL context exposing the NV extension the pass uses; the feature that owns
-// that pass probes GL, so here it reports what it needs.
+// VK_KHR_external_memory_fd and an OpenGL context exposing the NV extension the pass uses; the context's start-up
+// probe (gl/interop_probe.hpp) fills DeviceCapabilities' gl* fields, and its note is the reason shown here.
 #include "vk/features.hpp"
 
 #include <stdexcept>
@@ -34,11 +34,20 @@ std::string vrsHardwareNote(bool available, const char* extension) {
                      : std::string("device lacks ") + extension;
 }
 
+// Why a GL-interop rung is unavailable (the probe's reason, or the GL extension the context lacks), or what
+// it runs on when it is available.
+std::string glNote(const DeviceCapabilities& c, bool extension, const char* name) {
+    if (!c.glInterop) return c.glInteropNote;
+    if (!extension) return std::string("the OpenGL context lacks ") + name;
+    return c.glInteropNote;
+}
+
 // The table, rungs best first, nothing chosen yet.
 std::vector<Ladder> ladderTable(const DeviceCapabilities& c) {
     auto ladder = [](const char* id, const char* feature, std::vector<RungOption> options) {
         return Ladder{id, feature, std::move(options), Rung::Fallback, {}, {}};
     };
+    const bool glAtomicFloat = c.glInterop && c.glAtomicFloat, glAtomicFp16 = c.glInterop && c.glAtomicFp16Vector;
     std::vector<Ladder> ladders;
     ladders.push_back(ladder("mesh-shading", "mesh shading",
         {{Rung::Native, "VK_EXT_mesh_shader", c.meshShaderExt, missing(c.meshShaderExt, "VK_EXT_mesh_shader")},
@@ -54,10 +63,15 @@ std::vector<Ladder> ladderTable(const DeviceCapabilities& c) {
     ladders.push_back(ladder("vxgi-atomics", "voxel radiance atomics (VXGI)",
         {{Rung::Native, "float32 image atomic add", c.imageFloat32AtomicAdd,
           missing(c.imageFloat32AtomicAdd, "shaderImageFloat32AtomicAdd")},
-         {Rung::GlInterop, "GL_NV_shader_atomic_fp16_vector via GL_EXT_memory_object_fd", false,
-          c.externalMemoryFd ? "needs an OpenGL context with GL_NV_shader_atomic_fp16_vector"
-                             : "device lacks VK_KHR_external_memory_fd"},
+         {Rung::GlInterop, "GL_NV_shader_atomic_fp16_vector via GL_EXT_memory_object_fd", glAtomicFp16,
+          glNote(c, c.glAtomicFp16Vector, "GL_NV_shader_atomic_fp16_vector")},
          {Rung::Fallback, "three r32ui images + merge", true, ""}}));
+    ladders.push_back(ladder("float-atomics", "float atomic add (splatting)",
+        {{Rung::Native, "buffer float atomicAdd (VK_EXT_shader_atomic_float)", c.bufferFloat32AtomicAdd,
+          missing(c.bufferFloat32AtomicAdd, "shaderBufferFloat32AtomicAdd")},
+         {Rung::GlInterop, "GL_NV_shader_atomic_float via GL_EXT_memory_object_fd", glAtomicFloat,
+          glNote(c, c.glAtomicFloat, "GL_NV_shader_atomic_float")},
+         {Rung::Fallback, "uint compare-and-swap loop", true, ""}}));
     ladders.push_back(ladder("conservative-raster", "conservative rasterization (voxelization)",
         {{Rung::Native, "VK_EXT_conservative_rasterization", c.conservativeRasterization,
           missing(c.conservativeRasterization, "VK_EXT_conservative_rasterization")},
@@ -148,6 +162,16 @@ std::vector<std::string> ladderRungList() {
         list.push_back(line);
     }
     return list;
+}
+
+std::vector<Rung> ladderRungs(const std::string& ladderId) {
+    for (const Ladder& ladder : ladderTable(DeviceCapabilities{})) {
+        if (ladder.id != ladderId) continue;
+        std::vector<Rung> rungs;
+        for (const RungOption& o : ladder.options) rungs.push_back(o.rung);
+        return rungs;
+    }
+    throw std::invalid_argument("unknown capability ladder '" + ladderId + "'");
 }
 
 RungForce parseRungForce(const std::string& spec) {

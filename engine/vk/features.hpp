@@ -26,6 +26,12 @@ struct DeviceCapabilities {
     bool geometryShader = false;
     bool shaderOutputLayer = false;       // gl_Layer from the vertex shader (point-shadow cube in one draw)
     bool externalMemoryFd = false;        // VK_KHR_external_memory_fd: share memory with OpenGL
+    bool bufferFloat32AtomicAdd = false;  // VK_EXT_shader_atomic_float: shaderBufferFloat32AtomicAdd
+    // The GL-interop rung (gl/interop_probe.hpp), filled only when the context probed it (ContextDesc).
+    bool glInterop = false;               // a GL context imports this device's memory; round trip passed
+    bool glAtomicFloat = false;           // ... and has GL_NV_shader_atomic_float
+    bool glAtomicFp16Vector = false;      // ... and GL_NV_shader_atomic_fp16_vector
+    std::string glInteropNote = "GL interop not probed (this program did not ask for it)";
     bool shaderFloat16 = false;
     bool storage16Bit = false;
     bool subgroupArithmetic = false;      // compute stage supports subgroupAdd & co.
@@ -80,6 +86,7 @@ inline std::vector<Ladder> buildLadders(const DeviceCapabilities& caps, bool for
 // independent of the device. Throws std::invalid_argument for an unknown ladder or rung name in `spec`
 // ("LADDER=RUNG"), listing the valid names.
 std::vector<std::string> ladderRungList();
+std::vector<Rung> ladderRungs(const std::string& ladderId);  // best first; throws std::invalid_argument if unknown
 RungForce parseRungForce(const std::string& spec);
 
 }  // namespace idk::vk

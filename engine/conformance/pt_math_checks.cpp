@@ -1,22 +1,23 @@
-// pt_math_test.cpp: the path tracer's shared maths (shared/pt_sampling.h) compiled as GLSL
+// pt_math_checks.cpp: the path tracer's shared maths (shared/pt_sampling.h) compiled as GLSL
 // (conformance/pt_bsdf_probe.comp.glsl) against its C++ compilation, on 4096 random cases: the RNG bit for bit;
 // BSDF evaluation (f cos and pdf), BSDF sampling (lobe, direction, weight, pdf), light sampling and pdf, the
 // equirectangular mapping, texel lookup, environment pdf and sampling within the stated tolerances. Tolerances:
 // values relative 2e-3 of max(|C++|, 1e-2) (GPU transcendentals: Vulkan allows sin/cos 2^-11 absolute error, the
 // GGX peak amplifies float rounding); directions 2e-3 absolute. Discontinuities (lobe choice, texel borders,
 // cone and horizon tests) may flip for cases within rounding of the edge: at most 0.5% of the cases.
-#include <gtest/gtest.h>
-
+// Moved here from tests/conformance/pt_math/ so `idk conformance` runs it (check "pathtrace/bsdf probe").
 #include <algorithm>
 #include <cmath>
 #include <random>
 
+#include "conformance/conformance.hpp"
 #include "shared/pt_probe_types.h"
 #include "shared/pt_sampling.h"
-#include "support/gpu_fixture.hpp"
+#include "vk/context.hpp"
+#include "vk/shader_library.hpp"
 #include "vk/transfer.hpp"
 
-namespace idk::test {
+namespace idk::conformance {
 namespace {
 
 using namespace idk::gpu;
@@ -107,81 +108,85 @@ bool close3(glm::vec3 gpu, glm::vec3 cpu, float rel = 2e-3f, float floor = 1e-2f
     return glm::all(glm::lessThanEqual(glm::abs(gpu - cpu), glm::vec3(rel * scale)));
 }
 
-class PtMathTest : public GpuTest {};
-
-TEST_F(PtMathTest, GlslMatchesCpp) {
+void bsdfProbe(CheckEnv& env, Verdict& v) {
     const uint32_t count = 4096;
     std::mt19937 gen(2024);
     std::vector<GpuPtProbeCase> cases(count);
     for (uint32_t i = 0; i < count; ++i) cases[i] = randomCase(gen, i);
 
-    vk::Buffer in = ctx().createBuffer({count * sizeof(GpuPtProbeCase), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                        vk::MemoryUsage::GpuOnly, "pt probe cases", "test"});
-    vk::Buffer out = ctx().createBuffer({count * sizeof(GpuPtProbeResult), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                         vk::MemoryUsage::GpuOnly, "pt probe results", "test"});
-    vk::uploadBuffer(ctx(), in, std::span<const GpuPtProbeCase>(cases));
+    vk::Buffer in = env.ctx.createBuffer({count * sizeof(GpuPtProbeCase), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                        vk::MemoryUsage::GpuOnly, "pt probe cases", "conformance"});
+    vk::Buffer out = env.ctx.createBuffer({count * sizeof(GpuPtProbeResult), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                         vk::MemoryUsage::GpuOnly, "pt probe results", "conformance"});
+    vk::uploadBuffer(env.ctx, in, std::span<const GpuPtProbeCase>(cases));
     const vk::Pipeline& probe =
-        shaders().compute({vk::ShaderId::conformance_pt_bsdf_probe_comp, {}, sizeof(ProbePush), {{64, 1, 1}}});
+        env.shaders.compute({vk::ShaderId::conformance_pt_bsdf_probe_comp, {}, sizeof(ProbePush), {{64, 1, 1}}});
     ProbePush push{in.address, out.address, count, kEnvWidth, kEnvHeight, 0};
-    ctx().runImmediate([&](VkCommandBuffer cmd) {
+    env.ctx.runImmediate([&](VkCommandBuffer cmd) {
         vk::bindPipeline(cmd, probe);
-        vk::pushConstants(cmd, ctx(), push);
+        vk::pushConstants(cmd, env.ctx, push);
         vkCmdDispatch(cmd, vk::groupCount(count, 64), 1, 1);
     });
-    const std::vector<GpuPtProbeResult> gpu = vk::downloadBuffer<GpuPtProbeResult>(ctx(), out, count);
-    ctx().destroy(in);
-    ctx().destroy(out);
+    const std::vector<GpuPtProbeResult> gpu = vk::downloadBuffer<GpuPtProbeResult>(env.ctx, out, count);
+    env.ctx.destroy(in);
+    env.ctx.destroy(out);
 
     uint32_t lobeFlips = 0, lightFlips = 0, texelFlips = 0, evaluated = 0, sampled = 0, lit = 0;
     for (uint32_t i = 0; i < count; ++i) {
         const GpuPtProbeResult cpu = cpuResult(cases[i]);
         const GpuPtProbeResult& g = gpu[i];
         // RNG: bit for bit.
-        ASSERT_EQ(g.hash, cpu.hash) << i;
-        ASSERT_EQ(g.rngUints, cpu.rngUints) << i;
-        ASSERT_EQ(g.rngFloat, cpu.rngFloat) << i;
+        if (!v.expect(g.hash == cpu.hash, "case " + std::to_string(i) + ": hash")) return;
+        if (!v.expect(g.rngUints == cpu.rngUints, "case " + std::to_string(i) + ": rng uints")) return;
+        if (!v.expect(g.rngFloat == cpu.rngFloat, "case " + std::to_string(i) + ": rng float")) return;
         // BSDF evaluation.
-        EXPECT_TRUE(close3(g.evalValue, cpu.evalValue)) << i;
-        EXPECT_TRUE(close(g.evalPdf, cpu.evalPdf)) << i << ": " << g.evalPdf << " vs " << cpu.evalPdf;
+        v.expect(close3(g.evalValue, cpu.evalValue), "case " + std::to_string(i) + ": evalValue");
+        v.expect(close(g.evalPdf, cpu.evalPdf), "case " + std::to_string(i) + ": evalPdf");
         evaluated += cpu.evalPdf > 0.0f ? 1 : 0;
         // BSDF sampling.
         if (g.sampleLobe != cpu.sampleLobe) {
             ++lobeFlips;
         } else if (cpu.sampleLobe != kPtLobeNone) {
-            EXPECT_TRUE(close3(g.sampleWi, cpu.sampleWi, 2e-3f, 1.0f)) << i;
-            EXPECT_TRUE(close3(g.sampleWeight, cpu.sampleWeight, 5e-3f)) << i;
-            EXPECT_TRUE(close(g.samplePdf, cpu.samplePdf, 5e-3f)) << i << ": " << g.samplePdf << " vs " << cpu.samplePdf;
+            v.expect(close3(g.sampleWi, cpu.sampleWi, 2e-3f, 1.0f), "case " + std::to_string(i) + ": sampleWi");
+            v.expect(close3(g.sampleWeight, cpu.sampleWeight, 5e-3f), "case " + std::to_string(i) + ": sampleWeight");
+            v.expect(close(g.samplePdf, cpu.samplePdf, 5e-3f), "case " + std::to_string(i) + ": samplePdf");
             ++sampled;
         }
         // Lights.
         if (g.lightOk != cpu.lightOk) {
             ++lightFlips;
         } else if (cpu.lightOk) {
-            EXPECT_TRUE(close(g.lightDistance, cpu.lightDistance)) << i;
-            EXPECT_TRUE(close(g.lightPdf, cpu.lightPdf)) << i;
-            EXPECT_TRUE(close3(g.lightDirection, cpu.lightDirection, 2e-3f, 1.0f)) << i;
-            EXPECT_TRUE(close3(g.lightRadiance, cpu.lightRadiance)) << i;
-            EXPECT_TRUE(close(g.lightPdfAtSample, cpu.lightPdfAtSample)) << i;
+            v.expect(close(g.lightDistance, cpu.lightDistance), "case " + std::to_string(i) + ": lightDistance");
+            v.expect(close(g.lightPdf, cpu.lightPdf), "case " + std::to_string(i) + ": lightPdf");
+            v.expect(close3(g.lightDirection, cpu.lightDirection, 2e-3f, 1.0f), "case " + std::to_string(i) + ": lightDirection");
+            v.expect(close3(g.lightRadiance, cpu.lightRadiance), "case " + std::to_string(i) + ": lightRadiance");
+            v.expect(close(g.lightPdfAtSample, cpu.lightPdfAtSample), "case " + std::to_string(i) + ": lightPdfAtSample");
             ++lit;
         }
         // Environment.
-        EXPECT_NEAR(g.envUv.x, cpu.envUv.x, 1e-4f) << i;
-        EXPECT_NEAR(g.envUv.y, cpu.envUv.y, 1e-4f) << i;
+        v.expectNear(g.envUv.x, cpu.envUv.x, 1e-4f, "case " + std::to_string(i) + ": envUv.x");
+        v.expectNear(g.envUv.y, cpu.envUv.y, 1e-4f, "case " + std::to_string(i) + ": envUv.y");
         if (g.envTexel != cpu.envTexel) ++texelFlips;
-        EXPECT_TRUE(close(g.envPdf, cpu.envPdf)) << i;
-        EXPECT_TRUE(close3(g.envSampleDir, cpu.envSampleDir, 2e-3f, 1.0f)) << i;
-        EXPECT_TRUE(close(g.envSamplePdf, cpu.envSamplePdf)) << i;
+        v.expect(close(g.envPdf, cpu.envPdf), "case " + std::to_string(i) + ": envPdf");
+        v.expect(close3(g.envSampleDir, cpu.envSampleDir, 2e-3f, 1.0f), "case " + std::to_string(i) + ": envSampleDir");
+        v.expect(close(g.envSamplePdf, cpu.envSamplePdf), "case " + std::to_string(i) + ": envSamplePdf");
     }
-    EXPECT_LE(lobeFlips, count / 200);
-    EXPECT_LE(lightFlips, count / 200);
-    EXPECT_LE(texelFlips, count / 200);
+    v.expect(lobeFlips <= count / 200, "lobeFlips = " + std::to_string(lobeFlips) + ", limit <= " + std::to_string(count / 200));
+    v.expect(lightFlips <= count / 200, "lightFlips = " + std::to_string(lightFlips) + ", limit <= " + std::to_string(count / 200));
+    v.expect(texelFlips <= count / 200, "texelFlips = " + std::to_string(texelFlips) + ", limit <= " + std::to_string(count / 200));
     // The random cases exercise every path.
-    EXPECT_GT(evaluated, count / 4);
-    EXPECT_GT(sampled, count / 2);
-    EXPECT_GT(lit, count / 3);
-    std::printf("pt_math: %u evaluated, %u sampled, %u lit; flips: lobe %u, light %u, texel %u\n", evaluated, sampled,
-                lit, lobeFlips, lightFlips, texelFlips);
+    v.expect(evaluated > count / 4, "evaluated = " + std::to_string(evaluated) + ", limit > " + std::to_string(count / 4));
+    v.expect(sampled > count / 2, "sampled = " + std::to_string(sampled) + ", limit > " + std::to_string(count / 2));
+    v.expect(lit > count / 3, "lit = " + std::to_string(lit) + ", limit > " + std::to_string(count / 3));
 }
 
 }  // namespace
-}  // namespace idk::test
+
+std::vector<Check> ptMathChecks() {
+    return {
+        {"pathtrace/bsdf probe", "",
+         "2e-3 relative values, 2e-3 absolute directions, <= 0.5% discontinuity flips; RNG exact", bsdfProbe},
+    };
+}
+
+}  // namespace idk::conformance

@@ -1,5 +1,5 @@
-// device_array.hpp: test helper owning a GPU buffer of 32-bit elements registered in the bindless table, with
-// typed upload/download, and the input generators shared by the compute-primitive conformance tests.
+// device_array.hpp: a helper owning a GPU buffer of 32-bit elements registered in the bindless table, with
+// typed upload/download, and the input generators shared by the compute-primitive conformance checks (and tests).
 #pragma once
 #include <algorithm>
 #include <cstdint>
@@ -13,7 +13,7 @@
 #include "vk/context.hpp"
 #include "vk/transfer.hpp"
 
-namespace idk::test {
+namespace idk::conformance {
 
 class DeviceArray {
 public:
@@ -57,4 +57,4 @@ inline std::vector<uint32_t> randomUints(size_t count, uint32_t bound, uint32_t 
     return v;
 }
 
-}  // namespace idk::test
+}  // namespace idk::conformance

@@ -1,0 +1,127 @@
+// registry.cpp: allChecks() (one line per area), the Verdict, and the runner: rung availability, timing,
+// exceptions and validation-layer errors turned into outcomes.
+#include "conformance/conformance.hpp"
+
+#include <fnmatch.h>
+
+#include <chrono>
+#include <cmath>
+#include <exception>
+
+#include "vk/context.hpp"
+
+namespace idk::conformance {
+
+const std::vector<Check>& allChecks() {
+    static const std::vector<Check> checks = [] {
+        std::vector<Check> all;
+        for (std::vector<Check> (*area)() : {computeChecks, subgroupChecks, splatChecks, ptMathChecks}) {
+            std::vector<Check> list = area();
+            all.insert(all.end(), list.begin(), list.end());
+        }
+        return all;
+    }();
+    return checks;
+}
+
+const char* statusName(Status status) {
+    switch (status) {
+        case Status::Pass: return "pass";
+        case Status::Fail: return "FAIL";
+        case Status::Skip: return "skip";
+    }
+    return "?";
+}
+
+bool Verdict::expect(bool ok, const std::string& what) {
+    if (ok) return true;
+    if (++failures_ <= 3) messages_ += (messages_.empty() ? "" : "; ") + what;
+    return false;
+}
+
+bool Verdict::expectNear(double got, double want, double tolerance, const std::string& what) {
+    const double error = std::abs(got - want);
+    recordError(error);
+    return expect(error <= tolerance, what + ": got " + std::to_string(got) + ", expected " + std::to_string(want) +
+                                          " within " + std::to_string(tolerance));
+}
+
+void Verdict::recordError(double error) {
+    if (!(error <= maxError_)) maxError_ = error;  // NaN sticks
+}
+
+std::string PlannedRun::name() const {
+    return check->kernel + " [" + (rung ? vk::rungName(*rung) : "-") + "]";
+}
+
+std::vector<PlannedRun> allRuns() {
+    std::vector<PlannedRun> runs;
+    for (const Check& check : allChecks()) {
+        if (check.ladder.empty()) {
+            runs.push_back({&check, std::nullopt});
+            continue;
+        }
+        for (vk::Rung rung : vk::ladderRungs(check.ladder)) runs.push_back({&check, rung});
+    }
+    return runs;
+}
+
+std::vector<PlannedRun> selectRuns(const std::string& filter) {
+    std::vector<PlannedRun> selected;
+    const bool glob = filter.find_first_of("*?") != std::string::npos;
+    std::string pattern;  // "[rung]" is literal text, not an fnmatch character class
+    for (char c : filter) pattern += c == '[' ? std::string("[[]") : std::string(1, c);
+    for (const PlannedRun& r : allRuns()) {
+        const std::string name = r.name();
+        if (filter.empty() || (glob ? fnmatch(pattern.c_str(), name.c_str(), 0) == 0 : name.find(filter) != std::string::npos))
+            selected.push_back(r);
+    }
+    return selected;
+}
+
+Outcome run(const PlannedRun& planned, vk::Context& ctx, vk::ShaderLibrary& shaders,
+            const std::filesystem::path& glShaderDir) {
+    const Check& check = *planned.check;
+    Outcome out;
+    out.kernel = check.kernel;
+    out.rung = planned.rung ? vk::rungName(*planned.rung) : "-";
+    out.tolerance = check.tolerance;
+    if (planned.rung) {
+        for (const vk::RungOption& o : ctx.ladder(check.ladder).options) {
+            if (o.rung == *planned.rung && !o.available) {
+                out.status = Status::Skip;
+                out.message = o.note;
+                return out;
+            }
+        }
+    }
+    const uint32_t errorsBefore = ctx.validationErrors();
+    const size_t messagesBefore = ctx.validationMessages().size();
+    Verdict verdict;
+    CheckEnv env{ctx, shaders, planned.rung, glShaderDir};
+    const auto start = std::chrono::steady_clock::now();
+    try {
+        check.run(env, verdict);
+    } catch (const std::exception& e) {
+        verdict.expect(false, std::string("threw: ") + e.what());
+    }
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const uint32_t newErrors = ctx.validationErrors() - errorsBefore;
+    if (newErrors) {
+        const std::vector<std::string> messages = ctx.validationMessages();
+        verdict.expect(false, std::to_string(newErrors) + " validation error(s)" +
+                                  (messages.size() > messagesBefore ? ": " + messages[messagesBefore] : ""));
+    }
+    if (!verdict.skipped().empty() && verdict.passed()) {
+        out.status = Status::Skip;
+        out.message = verdict.skipped();
+        return out;
+    }
+    out.status = verdict.passed() ? Status::Pass : Status::Fail;
+    out.maxError = verdict.maxError();
+    out.message = verdict.messages();
+    if (verdict.failures() > 3) out.message += " (" + std::to_string(verdict.failures()) + " failures in all)";
+    return out;
+}
+
+}  // namespace idk::conformance

@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# conformance_checks.sh IDK CASE: `idk conformance` and the GL-interop rung end to end (issue 15): every check
+# passes on this device with --json/--junit written; a planted broken kernel fails naming kernel and rung; with EGL
+# disabled the GL rung is reported absent with the reason and everything else still runs; a forced GL rung runs.
+set -u
+idk="$1"
+case_name="$2"
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+fail() { echo "FAIL ($case_name): $*"; exit 1; }
+
+case "$case_name" in
+  json_passes)
+    "$idk" conformance --json "$tmp/c.json" --junit "$tmp/c.xml" >"$tmp/out" 2>"$tmp/err" ||
+      fail "exit $?: $(cat "$tmp/err")"
+    python3 - "$tmp/c.json" <<'PY' || fail "JSON: $(cat "$tmp/c.json")"
+import json, sys
+j = json.load(open(sys.argv[1]))
+checks = j["checks"]
+assert j["failed"] == 0 and j["passed"] + j["skipped"] == len(checks) >= 17, (j["passed"], j["failed"], j["skipped"])
+bad = [c for c in checks if c["result"] != "pass"]
+assert not bad, bad  # on lavapipe + llvmpipe every rung exists: nothing may be skipped
+rungs = {c["rung"] for c in checks if c["kernel"] == "float-atomics/splat"}
+assert rungs == {"native", "gl-interop", "fallback"}, rungs
+PY
+    grep -q 'tests="[0-9]*" failures="0"' "$tmp/c.xml" || fail "JUnit: $(head -3 "$tmp/c.xml")"
+    [ "$(grep -c '<testcase' "$tmp/c.xml")" -ge 17 ] || fail "JUnit lists too few test cases"
+    ;;
+  broken_kernel)
+    "$idk" conformance --shader-dir "$here/broken_kernels" --filter float-atomics/splat >"$tmp/out" 2>"$tmp/err"
+    code=$?
+    [ "$code" -eq 1 ] || fail "exit code $code, expected 1 for a broken kernel"
+    grep -q "float-atomics/splat \[native\]" "$tmp/err" || fail "stderr does not name the native rung: $(cat "$tmp/err")"
+    grep -q "float-atomics/splat \[gl-interop\]" "$tmp/err" || fail "stderr does not name the GL rung: $(cat "$tmp/err")"
+    grep -q "float-atomics/splat \[fallback\]" "$tmp/err" && fail "the fallback kernel was not broken: $(cat "$tmp/err")"
+    grep -Eq "float-atomics/splat +fallback +pass" "$tmp/out" || fail "the intact rung did not pass: $(cat "$tmp/out")"
+    echo 'void main() {' >"$tmp/x.comp.glsl"
+    mkdir -p "$tmp/dir/nosuch" && cp "$tmp/x.comp.glsl" "$tmp/dir/nosuch/x.comp.glsl"
+    "$idk" conformance --shader-dir "$tmp/dir" 2>"$tmp/err"; [ $? -eq 1 ] || fail "an unknown shader file must be an error"
+    grep -q "nosuch/x.comp.glsl" "$tmp/err" || fail "error does not name the file: $(cat "$tmp/err")"
+    ;;
+  no_egl)
+    IDK_GL_INTEROP=off "$idk" info >"$tmp/info" || fail "idk info failed without EGL"
+    grep -A1 "^gl interop: absent" "$tmp/info" | grep -q "IDK_GL_INTEROP=off" || fail "no reason: $(grep -A1 'gl interop' "$tmp/info")"
+    grep -q "not gl-interop: no OpenGL 4.5 context: disabled by IDK_GL_INTEROP=off" "$tmp/info" ||
+      fail "the ladders do not give the reason"
+    IDK_GL_INTEROP=off "$idk" conformance --json "$tmp/c.json" >"$tmp/out" 2>"$tmp/err" ||
+      fail "exit $? without EGL: $(cat "$tmp/err")"
+    python3 - "$tmp/c.json" <<'PY' || fail "JSON without EGL: $(cat "$tmp/c.json")"
+import json, sys
+j = json.load(open(sys.argv[1]))
+assert j["failed"] == 0 and not j["glInterop"]["available"]
+skipped = {(c["kernel"], c["rung"]) for c in j["checks"] if c["result"] == "skip"}
+assert skipped == {("float-atomics/splat", "gl-interop"), ("gl-interop/round trip", "-")}, skipped
+assert all("IDK_GL_INTEROP=off" in c["message"] for c in j["checks"] if c["result"] == "skip")
+assert sum(c["result"] == "pass" for c in j["checks"]) == len(j["checks"]) - 2
+PY
+    IDK_GL_INTEROP=off "$idk" info --rung float-atomics=gl-interop 2>"$tmp/err"
+    [ $? -eq 2 ] || fail "forcing the absent GL rung should exit 2"
+    grep -q "IDK_GL_INTEROP=off" "$tmp/err" || fail "the refusal does not say why: $(cat "$tmp/err")"
+    ;;
+  forced_gl_rung)
+    "$idk" info --json --rung float-atomics=gl-interop >"$tmp/info.json" || fail "forcing the GL rung failed"
+    python3 - "$tmp/info.json" <<'PY' || fail "info: $(cat "$tmp/info.json")"
+import json, sys
+j = json.load(open(sys.argv[1]))
+assert j["glInterop"]["available"], j["glInterop"]
+l = next(l for l in j["ladders"] if l["id"] == "float-atomics")
+assert l["chosen"] == "gl-interop" and "forced" in l["reason"], l
+assert "GL_EXT_semaphore_fd" in j["glInterop"]["note"], j["glInterop"]  # the sync mode is stated
+PY
+    "$idk" conformance --rung float-atomics=gl-interop --filter "float-atomics/splat [gl-interop]" >"$tmp/out" ||
+      fail "the forced GL rung's check failed: $(cat "$tmp/out")"
+    ;;
+  *) fail "unknown case" ;;
+esac
+exit 0

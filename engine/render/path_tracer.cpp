@@ -144,6 +144,7 @@ struct PathTracer::Impl {
         c.sort = options.sortRays;
         c.hasAlpha = hasAlpha;
         c.nee = settings.nee;
+        c.sobol = settings.sampler == pathtrace::PtSampler::Sobol;
         c.blasStack = traversal == PtTraversal::Bvh ? geometry.wideStackSize : geometry.blasStackSize;
         c.tlasStack = geometry.tlasStackSize;
         c.scene = sceneDesc.address;

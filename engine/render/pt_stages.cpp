@@ -78,6 +78,7 @@ gpu::GpuPtStagePush basePush(const PtStageContext& s) {
     p.seed = s.config.seed;
     p.maxDepth = s.config.maxDepth;
     p.rouletteDepth = s.config.rouletteDepth;
+    p.flags = s.config.sobol ? gpu::kPtPushSobol : 0u;
     return p;
 }
 

@@ -24,6 +24,9 @@ IDK_CONST(uint, kPtPathDeltaBounce, 1u);  // the ray came from a delta (specular
 IDK_CONST(uint, kPtPathInMedium, 2u);     // the ray travels inside a transmissive volume (absorption applies)
 IDK_CONST(uint, kPtPathAlive, 4u);        // shade extended the path (it is in the next ray queue)
 
+// GpuPtStagePush::flags
+IDK_CONST(uint, kPtPushSobol, 1u);        // the paths draw from the sobol sampler (shared/pt_sampler.h)
+
 // Sort keys: hit rays by material then direction octant, misses after them, dead queue slots last.
 IDK_CONST(uint, kPtSortKeyBits, 16);
 IDK_CONST(uint, kPtSortKeyMiss, 0x7FFFu);
@@ -147,7 +150,7 @@ struct GpuPtStagePush {
     uint bounce;
     uint maxDepth;
     uint rouletteDepth;
-    uint flags;
+    uint flags;                // kPtPush*
 };
 IDK_GPU_SIZE(GpuPtStagePush, 120);
 

@@ -17,6 +17,11 @@ struct DenoiseInputs {
     graph::TextureHandle albedo;  // RGBA16F/32F first-hit albedo (1 for sky)
     graph::TextureHandle normal;  // RGBA16F/32F first-hit world normal (xyz), 0 for sky
     graph::TextureHandle depth;   // R32F first-hit view distance (0 or inf for sky)
+    // Optional R32F: the variance of each pixel's mean luminance (from the tracer's second moments; negative when
+    // unknown, e.g. at 1 spp). With it the luminance tolerance is the pixel's own noise, not its neighbourhood's
+    // spread (which counts texture and lighting detail as noise and over-blurs at high spp), and the output is
+    // shrunk toward the raw pixel where the filter's change exceeds that noise (denoiseShrinkWeight).
+    graph::TextureHandle variance;
 };
 
 struct DenoiseSettings {

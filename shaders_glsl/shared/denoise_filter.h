@@ -55,8 +55,10 @@ struct DenoisePush {
     float sigmaNormal;
     float sigmaDepth;
     float fireflyClamp;  // standard deviations above the neighbours' mean luminance (<= 0: no clamp)
+    uint variance;  // R32F variance of the mean luminance per pixel (< 0: unknown), kDenoiseNoVariance: none
 };
-IDK_GPU_SIZE(DenoisePush, 64);
+IDK_GPU_SIZE(DenoisePush, 68);
+IDK_CONST(uint, kDenoiseNoVariance, 0xFFFFFFFFu);
 
 #ifdef __cplusplus
 #define IDK_DN_FN inline
@@ -131,6 +133,36 @@ IDK_DN_FN float denoiseLuminanceWeight(float lp, float lq, float scale) { return
 // (centre excluded); a very large value when off (k <= 0) or without neighbours (sumW == 0).
 IDK_DN_FN float denoiseLuminanceLimit(float mean, float variance, float sumW, float k) {
     return (k > 0.0f && sumW > 0.0f) ? mean + k * IDK_DN_SQRT(IDK_DN_MAX(variance, 0.0f)) : 3.0e38f;
+}
+
+// The illumination variance prepare starts from: the pixel's own variance of the mean (radiance luminance variance
+// over the squared albedo luminance) when known (>= 0), else the neighbourhood's spatial estimate.
+IDK_DN_FN float denoiseStartVariance(float pixelVariance, vec3 albedoFactor, float spatialVariance) {
+    float a = denoiseLuminance(albedoFactor);
+    return pixelVariance >= 0.0f ? pixelVariance / (a * a) : spatialVariance;
+}
+
+// "Never worse than raw": weight of the filtered value in the output, per pixel. The raw mean has luminance variance
+// v; the filter keeps a share rho of it (the a-trous variance channel propagates sum(w^2) v, which for a weighted
+// mean that includes the centre is also about the centre's own weight), so the change d = filtered - raw has noise
+// variance vd = (1 - rho) v and E[d^2] = bias^2 + vd. The squared bias is estimated as the mean of d^2 - vd over
+// the pixel's 5x5 neighbourhood (kDenoiseShrinkRadius; one pixel's d^2 is far too noisy a measure), clamped at 0,
+// and raw + w (filtered - raw) with w = vd / (vd + bias^2) is the mix of least expected squared error
+// (E[(raw - truth) d] = -vd). Unknown v (< 0, one sample): the filter alone (w = 1).
+IDK_CONST(int, kDenoiseShrinkRadius, 2);
+IDK_DN_FN float denoiseChangeVariance(float v, float filteredIllumVariance, vec3 albedoFactor) {
+    float a = denoiseLuminance(albedoFactor);
+    float rho = v > 0.0f ? IDK_DN_MIN(IDK_DN_MAX(filteredIllumVariance * a * a / v, 0.0f), 1.0f) : 1.0f;
+    return v * (1.0f - rho);
+}
+IDK_DN_FN float denoiseShrinkExcess(float v, float rawLuminance, float filteredLuminance) {
+    float d = filteredLuminance - rawLuminance;
+    return d * d - v;
+}
+IDK_DN_FN float denoiseShrinkWeight(float v, float meanExcess) {
+    if (!(v >= 0.0f)) return 1.0f;
+    float bias2 = IDK_DN_MAX(meanExcess, 0.0f);
+    return v + bias2 > 0.0f ? v / (v + bias2) : 1.0f;
 }
 
 // Weighted variance of the neighbours (weights sum sumW, mean m, sum of w (l - m)^2 = sumV) together with the centre

@@ -166,19 +166,23 @@ struct GpuPtCamera {
 };
 IDK_GPU_SIZE(GpuPtCamera, 80);
 
-// Progressive sums per pixel (sum of samples; w counts them) and the first-hit guides for the denoiser.
+// Progressive sums per pixel (sum of samples; w counts them), the luminance's second moment and the first-hit
+// guides for the denoiser.
 struct GpuPtAccum {
     DeviceAddress color;    // vec4[pixels]: sum of radiance, w = samples
     DeviceAddress albedo;   // vec4[pixels]: sum of first-hit albedo (1 for the sky)
     DeviceAddress normal;   // vec4[pixels]: sum of first-hit world normal (0 for the sky)
     DeviceAddress depth;    // float[pixels]: sum of first-hit view distance (0 for the sky)
     DeviceAddress guides;   // GpuPtGuide[pixels]: this sample's first-hit guides (written by shade at bounce 0)
-    uint colorImage;        // resolve: bindless storage images (rgba32f, rgba16f, rgba16f, r32f)
+    DeviceAddress moment;   // float[pixels]: sum of squared radiance luminance (the denoiser's per-pixel variance)
+    uint colorImage;        // resolve: bindless storage images (rgba32f, rgba16f, rgba16f, r32f, r32f)
     uint albedoImage;
     uint normalImage;
     uint depthImage;
+    uint varianceImage;     // variance of the mean luminance, -1 below 2 samples
+    uint pad;               // C++ rounds the struct to its 8-byte alignment
 };
-IDK_GPU_SIZE(GpuPtAccum, 56);
+IDK_GPU_SIZE(GpuPtAccum, 72);
 
 struct GpuPtGuide {
     vec3 albedo;

@@ -5,15 +5,19 @@
 // 2.2), which is not packaged in Debian.
 //   prepare:    illumination = radiance / albedo (demodulation); firefly rejection (the centre's luminance clamped
 //               to its neighbours' mean + fireflyClamp standard deviations: biased darker, like every clamp, but a
-//               lone 1000x sample otherwise survives every edge-stopping filter); luminance variance from a 7x7
-//               bilateral neighbourhood (normal + depth weights); per-pixel depth gradient;
+//               lone 1000x sample otherwise survives every edge-stopping filter; only without a variance input);
+//               luminance variance: the pixel's own variance of the mean when the tracer gives it (from 2 spp:
+//               second moments, SVGF's temporal moments), else from a 7x7 bilateral neighbourhood (normal + depth
+//               weights); per-pixel depth gradient;
 //   a-trous:    5x5 B3-spline taps at step 2^i, weighted by normal, depth, albedo-ratio and variance-scaled
 //               luminance similarity; variance filtered with the squared weights;
 // The albedo-ratio weight (min/max of the two albedo luminances, squared) is ours: demodulation assumes radiance
 // proportional to albedo, which emission and specular reflection on dark surfaces break (radiance 0.4 on albedo
 // 0.001 demodulates to 400); the squared ratio is the inverse-variance weight of such an estimate, so a dark
 // pixel's amplified illumination never reaches a bright neighbour, while similar albedos mix freely.
-//   remodulate: illumination * albedo.
+//   remodulate: illumination * albedo, then (with a variance input) shrunk toward the raw pixel by
+//               denoiseShrinkWeight, so that where the filter's change exceeds the pixel's noise (bias: blurred
+//               detail at high spp) the raw value wins; this is what keeps the output no worse than raw.
 // Sky / invalid guide pixels (depth 0, inf or NaN, normal shorter than 0.5) pass through unfiltered and never feed
 // their neighbours. Radiance is sanitized first (NaN/inf -> 0, clamped to [0, kDenoiseMaxRadiance]) so every
 // intermediate value stays finite in float32.

@@ -2,7 +2,8 @@
 // first-hit albedo, normal and depth (SVGF's spatial filter, Schied et al. 2017; the math is in
 // shaders_glsl/shared/denoise_filter.h), with the path tracer's per-pixel variance (DenoiseInputs::variance) as the
 // noise level and a final shrink toward the raw pixel where the filter's change exceeds it. Replaces IDKEngine's
-// OIDN integration (reference 2.2): OIDN is not packaged in Debian. Passes: denoise_prepare, denoise_atrous_<i> (i < iterations, step 2^i), denoise_remodulate.
+// OIDN integration (reference 2.2): OIDN is not packaged in Debian. Passes: denoise_prepare, denoise_atrous_<i>
+// (i < iterations, step 2^i), denoise_remodulate.
 #pragma once
 #include <cstdint>
 

@@ -51,7 +51,9 @@ void main() {
     if (validAt(pixel)) {
         vec3 filtered = filteredAt(pixel);
         float v = varianceAt(pixel);
-        float w = v >= 0.0 ? denoiseShrinkWeight(changeVarianceAt(pixel, v), meanExcess(pixel)) : 1.0;
+        float vd = changeVarianceAt(pixel, v);
+        float own = denoiseShrinkExcess(vd, denoiseLuminance(radiance), denoiseLuminance(filtered));
+        float w = v >= 0.0 ? denoiseShrinkWeight(vd, meanExcess(pixel), own) : 1.0;
         radiance += w * (filtered - radiance);
     }
     imageStore(gDenoiseImagesRgba32f[p.target], pixel, vec4(radiance, alpha));

@@ -41,7 +41,8 @@ public:
             glm::vec3 radiance = gpu::denoiseSanitize3(glm::vec3(c));
             if (valid(k)) {
                 const float v = pixelVariance(k);
-                const float w = v >= 0.0f ? gpu::denoiseShrinkWeight(changeVariance(illum, k), meanExcess(k, excess)) : 1.0f;
+                const float w =
+                    v >= 0.0f ? gpu::denoiseShrinkWeight(changeVariance(illum, k), meanExcess(k, excess), excess[k]) : 1.0f;
                 radiance += w * (filtered(illum, k) - radiance);
             }
             out[k] = glm::vec4(radiance, alpha);

@@ -150,11 +150,11 @@ IDK_DN_FN float denoiseStartVariance(float pixelVariance, vec3 albedoFactor, flo
 // v; the filter keeps a share rho of it (the a-trous variance channel propagates sum(w^2) v, which for a weighted
 // mean that includes the centre is also about the centre's own weight), so the change d = filtered - raw has noise
 // variance vd = (1 - rho) v and E[d^2] = bias^2 + vd. The squared bias is estimated as the mean of d^2 - vd over
-// the pixel's 5x5 neighbourhood (kDenoiseShrinkRadius; one pixel's d^2 is a noisy measure), or, when larger, the
-// pixel's own d^2 - 3 vd (its change is then beyond ~2 standard deviations of noise: a feature of a pixel or two,
-// such as a point light's hot spot, whose bias the 5x5 mean would dilute), clamped at 0; and raw + w (filtered -
-// raw) with w = vd / (vd + bias^2) is the mix of least expected squared error (E[(raw - truth) d] = -vd). Unknown
-// v (< 0, one sample): the filter alone (w = 1).
+// the pixel's 5x5 neighbourhood (kDenoiseShrinkRadius: smooth bias), or, when larger, the pixel's own d^2 - vd
+// (a feature of a pixel or two, such as a point light's hot spot or an emissive texture's detail, whose bias the
+// 5x5 mean would dilute; noisy, so it also costs some denoising where there is only noise), clamped at 0; and
+// raw + w (filtered - raw) with w = vd / (vd + bias^2) is the mix of least expected squared error
+// (E[(raw - truth) d] = -vd). Unknown v (< 0, one sample): the filter alone (w = 1).
 IDK_CONST(int, kDenoiseShrinkRadius, 2);
 IDK_DN_FN float denoiseChangeVariance(float v, float filteredIllumVariance, vec3 albedoFactor) {
     float a = denoiseLuminance(albedoFactor);
@@ -167,7 +167,7 @@ IDK_DN_FN float denoiseShrinkExcess(float v, float rawLuminance, float filteredL
 }
 IDK_DN_FN float denoiseShrinkWeight(float v, float meanExcess, float ownExcess) {
     if (!(v >= 0.0f)) return 1.0f;
-    float bias2 = IDK_DN_MAX(IDK_DN_MAX(meanExcess, ownExcess - 2.0f * v), 0.0f);
+    float bias2 = IDK_DN_MAX(IDK_DN_MAX(meanExcess, ownExcess), 0.0f);
     return v + bias2 > 0.0f ? v / (v + bias2) : 1.0f;
 }
 

@@ -18,7 +18,8 @@ import sys
 
 SCENE_TITLES = {"cornell": "Cornell box (embedded default scene)", "DamagedHelmet": "DamagedHelmet",
                 "TransmissionTest": "TransmissionTest"}
-CURVES = [("nee", "NEE+MIS", "tab:blue"), ("bsdf", "BSDF sampling only", "tab:orange"),
+CURVES = [("nee", "NEE+MIS (Sobol')", "tab:blue"), ("independent", "NEE+MIS, independent sampler", "tab:purple"),
+          ("bsdf", "BSDF sampling only", "tab:orange"),
           ("denoised", "NEE+MIS + denoiser", "tab:green")]
 POINTS = [("sort-on", "NEE+MIS, rays sorted", "s"), ("traversal-bvh", "NEE+MIS, our BVH traversal", "^"),
           ("traversal-bvh2", "NEE+MIS, our binary BVH walk", ">"),
@@ -171,9 +172,10 @@ def scene_lines(scene, runs, ref, plot_path):
 def summary_lines(by_scene):
     lines = ["### Comparisons", "",
              "| scene | NEE+MIS vs BSDF only at equal time | RMSE slope vs spp (NEE+MIS; -0.5 = Monte Carlo) | "
+             "Sobol' / independent RMSE (by spp) | Sobol' vs independent at equal time | "
              "denoised / raw RMSE (by spp) | denoised / raw relative MSE (by spp) | sorting on / off (samples/s) | "
              "our BVH / ray query (samples/s) | 8-wide / binary BVH walk (samples/s) |",
-             "|---|---|---|---|---|---|---|---|"]
+             "|---|---|---|---|---|---|---|---|---|---|"]
     for scene, runs in by_scene.items():
         get = {(r["variant"], r["spp"]): r for r in runs}
         nee = [r for r in runs if r["variant"] == "nee" and r["wallMilliseconds"] and r["rmse"]]
@@ -189,6 +191,22 @@ def summary_lines(by_scene):
                 equal = (f"at {fmt_time(t)}: RMSE {fmt(nee_err)} vs {fmt(bsdf_err)} "
                          f"(BSDF / NEE = {bsdf_err / nee_err:.2f}x{note})")
         s = slope([(r["spp"], r["rmse"]) for r in nee])
+        sob = []
+        for r in sorted(nee, key=lambda r: r["spp"]):
+            ind = get.get(("independent", r["spp"]))
+            if ind and ind["rmse"]:
+                sob.append(f"{r['spp']}: {r['rmse'] / ind['rmse']:.2f}")
+        ind_pts = [(r["wallMilliseconds"], r["rmse"]) for r in runs
+                   if r["variant"] == "independent" and r["wallMilliseconds"] and r["rmse"]]
+        sob_time = "-"
+        if nee and ind_pts:
+            t = min(max(r["wallMilliseconds"] for r in nee), max(p[0] for p in ind_pts))
+            sob_err, sob_x = loglog_at([(r["wallMilliseconds"], r["rmse"]) for r in nee], t)
+            ind_err, ind_x = loglog_at(ind_pts, t)
+            if sob_err and ind_err:
+                note = ", extrapolated" if sob_x or ind_x else ""
+                sob_time = (f"at {fmt_time(t)}: RMSE {fmt(sob_err)} vs {fmt(ind_err)} "
+                            f"(Sobol' / independent = {sob_err / ind_err:.2f}{note})")
         den, den_rel = [], []
         for r in sorted((r for r in runs if r["variant"] == "denoised" and r["rmse"]), key=lambda r: r["spp"]):
             raw = get.get(("nee", r["spp"]))
@@ -207,7 +225,8 @@ def summary_lines(by_scene):
         mid_t = next((r["spp"] for r in runs if r["variant"] == "traversal-bvh"), None)
         trav_ratio = ratio(("traversal-bvh", mid_t), ("traversal-rayquery", mid_t)) if mid_t else "-"
         wide_ratio = ratio(("traversal-bvh", mid_t), ("traversal-bvh2", mid_t)) if mid_t else "-"
-        lines.append(f"| {scene} | {equal} | {fmt(s) if s is not None else '-'} | {', '.join(den) or '-'} | {', '.join(den_rel) or '-'} | "
+        lines.append(f"| {scene} | {equal} | {fmt(s) if s is not None else '-'} | {', '.join(sob) or '-'} | {sob_time} | "
+                     f"{', '.join(den) or '-'} | {', '.join(den_rel) or '-'} | "
                      f"{sort_ratio} | {trav_ratio} | {wide_ratio} |")
     return lines + [""]
 
@@ -242,15 +261,17 @@ def main(argv):
              "~15 minutes on lavapipe. All renders use our BVH traversal (`--traversal bvh`: the 8-wide compressed walk) "
              "except the ray-query row and the binary-walk row (`--traversal bvh2`). "
              "**Wall time** = the render only (`pathtrace.wallMilliseconds` of `idk render --json`: upload excluded, "
-             "readback included); samples/s = pixels x spp / wall time as the command reports it. **BSDF sampling "
+             "readback included); samples/s = pixels x spp / wall time as the command reports it. **NEE+MIS** rows use "
+             "the default Owen-scrambled Sobol' sampler, **independent** the same estimator with `--sampler "
+             "independent` (same seed; the sampler's cost is in its wall time). **BSDF sampling "
              "only** is IDKEngine's approach (no light sampling): at equal time it is read off its error-vs-time curve "
              "(log-log interpolation). It cannot reach punctual lights, so on the Cornell box (a point light 1 cm "
              "under the ceiling besides the emissive quad) its error is mostly that missing light (bias, not noise); "
              "DamagedHelmet and TransmissionTest have no punctual lights (environment + emission). **denoised** = the same raw render (same seed) through the a-trous denoiser "
-             "(`engine/passes/denoise.cpp`), its time included; it is biased (blur, firefly clamp), so its error "
-             "flattens while the raw error keeps falling: the crossing is where to stop denoising. On the Cornell box "
-             "RMSE is dominated by a few ceiling pixels under the point light (radiance ~500) that the firefly clamp "
-             "trims, so there the relative MSE is the telling metric. The sorting row runs at 8 spp (against the 8-spp NEE+MIS row), the traversal rows at 1 spp.", ""]
+             "(`engine/passes/denoise.cpp`), its time included: from 2 spp on it weighs each pixel's own variance "
+             "(second moments) and shrinks toward the raw pixel where its change exceeds that noise, so its error "
+             "follows the raw error down instead of flattening (issue 16). On the Cornell box RMSE is dominated by a "
+             "few ceiling pixels under the point light (radiance ~500), so there the relative MSE is the telling metric. The sorting row runs at 8 spp (against the 8-spp NEE+MIS row), the traversal rows at 1 spp.", ""]
     crashes_path = os.path.join(a.work, "crashes.txt")
     if os.path.exists(crashes_path):
         with open(crashes_path) as f:

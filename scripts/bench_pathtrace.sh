@@ -2,8 +2,8 @@
 # Path-tracer benchmarks of issue 5 (BENCHMARKS.md "Path tracer"): drives `idk render --pathtrace ... --json` and
 # `idk compare` on the Cornell box (embedded default scene), DamagedHelmet and TransmissionTest at 256x256:
 #   - a high-sample reference per scene (NEE+MIS, its own seed);
-#   - error (RMSE, relative MSE against the reference) against wall time for increasing spp, NEE+MIS and
-#     BSDF sampling only (IDKEngine's approach), raw and denoised;
+#   - error (RMSE, relative MSE against the reference) against wall time for increasing spp, NEE+MIS (Sobol'
+#     sampler, and the independent sampler) and BSDF sampling only (IDKEngine's approach), raw and denoised;
 #   - samples per second with ray sorting on and off, and with our BVH traversal against the ray-query rung.
 # Then bench/pathtrace_report.py writes bench/results/pathtrace.json, the log-log error-vs-time plots
 # bench/results/pathtrace_<scene>.png and the Markdown section bench/results/pathtrace_section.md that
@@ -96,6 +96,8 @@ for scene in "${scenes[@]}"; do
   render "$scene" reference "$ref_spp" --seed 1000 --traversal bvh
   for spp in "${spps[@]}"; do
     render "$scene" nee "$spp" --seed 1 --traversal bvh
+    # The same estimator with independent random numbers (the default is Owen-scrambled Sobol').
+    render "$scene" independent "$spp" --seed 1 --traversal bvh --sampler independent
     render "$scene" bsdf "$spp" --seed 1 --traversal bvh --light-sampling bsdf
     # Same seed as the nee row: the same raw image, then denoised. Optional (exit 1 when the denoiser did not run).
     render "$scene" denoised "$spp" --seed 1 --traversal bvh --denoise || true

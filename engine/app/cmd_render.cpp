@@ -140,7 +140,7 @@ int runRender(const std::vector<std::string>& argv, std::vector<vk::Ladder>* run
     core::CliArgs args =
         core::parseCli(argv, frame::withSettingOptions(withSceneOptions({{"--stats", "--json", "--no-validation", "--fallback", "--help", "--pathtrace", "--denoise"},
                                   {"--out", "--size", "--graph", "--shading", "--environment", "--time", "--animation", "--replay", "--video", "--frames",
-                                   "--spp", "--max-depth", "--seed", "--light-sampling", "--sort", "--traversal",
+                                   "--spp", "--max-depth", "--seed", "--light-sampling", "--sampler", "--sort", "--traversal",
                                    "--camera", "--orbit", "--camera-index", "--orbit-frames", "--background", "--fps",
                                    "--rung", "--sample-range", "--crf"}})));
     if (args.has("--help")) {

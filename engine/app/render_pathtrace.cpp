@@ -1,9 +1,9 @@
 // render_pathtrace.cpp: `idk render [SCENE] --pathtrace --spp N --max-depth D --seed S --light-sampling nee-mis|bsdf
-// --sort on|off --traversal auto|bvh|bvh2|rayquery [--denoise] --out F.exr|F.png [--json]`: the GPU wavefront path
-// tracer (render/path_tracer.hpp) headless, with a progress bar on stderr when stderr is a terminal. .exr gets the
-// linear radiance, .png the raster's display transform (exposure, AgX, sRGB). --json adds a "pathtrace"
-// object: spp, maxDepth, traversal, sort, lightSampling, denoised, wallMilliseconds, gpuMilliseconds,
-// samplesPerSecond, stageMilliseconds.
+// --sampler sobol|independent --sort on|off --traversal auto|bvh|bvh2|rayquery [--denoise] --out F.exr|F.png
+// [--json]`: the GPU wavefront path tracer (render/path_tracer.hpp) headless, with a progress bar on stderr when
+// stderr is a terminal. .exr gets the linear radiance, .png the raster's display transform (exposure, AgX, sRGB).
+// --json adds a "pathtrace" object: spp, maxDepth, traversal, sort, lightSampling, sampler, denoised,
+// wallMilliseconds, gpuMilliseconds, samplesPerSecond, stageMilliseconds.
 #include "app/render_pathtrace.hpp"
 
 #include <nlohmann/json.hpp>
@@ -32,6 +32,8 @@ const char* const kPathTraceHelp =
     "  --max-depth D    longest path in ray segments (default 8; 1 = what the camera sees, 2 = direct light)\n"
     "  --seed S         random seed (default 0; the same seed gives the same image)\n"
     "  --light-sampling nee-mis|bsdf  next-event estimation + MIS (default) or BSDF sampling only (the original's)\n"
+    "  --sampler sobol|independent  Owen-scrambled Sobol' points (default; lower error at equal spp) or independent\n"
+    "                   PCG random numbers per pixel and sample\n"
     "  --sort on|off    sort rays by material and direction before shading (default off)\n"
     "  --traversal auto|bvh|bvh2|rayquery  auto: the ray-traversal ladder's rung (`idk info`: VK_KHR_ray_query on a\n"
     "                   GPU that has it; our BVH with --fallback and on CPU devices such as lavapipe, whose ray query\n"
@@ -107,6 +109,7 @@ PathTraceCli pathTraceFromCli(const core::CliArgs& args, const render::RenderSet
     p.settings.seed = parseCount(args, "--seed", "0", 0);
     p.lightSampling = oneOf(args, "--light-sampling", "nee-mis", {"nee-mis", "bsdf"});
     p.settings.nee = p.lightSampling == "nee-mis";
+    p.settings.sampler = *pathtrace::parseSampler(oneOf(args, "--sampler", "sobol", {"sobol", "independent"}));
     const std::string sort = oneOf(args, "--sort", "off", {"on", "off"});
     const std::string traversal = oneOf(args, "--traversal", "auto", {"auto", "bvh", "bvh2", "rayquery"});
     if (traversal == "rayquery" && args.has("--fallback"))
@@ -197,6 +200,7 @@ int runRenderPathTrace(const core::CliArgs& args, const scene::Scene& scene, con
         p["traversal"] = render::traversalName(result.traversal);
         p["sort"] = options.sortRays;
         p["lightSampling"] = cli.lightSampling;
+        p["sampler"] = pathtrace::samplerName(pt.sampler);
         p["denoised"] = result.didDenoise;
         p["wallMilliseconds"] = result.wallMilliseconds;
         p["gpuMilliseconds"] = result.gpuMilliseconds;

@@ -53,6 +53,14 @@ gpu::DenoisePush basePush(const graph::PassContext& pc, const DenoiseInputs& in,
     push.sigmaNormal = s.sigmaNormal;
     push.sigmaDepth = s.sigmaDepth;
     push.fireflyClamp = s.fireflyClamp;
+    push.variance = gpu::kDenoiseNoVariance;
+    if (in.variance.valid()) {
+        const graph::PhysicalTexture& variance = pc.texture(in.variance);
+        if (variance.format != VK_FORMAT_R32_SFLOAT || variance.extent.width != color.extent.width ||
+            variance.extent.height != color.extent.height || variance.storageIndex == graph::kNoBindlessIndex)
+            throw graph::GraphError("denoise: the variance input must be an R32F storage image of the colour's extent");
+        push.variance = variance.storageIndex;
+    }
     return push;
 }
 
@@ -72,6 +80,7 @@ void dispatch(graph::PassContext& pc, vk::Context& ctx, vk::ShaderLibrary& shade
 
 void readInputs(graph::PassBuilder& b, const DenoiseInputs& in) {
     for (graph::TextureHandle t : {in.color, in.albedo, in.normal, in.depth}) b.read(t, graph::Access::StorageRead, kCs);
+    if (in.variance.valid()) b.read(in.variance, graph::Access::StorageRead, kCs);
 }
 
 }  // namespace

@@ -1,7 +1,9 @@
 // denoise.hpp: the path tracer's denoiser as render-graph passes: an edge-aware a-trous wavelet filter guided by
 // first-hit albedo, normal and depth (SVGF's spatial filter, Schied et al. 2017; the math is in
-// shaders_glsl/shared/denoise_filter.h). Replaces IDKEngine's OIDN integration (reference 2.2): OIDN is not packaged
-// in Debian. Passes: denoise_prepare, denoise_atrous_<i> (i < iterations, step 2^i), denoise_remodulate.
+// shaders_glsl/shared/denoise_filter.h), with the path tracer's per-pixel variance (DenoiseInputs::variance) as the
+// noise level and a final shrink toward the raw pixel where the filter's change exceeds it. Replaces IDKEngine's
+// OIDN integration (reference 2.2): OIDN is not packaged in Debian. Passes: denoise_prepare, denoise_atrous_<i>
+// (i < iterations, step 2^i), denoise_remodulate.
 #pragma once
 #include <cstdint>
 
@@ -17,6 +19,11 @@ struct DenoiseInputs {
     graph::TextureHandle albedo;  // RGBA16F/32F first-hit albedo (1 for sky)
     graph::TextureHandle normal;  // RGBA16F/32F first-hit world normal (xyz), 0 for sky
     graph::TextureHandle depth;   // R32F first-hit view distance (0 or inf for sky)
+    // Optional R32F: the variance of each pixel's mean luminance (from the tracer's second moments; negative when
+    // unknown, e.g. at 1 spp). With it the luminance tolerance is the pixel's own noise, not its neighbourhood's
+    // spread (which counts texture and lighting detail as noise and over-blurs at high spp), and the output is
+    // shrunk toward the raw pixel where the filter's change exceeds that noise (denoiseShrinkWeight).
+    graph::TextureHandle variance;
 };
 
 struct DenoiseSettings {

@@ -32,16 +32,18 @@ bool lightsSampled(const PathTraceScene& pts) { return !pts.lightAlias.empty(); 
 // Next-event estimation at a surface: one sample of the environment or of a light chosen by power, weighted by
 // the power heuristic against BSDF sampling (punctual lights: weight 1).
 glm::vec3 sampleDirect(const PathTraceScene& pts, const gpu::PtSurface& surface, const glm::vec3& position,
-                       const glm::vec3& wo, const Medium& medium, gpu::PtRng& rng) {
+                       const glm::vec3& wo, const Medium& medium, uint32_t dim, gpu::PtRng& rng) {
     const float envSelect = envSelectProbability(pts);
     const bool lights = lightsSampled(pts);
     if (!lights && !(envSelect > 0.0f)) return glm::vec3(0.0f);
-    const float choose = gpu::ptRandom(rng);
-    const float uSlot = gpu::ptRandom(rng), uAlias = gpu::ptRandom(rng);
+    const float choose = gpu::ptSample(rng, dim + gpu::kPtDimLightChoice);
     // Draws are named one per statement: the order of evaluation of constructor arguments is unspecified in
-    // C++, and the GPU tracer (shaders_glsl/pathtrace/wf_shading.h) draws in this exact order.
-    const float ux = gpu::ptRandom(rng);
-    const float uy = gpu::ptRandom(rng);
+    // C++, and the GPU tracer (shaders_glsl/pathtrace/wf_shading.h) draws in this exact order (the independent
+    // sampler ignores the dimension and goes by call order).
+    const float uSlot = gpu::ptSample(rng, dim + gpu::kPtDimLightSlot);
+    const float uAlias = gpu::ptSample(rng, dim + gpu::kPtDimLightAlias);
+    const float ux = gpu::ptSample(rng, dim + gpu::kPtDimLightX);
+    const float uy = gpu::ptSample(rng, dim + gpu::kPtDimLightY);
     const glm::vec2 u(ux, uy);
 
     glm::vec3 direction, radiance;
@@ -127,11 +129,12 @@ glm::vec3 traceRadiance(const PathTraceScene& pts, glm::vec3 origin, glm::vec3 d
         }
         if (depth == settings.maxDepth || hit.material.unlit) break;
 
-        if (settings.nee) radiance += throughput * sampleDirect(pts, surface, position, wo, medium, rng);
+        const uint32_t dim = gpu::ptDimVertexBase(depth);
+        if (settings.nee) radiance += throughput * sampleDirect(pts, surface, position, wo, medium, dim, rng);
 
-        const float u0 = gpu::ptRandom(rng);  // one draw per statement (see sampleDirect)
-        const float u1 = gpu::ptRandom(rng);
-        const float u2 = gpu::ptRandom(rng);
+        const float u0 = gpu::ptSample(rng, dim + gpu::kPtDimBsdfLobe);  // one draw per statement (see sampleDirect)
+        const float u1 = gpu::ptSample(rng, dim + gpu::kPtDimBsdfX);
+        const float u2 = gpu::ptSample(rng, dim + gpu::kPtDimBsdfY);
         const glm::vec3 u(u0, u1, u2);
         glm::vec3 wi, weight;
         float pdf;
@@ -152,7 +155,7 @@ glm::vec3 traceRadiance(const PathTraceScene& pts, glm::vec3 origin, glm::vec3 d
         direction = wi;
         if (depth >= settings.rouletteDepth) {
             const float q = gpu::ptSurvivalProbability(throughput);
-            if (!(gpu::ptRandom(rng) < q)) break;
+            if (!(gpu::ptSample(rng, dim + gpu::kPtDimRoulette) < q)) break;
             throughput /= q;
         }
     }
@@ -185,9 +188,11 @@ core::ImageRgba32f renderReference(const PathTraceScene& pts, const scene::Camer
             for (uint32_t x = 0; x < width; ++x) {
                 glm::dvec3 sum(0.0);
                 for (uint32_t s = 0; s < spp; ++s) {
-                    gpu::PtRng rng = gpu::ptRngInit(y * width + x, s, settings.seed);
-                    const float jitterX = gpu::ptRandom(rng);  // one draw per statement (see sampleDirect)
-                    const float jitterY = gpu::ptRandom(rng);
+                    gpu::PtRng rng = gpu::ptRngInitSampler(y * width + x, settings.firstSample + s, settings.seed,
+                                                           samplerId(settings.sampler));
+                    // one draw per statement (see sampleDirect)
+                    const float jitterX = gpu::ptSample(rng, gpu::kPtDimJitterX);
+                    const float jitterY = gpu::ptSample(rng, gpu::kPtDimJitterY);
                     const glm::vec2 pixel(float(x) + jitterX, float(y) + jitterY);
                     glm::vec3 origin, direction;
                     gpu::ptCameraRay(inverseVp, pixel, size, origin, direction);

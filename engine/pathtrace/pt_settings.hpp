@@ -3,8 +3,18 @@
 // IDKEngine's defaults (reference 2.1): RayDepth 7 (segments), 1 sample per frame, roulette on from the second hit.
 #pragma once
 #include <cstdint>
+#include <optional>
+#include <string_view>
 
 namespace idk::pathtrace {
+
+// Where the random numbers of a path come from (shared/pt_sampler.h). Sobol: Owen-scrambled Sobol' points padded
+// in 2D, lower error at equal spp (tests/unit/pathtrace/sampler_test.cpp, BENCHMARKS.md); Independent: a PCG
+// stream per pixel and sample, kept for comparison.
+enum class PtSampler : uint8_t { Sobol, Independent };
+const char* samplerName(PtSampler sampler);                      // "sobol", "independent"
+std::optional<PtSampler> parseSampler(std::string_view name);    // nullopt for an unknown name
+uint32_t samplerId(PtSampler sampler);                           // gpu::kPtSampler*
 
 struct PtSettings {
     uint32_t spp = 16;           // samples per pixel
@@ -19,6 +29,7 @@ struct PtSettings {
     // GPU tracer: the first sample index rendered (samples firstSample .. firstSample + spp - 1 of the seed's
     // sequence), so that render farm tasks split one image's samples (`idk render --sample-range a:b`).
     uint32_t firstSample = 0;
+    PtSampler sampler = PtSampler::Sobol;
 };
 
 }  // namespace idk::pathtrace

@@ -129,11 +129,13 @@ struct PathTracer::Impl {
         a.albedo = frame.accumAlbedo.address;
         a.normal = frame.accumNormal.address;
         a.depth = frame.accumDepth.address;
+        a.moment = frame.accumMoment.address;
         a.guides = frame.guides.address;
         a.colorImage = frame.colorStorage.value;
         a.albedoImage = frame.albedoStorage.value;
         a.normalImage = frame.normalStorage.value;
         a.depthImage = frame.depthStorage.value;
+        a.varianceImage = frame.varianceStorage.value;
         vk::uploadBuffer(ctx, accumDesc, &a, sizeof(a));
     }
 
@@ -144,6 +146,7 @@ struct PathTracer::Impl {
         c.sort = options.sortRays;
         c.hasAlpha = hasAlpha;
         c.nee = settings.nee;
+        c.sobol = settings.sampler == pathtrace::PtSampler::Sobol;
         c.blasStack = traversal == PtTraversal::Bvh ? geometry.wideStackSize : geometry.blasStackSize;
         c.tlasStack = geometry.tlasStackSize;
         c.scene = sceneDesc.address;

@@ -52,16 +52,19 @@ PtFrameResources createPtFrame(vk::Context& ctx, uint32_t width, uint32_t height
     f.accumAlbedo = makeBuffer(ctx, pixels * 16, "pt accum albedo");
     f.accumNormal = makeBuffer(ctx, pixels * 16, "pt accum normal");
     f.accumDepth = makeBuffer(ctx, pixels * 4, "pt accum depth");
+    f.accumMoment = makeBuffer(ctx, pixels * 4, "pt accum moment");
     f.colorImage = makeImage(ctx, VK_FORMAT_R32G32B32A32_SFLOAT, width, height, "pt color");
     f.albedoImage = makeImage(ctx, VK_FORMAT_R16G16B16A16_SFLOAT, width, height, "pt albedo");
     f.normalImage = makeImage(ctx, VK_FORMAT_R16G16B16A16_SFLOAT, width, height, "pt normal");
     f.depthImage = makeImage(ctx, VK_FORMAT_R32_SFLOAT, width, height, "pt depth");
+    f.varianceImage = makeImage(ctx, VK_FORMAT_R32_SFLOAT, width, height, "pt variance");
     f.denoisedImage = makeImage(ctx, VK_FORMAT_R32G32B32A32_SFLOAT, width, height, "pt denoised");
     vk::BindlessTable& bindless = ctx.bindless();
     f.colorStorage = bindless.addStorage(f.colorImage.view);
     f.albedoStorage = bindless.addStorage(f.albedoImage.view);
     f.normalStorage = bindless.addStorage(f.normalImage.view);
     f.depthStorage = bindless.addStorage(f.depthImage.view);
+    f.varianceStorage = bindless.addStorage(f.varianceImage.view);
     f.queueIndex[0] = bindless.addBuffer(f.queue[0].buffer, f.queue[0].size, f.queue[0].name);
     f.queueIndex[1] = bindless.addBuffer(f.queue[1].buffer, f.queue[1].size, f.queue[1].name);
     if (sorting) {
@@ -75,15 +78,15 @@ PtFrameResources createPtFrame(vk::Context& ctx, uint32_t width, uint32_t height
 
 void destroyPtFrame(vk::Context& ctx, PtFrameResources& f) {
     vk::BindlessTable& bindless = ctx.bindless();
-    for (vk::StorageImageIndex i : {f.colorStorage, f.albedoStorage, f.normalStorage, f.depthStorage})
+    for (vk::StorageImageIndex i : {f.colorStorage, f.albedoStorage, f.normalStorage, f.depthStorage, f.varianceStorage})
         if (i.value != UINT32_MAX) bindless.release(i);
     for (vk::StorageBufferIndex i : {f.queueIndex[0], f.queueIndex[1], f.keysIndex, f.scratchIndex})
         if (i.value != UINT32_MAX) bindless.release(i);
     for (vk::Buffer* b : {&f.paths, &f.hits, &f.shadowRays, &f.guides, &f.keys, &f.sortScratch, &f.queue[0], &f.queue[1],
                           &f.args[0], &f.args[1], &f.shadow[0], &f.shadow[1], &f.shadowArgs[0], &f.shadowArgs[1],
-                          &f.accumColor, &f.accumAlbedo, &f.accumNormal, &f.accumDepth})
+                          &f.accumColor, &f.accumAlbedo, &f.accumNormal, &f.accumDepth, &f.accumMoment})
         if (b->buffer) ctx.destroyDeferred(*b);
-    for (vk::Image* i : {&f.colorImage, &f.albedoImage, &f.normalImage, &f.depthImage, &f.denoisedImage})
+    for (vk::Image* i : {&f.colorImage, &f.albedoImage, &f.normalImage, &f.depthImage, &f.varianceImage, &f.denoisedImage})
         if (i->image) ctx.destroyDeferred(*i);
     f = {};
 }

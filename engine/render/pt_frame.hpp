@@ -20,9 +20,9 @@ struct PtFrameResources {
     uint32_t width = 0, height = 0;
     vk::Buffer paths, hits, shadowRays, guides, keys, sortScratch;
     vk::Buffer queue[2], args[2], shadow[2], shadowArgs[2];
-    vk::Buffer accumColor, accumAlbedo, accumNormal, accumDepth;
-    vk::Image colorImage, albedoImage, normalImage, depthImage, denoisedImage;
-    vk::StorageImageIndex colorStorage, albedoStorage, normalStorage, depthStorage;
+    vk::Buffer accumColor, accumAlbedo, accumNormal, accumDepth, accumMoment;
+    vk::Image colorImage, albedoImage, normalImage, depthImage, varianceImage, denoisedImage;
+    vk::StorageImageIndex colorStorage, albedoStorage, normalStorage, depthStorage, varianceStorage;
     vk::StorageBufferIndex keysIndex, queueIndex[2], scratchIndex;
 };
 

@@ -38,6 +38,7 @@ uint32_t storageIndexOf(const PtFrameResources& f, const vk::Image* image) {
     if (image == &f.albedoImage) return f.albedoStorage.value;
     if (image == &f.normalImage) return f.normalStorage.value;
     if (image == &f.depthImage) return f.depthStorage.value;
+    if (image == &f.varianceImage) return f.varianceStorage.value;
     return graph::kNoBindlessIndex;
 }
 
@@ -78,6 +79,7 @@ gpu::GpuPtStagePush basePush(const PtStageContext& s) {
     p.seed = s.config.seed;
     p.maxDepth = s.config.maxDepth;
     p.rouletteDepth = s.config.rouletteDepth;
+    p.flags = s.config.sobol ? gpu::kPtPushSobol : 0u;
     return p;
 }
 
@@ -109,9 +111,10 @@ void addPtClear(const PtStageContext& s) {
     PtFrameResources& f = s.frame;
     addPass(s, "pt_clear",
             {{&f.accumColor, Access::TransferDst}, {&f.accumAlbedo, Access::TransferDst},
-             {&f.accumNormal, Access::TransferDst}, {&f.accumDepth, Access::TransferDst}},
+             {&f.accumNormal, Access::TransferDst}, {&f.accumDepth, Access::TransferDst},
+             {&f.accumMoment, Access::TransferDst}},
             {}, [&f](VkCommandBuffer cmd) {
-                for (const vk::Buffer* b : {&f.accumColor, &f.accumAlbedo, &f.accumNormal, &f.accumDepth})
+                for (const vk::Buffer* b : {&f.accumColor, &f.accumAlbedo, &f.accumNormal, &f.accumDepth, &f.accumMoment})
                     vkCmdFillBuffer(cmd, b->buffer, 0, VK_WHOLE_SIZE, 0);
             });
 }
@@ -220,7 +223,7 @@ void addPtSample(const PtStageContext& s, uint32_t sampleIndex, PtStop stop) {
     addPass(s, "pt_accumulate" + tag,
             {{&f.paths, Access::StorageRead}, {&f.guides, Access::StorageRead}, {&f.accumColor, Access::StorageReadWrite},
              {&f.accumAlbedo, Access::StorageReadWrite}, {&f.accumNormal, Access::StorageReadWrite},
-             {&f.accumDepth, Access::StorageReadWrite}},
+             {&f.accumDepth, Access::StorageReadWrite}, {&f.accumMoment, Access::StorageReadWrite}},
             {}, [s, acc, pixels](VkCommandBuffer cmd) {
                 bindAndPush(s, cmd, pipeline(s, ShaderId::pathtrace_accumulate_comp, false, kLinear), acc);
                 vkCmdDispatch(cmd, vk::groupCount(pixels, gpu::kPtGroupSize), 1, 1);
@@ -235,6 +238,7 @@ void addPtDenoise(const PtStageContext& s) {
     in.albedo = s.res.image(f.albedoImage, f.albedoStorage.value);
     in.normal = s.res.image(f.normalImage, f.normalStorage.value);
     in.depth = s.res.image(f.depthImage, f.depthStorage.value);
+    in.variance = s.res.image(f.varianceImage, f.varianceStorage.value);
     const graph::TextureHandle denoised = passes::addDenoisePass(s.graph, s.ctx, s.shaders, in, passes::DenoiseSettings{});
     graph::TextureHandle& target = s.res.image(f.denoisedImage);
     s.graph.addPass(
@@ -265,9 +269,11 @@ void addPtResolve(const PtStageContext& s) {
     gpu::GpuPtStagePush push = basePush(s);
     addPass(s, "pt_resolve",
             {{&f.accumColor, Access::StorageRead}, {&f.accumAlbedo, Access::StorageRead},
-             {&f.accumNormal, Access::StorageRead}, {&f.accumDepth, Access::StorageRead}},
+             {&f.accumNormal, Access::StorageRead}, {&f.accumDepth, Access::StorageRead},
+             {&f.accumMoment, Access::StorageRead}},
             {{&f.colorImage, Access::StorageWrite}, {&f.albedoImage, Access::StorageWrite},
-             {&f.normalImage, Access::StorageWrite}, {&f.depthImage, Access::StorageWrite}},
+             {&f.normalImage, Access::StorageWrite}, {&f.depthImage, Access::StorageWrite},
+             {&f.varianceImage, Access::StorageWrite}},
             [s, push, &f](VkCommandBuffer cmd) {
                 bindAndPush(s, cmd, pipeline(s, ShaderId::pathtrace_resolve_comp, false, {8, 8, 1}), push);
                 vkCmdDispatch(cmd, vk::groupCount(f.width, 8), vk::groupCount(f.height, 8), 1);

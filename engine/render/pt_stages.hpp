@@ -21,6 +21,7 @@ struct PtStageConfig {
     bool sort = false;
     bool hasAlpha = false;
     bool nee = true;
+    bool sobol = true;     // the paths' sampler (GpuPtStagePush::flags kPtPushSobol), else independent
     uint32_t blasStack = 1, tlasStack = 1;
     VkDeviceAddress scene = 0;     // GpuPtSceneDesc
     VkDeviceAddress camera = 0;    // GpuPtCamera

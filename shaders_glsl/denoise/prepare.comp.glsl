@@ -2,7 +2,8 @@
 // prepare.comp.glsl: the denoiser's first step (shared/denoise_filter.h): demodulates the noisy radiance by the
 // albedo, clamps fireflies to the neighbourhood's mean + fireflyClamp standard deviations, estimates the luminance
 // variance of each pixel over a 7x7 neighbourhood weighted by normal and depth similarity (SVGF's spatial fallback
-// when no temporal moments exist), and stores the depth gradient the a-trous iterations scale their depth
+// when no temporal moments exist) or, when the tracer gives it, the pixel's own variance of the mean from its
+// samples' second moment (SVGF's temporal moments: our accumulation over samples), and stores the depth gradient the a-trous iterations scale their depth
 // tolerance with. Replaces IDKEngine's OIDN input step (reference 2.2).
 #extension GL_GOOGLE_include_directive : require
 #include "bindless.glsl"
@@ -77,11 +78,14 @@ void main() {
     }
     float mean = sumW > 0.0 ? sumL / sumW : 0.0;
     float limit = denoiseLuminanceLimit(mean, sumW > 0.0 ? sumV / sumW : 0.0, sumW, p.fireflyClamp);
-    if (lp > limit) {
+    // The clamp only without the pixel's own variance (one sample): with it, a bright pixel is judged against its
+    // own noise (a real highlight has little), and clamping it would be a bias the final shrink cannot see.
+    float pixelVariance = p.variance != kDenoiseNoVariance ? imageLoad(gImagesR32f[p.variance], pixel).r : -1.0;
+    if (pixelVariance < 0.0 && lp > limit) {
         centre *= limit / lp;
         lp = limit;
     }
-    float variance = denoiseCombinedVariance(sumW, sumV, mean, lp);
+    float variance = denoiseStartVariance(pixelVariance, albedo, denoiseCombinedVariance(sumW, sumV, mean, lp));
     imageStore(gDenoiseImagesRgba32f[p.illumOut], pixel, vec4(centre, variance));
     imageStore(gImagesR32f[p.gradient], pixel, vec4(gradient));
 }

@@ -22,5 +22,5 @@ void main() {
     if (pixel >= pixels) return;
     queue.items[pixel] = pixel;
     GpuPtCamera cam = WfCameraRef(pc.accum).c;
-    WfPathRef(pc.paths).p[pixel] = wfStartPath(cam, pixel, pc.extent, pc.sampleIndex, pc.seed);
+    WfPathRef(pc.paths).p[pixel] = wfStartPath(cam, pixel, pc.extent, pc.sampleIndex, pc.seed, pc.flags);
 }

@@ -1,6 +1,7 @@
 #version 460
 // resolve.comp.glsl: one invocation per pixel: the mean of the accumulated samples into the output images (linear
-// radiance RGBA32F, albedo and normal RGBA16F, view distance R32F), the denoiser's inputs.
+// radiance RGBA32F, albedo and normal RGBA16F, view distance R32F, the variance of the mean luminance R32F (-1 below
+// two samples)), the denoiser's inputs.
 #extension GL_GOOGLE_include_directive : require
 #include "wf_common.h"
 
@@ -23,4 +24,8 @@ void main() {
     imageStore(gImagesRgba16f[a.albedoImage], ivec2(p), vec4(albedo.xyz * inv, 1.0));
     imageStore(gImagesRgba16f[a.normalImage], ivec2(p), vec4(nl > 0.0 ? n / nl : vec3(0.0), 0.0));
     imageStore(gImagesR32f[a.depthImage], ivec2(p), vec4(WfFloatRef(a.depth).f[pixel] * inv));
+    // Variance of the mean luminance, (E[l^2] - E[l]^2) / (n - 1): the noise the denoiser weighs against.
+    float mean = dot(c.xyz * inv, vec3(0.2126, 0.7152, 0.0722));
+    float variance = c.w >= 2.0 ? max(WfFloatRef(a.moment).f[pixel] * inv - mean * mean, 0.0) / (c.w - 1.0) : -1.0;
+    imageStore(gImagesR32f[a.varianceImage], ivec2(p), vec4(variance));
 }

@@ -18,7 +18,8 @@ void main() {
     GpuPtSceneDesc s = WfSceneRef(pc.scene).d;
     GpuPtPath path = WfPathRef(pc.paths).p[pixel];
     GpuPtHit hit = WfHitRef(pc.hits).h[pixel];
-    WfShadeResult r = wfShade(s, path, hit, pc.bounce, pc.maxDepth, pc.rouletteDepth, kPtNee != 0u);
+    PtRng rng = wfResumeRng(path.rngState, pixel, pc.sampleIndex, pc.seed, pc.flags);
+    WfShadeResult r = wfShade(s, path, hit, rng, pc.bounce, pc.maxDepth, pc.rouletteDepth, kPtNee != 0u);
     WfPathRef(pc.paths).p[pixel] = path;
     if (pc.bounce == 0u) WfGuideRef(WfAccumRef(pc.accum).a.guides).g[pixel] = r.guide;
     if (r.hasShadowRay) {

@@ -17,13 +17,23 @@ struct WfShadeResult {
     GpuPtGuide guide;
 };
 
-GpuPtPath wfStartPath(GpuPtCamera cam, uint pixel, uvec2 extent, uint sampleIndex, uint seed) {
+// The path's sampler (shared/pt_sampler.h) resumed in a stage: its PCG state lives in GpuPtPath::rngState; the
+// sobol sampler's scrambling seed and index are rebuilt from the pixel and the push block.
+uint wfSampler(uint flags) { return (flags & kPtPushSobol) != 0u ? kPtSamplerSobol : kPtSamplerIndependent; }
+PtRng wfResumeRng(uint state, uint pixel, uint sampleIndex, uint seed, uint flags) {
+    PtRng rng = ptRngInitSampler(pixel, sampleIndex, seed, wfSampler(flags));
+    rng.state = state;
+    return rng;
+}
+
+GpuPtPath wfStartPath(GpuPtCamera cam, uint pixel, uvec2 extent, uint sampleIndex, uint seed, uint flags) {
     GpuPtPath p;
-    PtRng rng = ptRngInit(pixel, sampleIndex, seed);
-    // DRAW ORDER: the same draws in the same order as pathtrace::renderReference (x jitter, y jitter; the BSDF's
-    // u0, u1, u2; the light's ux, uy), so equal seeds give equal samples (tests/gpu/pathtrace SameSeedGivesTheCpuSamples).
-    float jx = ptRandom(rng);
-    float jy = ptRandom(rng);
+    PtRng rng = ptRngInitSampler(pixel, sampleIndex, seed, wfSampler(flags));
+    // DRAW ORDER: the same draws in the same order and dimensions as pathtrace::renderReference (x jitter,
+    // y jitter; the light's choice, slot, alias, ux, uy; the BSDF's u0, u1, u2; roulette), so equal seeds give
+    // equal samples (tests/gpu/pathtrace SameSeedGivesTheCpuSamples).
+    float jx = ptSample(rng, kPtDimJitterX);
+    float jy = ptSample(rng, kPtDimJitterY);
     vec2 pos = vec2(float(pixel % extent.x) + jx, float(pixel / extent.x) + jy);
     ptCameraRay(cam.inverseViewProjection, pos, vec2(extent), p.origin, p.direction);
     p.depth = 0u;
@@ -115,8 +125,8 @@ vec3 wfEnvironmentRadiance(GpuPtSceneDesc s, uint texel) {
 
 // The sampleDirect half of pathtrace::traceRadiance: draws the same five numbers and builds the shadow ray whose
 // visibility the shadow stage tests (the CPU tests it at once). False: no contribution.
-bool wfSampleDirect(GpuPtSceneDesc s, GpuPtPath path, PtSurface surface, vec3 position, vec3 wo, inout PtRng rng,
-                    out GpuPtShadowRay ray) {
+bool wfSampleDirect(GpuPtSceneDesc s, GpuPtPath path, PtSurface surface, vec3 position, vec3 wo, uint dim,
+                    inout PtRng rng, out GpuPtShadowRay ray) {
     ray.origin = position;
     ray.tMax = 0.0;
     ray.direction = vec3(0.0, 0.0, 1.0);
@@ -126,11 +136,11 @@ bool wfSampleDirect(GpuPtSceneDesc s, GpuPtPath path, PtSurface surface, vec3 po
     float envSelect = s.envSelectProbability;
     bool lights = s.lightCount > 0u;
     if (!lights && !(envSelect > 0.0)) return false;
-    float choose = ptRandom(rng);
-    float uSlot = ptRandom(rng);
-    float uAlias = ptRandom(rng);
-    float ux = ptRandom(rng);  // DRAW ORDER (see wfStartPath)
-    float uy = ptRandom(rng);
+    float choose = ptSample(rng, dim + kPtDimLightChoice);
+    float uSlot = ptSample(rng, dim + kPtDimLightSlot);
+    float uAlias = ptSample(rng, dim + kPtDimLightAlias);
+    float ux = ptSample(rng, dim + kPtDimLightX);  // DRAW ORDER (see wfStartPath)
+    float uy = ptSample(rng, dim + kPtDimLightY);
     vec2 u = vec2(ux, uy);
     vec3 direction;
     vec3 radiance;
@@ -176,7 +186,7 @@ bool wfSampleDirect(GpuPtSceneDesc s, GpuPtPath path, PtSurface surface, vec3 po
 }
 
 // One path vertex: what the ray of segment bounce + 1 found, and the next segment.
-WfShadeResult wfShade(GpuPtSceneDesc s, inout GpuPtPath path, GpuPtHit hit, uint bounce, uint maxDepth,
+WfShadeResult wfShade(GpuPtSceneDesc s, inout GpuPtPath path, GpuPtHit hit, PtRng rng, uint bounce, uint maxDepth,
                       uint rouletteDepth, bool nee) {
     WfShadeResult r;
     r.extend = false;
@@ -188,8 +198,6 @@ WfShadeResult wfShade(GpuPtSceneDesc s, inout GpuPtPath path, GpuPtHit hit, uint
     uint depth = bounce + 1u;
     path.depth = depth;
     path.flags &= ~kPtPathAlive;
-    PtRng rng;
-    rng.state = path.rngState;
     bool found = hit.triangle != kPtInvalid;
     path.throughput *= wfTransmittance(path, found ? hit.t : kPtFar);
     bool mis = nee && (path.flags & kPtPathDeltaBounce) == 0u;
@@ -233,11 +241,12 @@ WfShadeResult wfShade(GpuPtSceneDesc s, inout GpuPtPath path, GpuPtHit hit, uint
         path.rngState = rng.state;
         return r;
     }
-    if (nee) r.hasShadowRay = wfSampleDirect(s, path, surface, position, wo, rng, r.shadowRay);
+    uint dim = ptDimVertexBase(depth);
+    if (nee) r.hasShadowRay = wfSampleDirect(s, path, surface, position, wo, dim, rng, r.shadowRay);
 
-    float u0 = ptRandom(rng);  // DRAW ORDER (see wfStartPath)
-    float u1 = ptRandom(rng);
-    float u2 = ptRandom(rng);
+    float u0 = ptSample(rng, dim + kPtDimBsdfLobe);  // DRAW ORDER (see wfStartPath)
+    float u1 = ptSample(rng, dim + kPtDimBsdfX);
+    float u2 = ptSample(rng, dim + kPtDimBsdfY);
     vec3 wi;
     vec3 weight;
     float pdf;
@@ -260,7 +269,7 @@ WfShadeResult wfShade(GpuPtSceneDesc s, inout GpuPtPath path, GpuPtHit hit, uint
     path.direction = wi;
     if (depth >= rouletteDepth) {
         float q = ptSurvivalProbability(path.throughput);
-        bool survive = ptRandom(rng) < q;
+        bool survive = ptSample(rng, dim + kPtDimRoulette) < q;
         path.rngState = rng.state;
         if (!survive) return r;
         path.throughput /= q;

@@ -5,15 +5,19 @@
 // 2.2), which is not packaged in Debian.
 //   prepare:    illumination = radiance / albedo (demodulation); firefly rejection (the centre's luminance clamped
 //               to its neighbours' mean + fireflyClamp standard deviations: biased darker, like every clamp, but a
-//               lone 1000x sample otherwise survives every edge-stopping filter); luminance variance from a 7x7
-//               bilateral neighbourhood (normal + depth weights); per-pixel depth gradient;
+//               lone 1000x sample otherwise survives every edge-stopping filter; only without a variance input);
+//               luminance variance: the pixel's own variance of the mean when the tracer gives it (from 2 spp:
+//               second moments, SVGF's temporal moments), else from a 7x7 bilateral neighbourhood (normal + depth
+//               weights); per-pixel depth gradient;
 //   a-trous:    5x5 B3-spline taps at step 2^i, weighted by normal, depth, albedo-ratio and variance-scaled
 //               luminance similarity; variance filtered with the squared weights;
 // The albedo-ratio weight (min/max of the two albedo luminances, squared) is ours: demodulation assumes radiance
 // proportional to albedo, which emission and specular reflection on dark surfaces break (radiance 0.4 on albedo
 // 0.001 demodulates to 400); the squared ratio is the inverse-variance weight of such an estimate, so a dark
 // pixel's amplified illumination never reaches a bright neighbour, while similar albedos mix freely.
-//   remodulate: illumination * albedo.
+//   remodulate: illumination * albedo, then (with a variance input) shrunk toward the raw pixel by
+//               denoiseShrinkWeight, so that where the filter's change exceeds the pixel's noise (bias: blurred
+//               detail at high spp) the raw value wins; this is what keeps the output no worse than raw.
 // Sky / invalid guide pixels (depth 0, inf or NaN, normal shorter than 0.5) pass through unfiltered and never feed
 // their neighbours. Radiance is sanitized first (NaN/inf -> 0, clamped to [0, kDenoiseMaxRadiance]) so every
 // intermediate value stays finite in float32.
@@ -55,8 +59,10 @@ struct DenoisePush {
     float sigmaNormal;
     float sigmaDepth;
     float fireflyClamp;  // standard deviations above the neighbours' mean luminance (<= 0: no clamp)
+    uint variance;  // R32F variance of the mean luminance per pixel (< 0: unknown), kDenoiseNoVariance: none
 };
-IDK_GPU_SIZE(DenoisePush, 64);
+IDK_GPU_SIZE(DenoisePush, 68);
+IDK_CONST(uint, kDenoiseNoVariance, 0xFFFFFFFFu);
 
 #ifdef __cplusplus
 #define IDK_DN_FN inline
@@ -131,6 +137,38 @@ IDK_DN_FN float denoiseLuminanceWeight(float lp, float lq, float scale) { return
 // (centre excluded); a very large value when off (k <= 0) or without neighbours (sumW == 0).
 IDK_DN_FN float denoiseLuminanceLimit(float mean, float variance, float sumW, float k) {
     return (k > 0.0f && sumW > 0.0f) ? mean + k * IDK_DN_SQRT(IDK_DN_MAX(variance, 0.0f)) : 3.0e38f;
+}
+
+// The illumination variance prepare starts from: the pixel's own variance of the mean (radiance luminance variance
+// over the squared albedo luminance) when known (>= 0), else the neighbourhood's spatial estimate.
+IDK_DN_FN float denoiseStartVariance(float pixelVariance, vec3 albedoFactor, float spatialVariance) {
+    float a = denoiseLuminance(albedoFactor);
+    return pixelVariance >= 0.0f ? pixelVariance / (a * a) : spatialVariance;
+}
+
+// "Never worse than raw": weight of the filtered value in the output, per pixel. The raw mean has luminance variance
+// v; the filter keeps a share rho of it (the a-trous variance channel propagates sum(w^2) v, which for a weighted
+// mean that includes the centre is also about the centre's own weight), so the change d = filtered - raw has noise
+// variance vd = (1 - rho) v and E[d^2] = bias^2 + vd. The squared bias is estimated as the mean of d^2 - vd over
+// the pixel's 5x5 neighbourhood (kDenoiseShrinkRadius: smooth bias), or, when larger, the pixel's own d^2 - vd
+// (a feature of a pixel or two, such as a point light's hot spot or an emissive texture's detail, whose bias the
+// 5x5 mean would dilute; noisy, so it also costs some denoising where there is only noise), clamped at 0; and
+// raw + w (filtered - raw) with w = vd / (vd + bias^2) is the mix of least expected squared error
+// (E[(raw - truth) d] = -vd). Unknown v (< 0, one sample): the filter alone (w = 1).
+IDK_CONST(int, kDenoiseShrinkRadius, 2);
+IDK_DN_FN float denoiseChangeVariance(float v, float filteredIllumVariance, vec3 albedoFactor) {
+    float a = denoiseLuminance(albedoFactor);
+    float rho = v > 0.0f ? IDK_DN_MIN(IDK_DN_MAX(filteredIllumVariance * a * a / v, 0.0f), 1.0f) : 1.0f;
+    return v * (1.0f - rho);
+}
+IDK_DN_FN float denoiseShrinkExcess(float v, float rawLuminance, float filteredLuminance) {
+    float d = filteredLuminance - rawLuminance;
+    return d * d - v;
+}
+IDK_DN_FN float denoiseShrinkWeight(float v, float meanExcess, float ownExcess) {
+    if (!(v >= 0.0f)) return 1.0f;
+    float bias2 = IDK_DN_MAX(IDK_DN_MAX(meanExcess, ownExcess), 0.0f);
+    return v + bias2 > 0.0f ? v / (v + bias2) : 1.0f;
 }
 
 // Weighted variance of the neighbours (weights sum sumW, mean m, sum of w (l - m)^2 = sumV) together with the centre

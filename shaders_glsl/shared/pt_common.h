@@ -1,10 +1,12 @@
 // pt_common.h: the basics of the path tracer's shared maths (one source for C++ and GLSL, see pt_sampling.h):
-// the PCG hash RNG, small vector helpers, MIS power heuristic, Russian roulette, Beer-Lambert absorption and the
-// camera ray. IDKEngine seeds a PCG hash per pixel and sample too (PathTracing/FirstHit), but draws its diffuse
-// directions from an R2 sequence shared by all bounces (reference section 5); here every draw comes from the RNG.
+// small vector helpers, MIS power heuristic, Russian roulette, Beer-Lambert absorption and the camera ray. The
+// samplers (independent PCG, Owen-scrambled Sobol') are in pt_sampler.h. IDKEngine seeds a PCG hash per pixel and
+// sample too (PathTracing/FirstHit), but draws its diffuse directions from an R2 sequence shared by all bounces
+// (reference section 5).
 #ifndef IDK_PT_COMMON_H
 #define IDK_PT_COMMON_H
 #include "pt_types.h"
+#include "pt_sampler.h"
 
 #ifdef __cplusplus
 #include <glm/gtc/type_ptr.hpp>
@@ -37,34 +39,6 @@ IDK_CONST(float, kPtInvPi, 0.318309886183791f);
 IDK_CONST(float, kPtFar, 1.0e30f);          // "infinite" distance of directional and environment samples
 IDK_CONST(float, kPtDeltaAlpha, 1.0e-3f);   // GGX alpha below this: the specular lobes are treated as delta
 IDK_CONST(float, kPtMinCos, 1.0e-4f);
-
-// ---------------------------------------------------------------------------------------------------- RNG
-// PCG hash (Jarzynski & Olano 2020, "Hash Functions for GPU Rendering") seeds a 32-bit PCG (LCG + RXS-M-XS output).
-struct PtRng {
-    uint state;
-};
-
-IDK_INLINE uint ptHash(uint v) {
-    uint state = v * 747796405u + 2891336453u;
-    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-    return (word >> 22u) ^ word;
-}
-
-IDK_INLINE PtRng ptRngInit(uint pixel, uint sampleIndex, uint seed) {
-    PtRng rng;
-    rng.state = ptHash(pixel ^ ptHash(sampleIndex ^ ptHash(seed + 0x9E3779B9u)));
-    return rng;
-}
-
-IDK_INLINE uint ptNextUint(IDK_INOUT(PtRng) rng) {
-    rng.state = rng.state * 747796405u + 2891336453u;
-    uint s = rng.state;
-    uint word = ((s >> ((s >> 28u) + 4u)) ^ s) * 277803737u;
-    return (word >> 22u) ^ word;
-}
-
-// Uniform in [0, 1): the top 24 bits, exact in float on both sides.
-IDK_INLINE float ptRandom(IDK_INOUT(PtRng) rng) { return float(ptNextUint(rng) >> 8u) * (1.0f / 16777216.0f); }
 
 // ---------------------------------------------------------------------------------------------------- helpers
 IDK_INLINE float ptAverage(vec3 c) { return (c.x + c.y + c.z) * (1.0f / 3.0f); }

@@ -24,6 +24,9 @@ IDK_CONST(uint, kPtPathDeltaBounce, 1u);  // the ray came from a delta (specular
 IDK_CONST(uint, kPtPathInMedium, 2u);     // the ray travels inside a transmissive volume (absorption applies)
 IDK_CONST(uint, kPtPathAlive, 4u);        // shade extended the path (it is in the next ray queue)
 
+// GpuPtStagePush::flags
+IDK_CONST(uint, kPtPushSobol, 1u);        // the paths draw from the sobol sampler (shared/pt_sampler.h)
+
 // Sort keys: hit rays by material then direction octant, misses after them, dead queue slots last.
 IDK_CONST(uint, kPtSortKeyBits, 16);
 IDK_CONST(uint, kPtSortKeyMiss, 0x7FFFu);
@@ -147,7 +150,7 @@ struct GpuPtStagePush {
     uint bounce;
     uint maxDepth;
     uint rouletteDepth;
-    uint flags;
+    uint flags;                // kPtPush*
 };
 IDK_GPU_SIZE(GpuPtStagePush, 120);
 
@@ -163,19 +166,23 @@ struct GpuPtCamera {
 };
 IDK_GPU_SIZE(GpuPtCamera, 80);
 
-// Progressive sums per pixel (sum of samples; w counts them) and the first-hit guides for the denoiser.
+// Progressive sums per pixel (sum of samples; w counts them), the luminance's second moment and the first-hit
+// guides for the denoiser.
 struct GpuPtAccum {
     DeviceAddress color;    // vec4[pixels]: sum of radiance, w = samples
     DeviceAddress albedo;   // vec4[pixels]: sum of first-hit albedo (1 for the sky)
     DeviceAddress normal;   // vec4[pixels]: sum of first-hit world normal (0 for the sky)
     DeviceAddress depth;    // float[pixels]: sum of first-hit view distance (0 for the sky)
     DeviceAddress guides;   // GpuPtGuide[pixels]: this sample's first-hit guides (written by shade at bounce 0)
-    uint colorImage;        // resolve: bindless storage images (rgba32f, rgba16f, rgba16f, r32f)
+    DeviceAddress moment;   // float[pixels]: sum of squared radiance luminance (the denoiser's per-pixel variance)
+    uint colorImage;        // resolve: bindless storage images (rgba32f, rgba16f, rgba16f, r32f, r32f)
     uint albedoImage;
     uint normalImage;
     uint depthImage;
+    uint varianceImage;     // variance of the mean luminance, -1 below 2 samples
+    uint pad;               // C++ rounds the struct to its 8-byte alignment
 };
-IDK_GPU_SIZE(GpuPtAccum, 56);
+IDK_GPU_SIZE(GpuPtAccum, 72);
 
 struct GpuPtGuide {
     vec3 albedo;

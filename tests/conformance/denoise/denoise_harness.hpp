@@ -56,6 +56,7 @@ inline std::vector<glm::vec4> denoiseOnGpu(vk::Context& ctx, vk::ShaderLibrary& 
     uploadRgba(in.albedo, halfGuides, "denoise test albedo");
     uploadRgba(in.normal, halfGuides, "denoise test normal");
     upload(VK_FORMAT_R32_SFLOAT, in.depth.data(), count * sizeof(float), "denoise test depth");
+    if (!in.variance.empty()) upload(VK_FORMAT_R32_SFLOAT, in.variance.data(), count * sizeof(float), "denoise test variance");
     vk::BufferDesc bufferDesc;
     bufferDesc.size = count * sizeof(glm::vec4);
     bufferDesc.memory = vk::MemoryUsage::Readback;
@@ -67,9 +68,9 @@ inline std::vector<glm::vec4> denoiseOnGpu(vk::Context& ctx, vk::ShaderLibrary& 
         graph::RenderGraph graph(pool, {in.width, in.height});
         graph::ResourceState general;
         general.layout = VK_IMAGE_LAYOUT_GENERAL;
-        graph::TextureHandle handles[4];
-        const char* names[4] = {"color", "albedo", "normal", "depth"};
-        for (int i = 0; i < 4; ++i) {
+        graph::TextureHandle handles[5];
+        const char* names[5] = {"color", "albedo", "normal", "depth", "variance"};
+        for (size_t i = 0; i < images.size(); ++i) {
             graph::PhysicalTexture p;
             p.image = images[i].image;
             p.view = images[i].view;
@@ -79,7 +80,7 @@ inline std::vector<glm::vec4> denoiseOnGpu(vk::Context& ctx, vk::ShaderLibrary& 
             handles[i] = graph.importTexture(names[i], p, general);
         }
         graph::TextureHandle denoised = passes::addDenoisePass(
-            graph, ctx, shaders, {handles[0], handles[1], handles[2], handles[3]}, settings);
+            graph, ctx, shaders, {handles[0], handles[1], handles[2], handles[3], handles[4]}, settings);
         graph::PhysicalBuffer pb;
         pb.buffer = readback.buffer;
         pb.size = readback.size;

@@ -18,6 +18,7 @@ struct DenoiseImages {
     uint32_t width = 0, height = 0;
     std::vector<glm::vec4> color, albedo, normal;  // normal: xyz
     std::vector<float> depth;
+    std::vector<float> variance;  // optional (DenoiseInputs::variance): of the mean luminance, < 0 unknown
 };
 
 class DenoiseOracle {
@@ -30,11 +31,20 @@ public:
         prepare(s, illum, gradient);
         for (uint32_t i = 0; i < s.iterations; ++i) illum = atrous(s, illum, gradient, int(1u << i));
         std::vector<glm::vec4> out(in_.color.size());
+        std::vector<float> excess(in_.color.size(), 0.0f);
+        for (size_t k = 0; k < out.size(); ++k)
+            if (valid(k)) excess[k] = gpu::denoiseShrinkExcess(changeVariance(illum, k), gpu::denoiseLuminance(raw(k)),
+                                                               gpu::denoiseLuminance(filtered(illum, k)));
         for (size_t k = 0; k < out.size(); ++k) {
             glm::vec4 c = in_.color[k];
             float alpha = gpu::denoiseIsFinite(c.w) ? c.w : 1.0f;
             glm::vec3 radiance = gpu::denoiseSanitize3(glm::vec3(c));
-            if (valid(k)) radiance = glm::vec3(illum[k]) * gpu::denoiseAlbedoFactor(glm::vec3(in_.albedo[k]));
+            if (valid(k)) {
+                const float v = pixelVariance(k);
+                const float w =
+                    v >= 0.0f ? gpu::denoiseShrinkWeight(changeVariance(illum, k), meanExcess(k, excess), excess[k]) : 1.0f;
+                radiance += w * (filtered(illum, k) - radiance);
+            }
             out[k] = glm::vec4(radiance, alpha);
         }
         return out;
@@ -43,6 +53,28 @@ public:
 private:
     bool inside(int x, int y) const { return x >= 0 && y >= 0 && x < w_ && y < h_; }
     size_t at(int x, int y) const { return size_t(y) * size_t(w_) + size_t(x); }
+    glm::vec3 raw(size_t k) const { return gpu::denoiseSanitize3(glm::vec3(in_.color[k])); }
+    glm::vec3 filtered(const std::vector<glm::vec4>& illum, size_t k) const {
+        return glm::vec3(illum[k]) * gpu::denoiseAlbedoFactor(glm::vec3(in_.albedo[k]));
+    }
+    float changeVariance(const std::vector<glm::vec4>& illum, size_t k) const {
+        return gpu::denoiseChangeVariance(pixelVariance(k), illum[k].w, albedoFactor(k));
+    }
+    // remodulate.comp.glsl's meanExcess: over the valid neighbours with a known variance.
+    float meanExcess(size_t k, const std::vector<float>& excess) const {
+        const int x = int(k % size_t(w_)), y = int(k / size_t(w_)), r = gpu::kDenoiseShrinkRadius;
+        float sum = 0.0f, count = 0.0f;
+        for (int dy = -r; dy <= r; ++dy)
+            for (int dx = -r; dx <= r; ++dx) {
+                if (!inside(x + dx, y + dy)) continue;
+                const size_t q = at(x + dx, y + dy);
+                if (!valid(q) || !(pixelVariance(q) >= 0.0f)) continue;
+                sum += excess[q];
+                count += 1.0f;
+            }
+        return count > 0.0f ? sum / count : 0.0f;
+    }
+    float pixelVariance(size_t k) const { return in_.variance.empty() ? -1.0f : in_.variance[k]; }
     glm::vec3 n(size_t k) const { return glm::vec3(in_.normal[k]); }
     bool valid(size_t k) const { return gpu::denoiseValidGuide(n(k), in_.depth[k]); }
     glm::vec3 albedoFactor(size_t k) const { return gpu::denoiseAlbedoFactor(glm::vec3(in_.albedo[k])); }
@@ -96,11 +128,12 @@ private:
                 }
                 float mean = sumW > 0.0f ? sumL / sumW : 0.0f;
                 float limit = gpu::denoiseLuminanceLimit(mean, sumW > 0.0f ? sumV / sumW : 0.0f, sumW, s.fireflyClamp);
-                if (lp > limit) {
+                if (pixelVariance(k) < 0.0f && lp > limit) {
                     centre *= limit / lp;
                     lp = limit;
                 }
-                illum[k] = glm::vec4(centre, gpu::denoiseCombinedVariance(sumW, sumV, mean, lp));
+                illum[k] = glm::vec4(centre, gpu::denoiseStartVariance(pixelVariance(k), albedoFactor(k),
+                                                                       gpu::denoiseCombinedVariance(sumW, sumV, mean, lp)));
                 gradient[k] = g;
             }
     }

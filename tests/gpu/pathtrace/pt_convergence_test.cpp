@@ -140,14 +140,18 @@ const Case& transmission() {
 // The GPU stages draw their random numbers in the CPU integrator's order from the same per-pixel streams, so at the
 // same seed and spp most pixels get the very same samples; the rest diverge where float rounding differs (FMA, a
 // ray grazing an edge) and then only agree statistically.
+// Both samplers (shared/pt_sampler.h): the sobol sampler's dimensions are named the same on both sides.
 TEST_F(PtConvergenceTest, SameSeedGivesTheCpuSamples) {
+    for (const pathtrace::PtSampler sampler : {pathtrace::PtSampler::Sobol, pathtrace::PtSampler::Independent})
     for (const Case* c : {&cornell(), &spheres()}) {
         pathtrace::PtSettings cpu = cpuSettings(8, 77);
+        cpu.sampler = sampler;
         const core::ImageRgba32f reference =
             pathtrace::renderReference(c->pts, scene::defaultCamera(c->scene), kSize, kSize, cpu);
         render::PathTraceSettings s = baseSettings();
         s.spp = 8;
         s.seed = 77;
+        s.sampler = sampler;
         render::PathTracerOptions options;
         options.traversal = render::PtTraversal::Bvh;
         render::PathTracer tracer(ctx(), shaders(), c->scene, c->pts, options);
@@ -161,8 +165,9 @@ TEST_F(PtConvergenceTest, SameSeedGivesTheCpuSamples) {
             }
             same += close;
         }
-        std::printf("%s: %zu of %zu pixels equal to the CPU's at the same seed\n", c->name, same, pixels);
-        EXPECT_GT(double(same), 0.9 * double(pixels)) << c->name;
+        std::printf("%s, %s sampler: %zu of %zu pixels equal to the CPU's at the same seed\n", c->name,
+                    pathtrace::samplerName(sampler), same, pixels);
+        EXPECT_GT(double(same), 0.9 * double(pixels)) << c->name << " " << pathtrace::samplerName(sampler);
     }
 }
 

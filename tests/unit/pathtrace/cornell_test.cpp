@@ -1,5 +1,5 @@
 // cornell_test.cpp: the CPU reference path tracer on the Cornell box (scenes/cornell_box.gltf): the RMSE of
-// 16/64/256-spp renders against a 2048-spp render falls as 1/sqrt(spp).
+// 16/64/256-spp renders against a 2048-spp render falls as 1/sqrt(spp) (independent sampler).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -59,6 +59,7 @@ std::vector<double> cornellRmse(bool withPointLight, glm::dvec3& referenceMean) 
     settings.maxDepth = 5;
     settings.spp = 2048;
     settings.seed = 1000;
+    settings.sampler = pathtrace::PtSampler::Independent;  // the Monte Carlo law under test (sampler_test: Sobol')
     const core::ImageRgba32f reference = pathtrace::renderReference(pts, cam, size, size, settings);
     EXPECT_TRUE(imageFinite(reference));
     referenceMean = imageMean(reference);

@@ -11,6 +11,7 @@
 
 #include "graph/render_graph.hpp"
 #include "passes/passes.hpp"
+#include "passes/vxgi_passes.hpp"
 #include "render/render_settings.hpp"
 #include "scene/camera.hpp"
 #include "shared/scene_types.h"
@@ -44,6 +45,8 @@ struct FrameContext {
     passes::GBufferOutputs gbuffer;
     graph::TextureHandle hdr;                      // the lit HDR image (RGBA16F), updated by each pass that adds light
     graph::TextureHandle output;                   // the frame's target (imported); the recipe's last write
+    graph::TextureHandle voxelGrid;                // VXGI: RGBA16F radiance + coverage grid (vxgi_feature.hpp)
+    passes::VoxelGridBox voxelBox;                 // its world cube
 };
 
 }  // namespace idk::frame

@@ -30,6 +30,7 @@ graph::TextureHandle finish(FrameContext& f) {
 void Features::setScene(vk::Context& ctx, const render::GpuScene& scene, uint32_t framesInFlight) {
     pointShadows.reset();
     transparency.setScene(ctx, scene, framesInFlight);
+    vxgi.setScene(scene);
 }
 
 graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Features& x) {
@@ -38,6 +39,7 @@ graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Fe
     // Shadows before the G-buffer: the installed validation layer counts every draw that uses the bindless
     // sampled array (the G-buffer's) as reading the cubes, so their write must not follow such a draw.
     x.pointShadows.addPasses(f, scene);                               // f.pointShadows
+    x.vxgi.addPasses(f);                                              // f.voxelGrid (--gi vxgi)
     f.gbuffer = passes::addGBufferPass(f.graph, f.ctx, f.shaders, f.scene, f.frameConstants, &f.log);
     f.hdr = passes::addDeferredLightingPass(f.graph, f.ctx, f.shaders, f.gbuffer, f.frameConstants, f.scene.lights,
                                             f.environment, hdrTarget(f), f.pointShadows);

@@ -7,18 +7,20 @@
 #include "frame/frame_inputs.hpp"
 #include "frame/point_shadow_feature.hpp"
 #include "frame/transparency_feature.hpp"
+#include "frame/vxgi_feature.hpp"
 #include "render/gpu_scene.hpp"
 
 namespace idk::frame {
 
 struct Features {
-    explicit Features(vk::Context& ctx) : inputs(ctx), environment(ctx) {}
+    explicit Features(vk::Context& ctx) : inputs(ctx), environment(ctx), vxgi(ctx) {}
     void setScene(vk::Context& ctx, const render::GpuScene& scene, uint32_t framesInFlight);
 
     FrameInputs inputs;
     EnvironmentFeature environment;
     PointShadowFeature pointShadows;
     TransparencyFeature transparency;
+    VxgiFeature vxgi;
 };
 
 // Declares the whole PBR frame into f.graph, ending in f.output (imported by the caller): the tonemapped image

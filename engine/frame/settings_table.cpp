@@ -20,6 +20,14 @@ double cubeSizeIndex(uint32_t size) {
     return 2.0;
 }
 
+constexpr std::array<uint32_t, 5> kVoxelGridSizes = {64, 128, 256, 384, 512};
+
+double voxelSizeIndex(uint32_t size) {
+    for (size_t i = 0; i < kVoxelGridSizes.size(); ++i)
+        if (kVoxelGridSizes[i] == size) return double(i);
+    return 1.0;
+}
+
 std::vector<SettingOption> buildTable() {
     std::vector<SettingOption> t;
     // Tonemap and environment.
@@ -40,6 +48,15 @@ std::vector<SettingOption> buildTable() {
                  OptionKind::Choice, 0.0, 0.0, {"128", "256", "512", "1024", "2048"},
                  [](const RenderSettings& s) { return cubeSizeIndex(s.pointShadows.resolution); },
                  [](RenderSettings& s, double v) { s.pointShadows.resolution = kShadowCubeSizes[size_t(v)]; }});
+    // Voxel global illumination (frame/vxgi_feature.hpp).
+    t.push_back({"--gi", "Global illumination", "global illumination",
+                 "indirect light: none (environment ambient only) or vxgi (voxel cone tracing)", OptionKind::Choice,
+                 0.0, 0.0, {"none", "vxgi"}, [](const RenderSettings& s) { return double(s.vxgi.mode); },
+                 [](RenderSettings& s, double v) { s.vxgi.mode = frame::GiMode(v); }});
+    t.push_back({"--voxels", "Global illumination", "voxel grid size", "VXGI grid voxels per side",
+                 OptionKind::Choice, 0.0, 0.0, {"64", "128", "256", "384", "512"},
+                 [](const RenderSettings& s) { return voxelSizeIndex(s.vxgi.voxels); },
+                 [](RenderSettings& s, double v) { s.vxgi.voxels = kVoxelGridSizes[size_t(v)]; }});
     return t;
 }
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <optional>
 
+#include "frame/vxgi_settings.hpp"
 #include "render/point_shadow_maps.hpp"
 
 namespace idk::render {
@@ -25,6 +26,7 @@ struct RenderSettings {
     // A file that cannot be read falls back to the constant with a warning.
     std::optional<std::filesystem::path> environment;
     PointShadowSettings pointShadows;  // which lights cast cube shadows, and the cube resolution
+    frame::VxgiSettings vxgi;          // voxel global illumination (--gi, --voxels)
 };
 
 }  // namespace idk::render

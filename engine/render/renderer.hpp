@@ -88,6 +88,8 @@ public:
     GpuScene* gpuScene() noexcept { return gpuScene_.get(); }
     // The point-shadow cubes of the last frame (nullptr when no light cast one): tests read them back.
     const PointShadowMaps* pointShadowMaps() const noexcept { return features_.pointShadows.maps(); }
+    // The VXGI voxel grid of the last frame and its features (nullptr with --gi none): tests read it back.
+    const frame::VxgiFeature& vxgi() const noexcept { return features_.vxgi; }
     // Runs inside each frame's command buffer before the frame's graph is built (TextureStreamer::pump goes
     // here: textures it makes ready reach this frame's materials through the scene_update pass).
     void setBeforeFrame(std::function<void(VkCommandBuffer)> hook) { beforeFrame_ = std::move(hook); }

@@ -1,0 +1,42 @@
+// vxgi_feature.hpp: voxel global illumination. Owns the persistent RGBA16F voxel grid (created only while
+// --gi vxgi is on, re-created when its size changes) whose cube fits the scene's bounds, and adds the voxelization
+// passes (passes/vxgi_passes.hpp) each frame; fills FrameContext::voxelGrid / voxelBox. Ports IDKEngine's
+// VXGI/Voxelizer.cs (its grid box is set by hand or follows the camera; here it fits the scene).
+#pragma once
+#include "frame/frame_context.hpp"
+#include "passes/vxgi_passes.hpp"
+#include "render/gpu_scene.hpp"
+#include "vk/bindless.hpp"
+#include "vk/resources.hpp"
+
+namespace idk::frame {
+
+// The grid's cube around `bounds`: centred on it, side = its largest extent * n / (n - 1), i.e. half a voxel of
+// margin on each side so that surfaces on the bounds lie on voxel centres, not on voxel faces.
+passes::VoxelGridBox fitVoxelGrid(const scene::Aabb& bounds, uint32_t n);
+
+class VxgiFeature {
+public:
+    explicit VxgiFeature(vk::Context& ctx) : ctx_(ctx) {}
+    ~VxgiFeature();
+    VxgiFeature(const VxgiFeature&) = delete;
+    VxgiFeature& operator=(const VxgiFeature&) = delete;
+
+    void setScene(const render::GpuScene& scene);
+    void addPasses(FrameContext& f);  // nothing unless settings.vxgi.mode == Vxgi
+    // The grid of the last frame (RGBA16F, size^3; left in GENERAL layout) or nullptr: tests read it back.
+    const vk::Image* grid() const noexcept { return grid_.image ? &grid_ : nullptr; }
+    const passes::VoxelGridBox& box() const noexcept { return box_; }
+
+private:
+    void release();
+    vk::Context& ctx_;
+    scene::Aabb bounds_;
+    passes::VoxelGridBox box_;
+    vk::Image grid_;
+    vk::StorageImageIndex storage_;
+    vk::SampledIndex sampled_;
+    bool written_ = false;  // a frame has written the grid (its layout and contents are defined)
+};
+
+}  // namespace idk::frame

@@ -1,0 +1,15 @@
+// vxgi_settings.hpp: the options of voxel global illumination (frame/vxgi_feature.hpp), a member of
+// render::RenderSettings; the rows of frame/settings_table.cpp set them (--gi, --voxels).
+#pragma once
+#include <cstdint>
+
+namespace idk::frame {
+
+enum class GiMode : uint8_t { None, Vxgi };
+
+struct VxgiSettings {
+    GiMode mode = GiMode::None;  // None: nothing allocated, compiled or dispatched
+    uint32_t voxels = 128;       // grid size per side (64..512)
+};
+
+}  // namespace idk::frame

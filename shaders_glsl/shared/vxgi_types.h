@@ -1,0 +1,45 @@
+// vxgi_types.h: push blocks of the VXGI voxelization passes (engine/passes/vxgi_voxelize.cpp) and the grid's
+// placement. Ports the uniforms of IDKEngine's VXGI/Voxelize shaders (GridMin/GridMax there).
+#ifndef IDK_VXGI_TYPES_H
+#define IDK_VXGI_TYPES_H
+#include "interop.h"
+
+IDK_GPU_BEGIN
+
+// Write-conflict rungs (vk ladder "vxgi-atomics"): Native accumulates sum(rgb) and a fragment count with float
+// image atomics (the merge averages); Fallback keeps the max of each channel in r32ui images (floatBitsToUint
+// orders non-negative floats like the floats; stored + 1 so that 0 means "no fragment").
+IDK_CONST(uint, kVoxelAtomicsFloatAdd, 0u);
+IDK_CONST(uint, kVoxelAtomicsUintMax, 1u);
+IDK_CONST(uint, kVoxelGroupSize, 4u);  // merge: 4x4x4 threads
+
+// voxelize.vert / voxelize_*.frag: one draw per projection axis (0 x, 1 y, 2 z).
+struct VoxelizePush {
+    DeviceAddress frame;         // GpuFrame (lights)
+    DeviceAddress vertices;      // GpuVertex[]
+    DeviceAddress instances;     // GpuInstance[], indexed by gl_DrawID
+    DeviceAddress meshes;        // GpuMesh[]
+    DeviceAddress materials;     // GpuMaterial[]
+    DeviceAddress colors;        // vec4[] per vertex, 0: none
+    DeviceAddress uv1;           // vec2[] per vertex, 0: none
+    DeviceAddress pointShadows;  // GpuPointShadow[lightCount], 0: no light casts one
+    vec3 gridMin;                // world position of the grid's corner
+    float voxelSize;             // world size of one voxel (the grid is a cube of gridSize voxels per side)
+    uint gridSize;
+    uint axis;                   // this draw's projection axis
+    uint accum[4];               // bindless storage indices: r, g, b (and the count for kVoxelAtomicsFloatAdd)
+};
+IDK_GPU_SIZE(VoxelizePush, 104);
+
+// merge.comp: accumulators -> the RGBA16F grid's mip 0 (rgb radiance, alpha coverage).
+struct VoxelMergePush {
+    uint accum[4];
+    uint grid;      // bindless storage index of the grid (mip 0 view)
+    uint gridSize;
+    uint mode;      // kVoxelAtomics*
+    uint pad;
+};
+IDK_GPU_SIZE(VoxelMergePush, 32);
+
+IDK_GPU_END
+#endif

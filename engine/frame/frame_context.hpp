@@ -47,6 +47,7 @@ struct FrameContext {
     graph::TextureHandle output;                   // the frame's target (imported); the recipe's last write
     graph::TextureHandle voxelGrid;                // VXGI: RGBA16F radiance + coverage grid (vxgi_feature.hpp)
     passes::VoxelGridBox voxelBox;                 // its world cube
+    passes::IndirectLightImages indirectLight;     // VXGI cone-traced light per pixel (deferred lighting reads it)
 };
 
 }  // namespace idk::frame

@@ -41,8 +41,9 @@ graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Fe
     x.pointShadows.addPasses(f, scene);                               // f.pointShadows
     x.vxgi.addPasses(f);                                              // f.voxelGrid (--gi vxgi)
     f.gbuffer = passes::addGBufferPass(f.graph, f.ctx, f.shaders, f.scene, f.frameConstants, &f.log);
+    x.vxgi.addConeTracing(f);                                         // f.indirectLight (--gi vxgi)
     f.hdr = passes::addDeferredLightingPass(f.graph, f.ctx, f.shaders, f.gbuffer, f.frameConstants, f.scene.lights,
-                                            f.environment, hdrTarget(f), f.pointShadows);
+                                            f.environment, hdrTarget(f), f.pointShadows, f.indirectLight);
     f.hdr = passes::addSkyPass(f.graph, f.ctx, f.shaders, f.gbuffer.depth, f.frameConstants, f.environment, f.hdr);
     x.transparency.addPasses(f, scene);                               // blends into f.hdr
     return finish(f);                                                 // tonemap (Display) into f.output

@@ -57,6 +57,13 @@ std::vector<SettingOption> buildTable() {
                  OptionKind::Choice, 0.0, 0.0, {"64", "128", "256", "384", "512"},
                  [](const RenderSettings& s) { return voxelSizeIndex(s.vxgi.voxels); },
                  [](RenderSettings& s, double v) { s.vxgi.voxels = kVoxelGridSizes[size_t(v)]; }});
+    t.push_back({"--gi-cones", "Global illumination", "ring cones",
+                 "VXGI diffuse cones around the normal's cone (cosine-weighted set of 1 + N)", OptionKind::Integer,
+                 3.0, 16.0, {}, [](const RenderSettings& s) { return double(s.vxgi.ringCones); },
+                 [](RenderSettings& s, double v) { s.vxgi.ringCones = uint32_t(v); }});
+    t.push_back({"--gi-step", "Global illumination", "cone step", "VXGI cone march step in sample diameters",
+                 OptionKind::Number, 0.1, 1.0, {}, [](const RenderSettings& s) { return double(s.vxgi.stepFactor); },
+                 [](RenderSettings& s, double v) { s.vxgi.stepFactor = float(v); }});
     return t;
 }
 

@@ -9,6 +9,8 @@
 #include "vk/bindless.hpp"
 #include "vk/resources.hpp"
 
+#include <vector>
+
 namespace idk::frame {
 
 // The grid's cube around `bounds`: centred on it, side = its largest extent * n / (n - 1), i.e. half a voxel of
@@ -23,7 +25,8 @@ public:
     VxgiFeature& operator=(const VxgiFeature&) = delete;
 
     void setScene(const render::GpuScene& scene);
-    void addPasses(FrameContext& f);  // nothing unless settings.vxgi.mode == Vxgi
+    void addPasses(FrameContext& f);       // voxelization; nothing unless settings.vxgi.mode == Vxgi
+    void addConeTracing(FrameContext& f);  // after the G-buffer: mips + cone tracing into f.indirectLight
     // The grid of the last frame (RGBA16F, size^3; left in GENERAL layout) or nullptr: tests read it back.
     const vk::Image* grid() const noexcept { return grid_.image ? &grid_ : nullptr; }
     const passes::VoxelGridBox& box() const noexcept { return box_; }
@@ -34,8 +37,10 @@ private:
     scene::Aabb bounds_;
     passes::VoxelGridBox box_;
     vk::Image grid_;
-    vk::StorageImageIndex storage_;
-    vk::SampledIndex sampled_;
+    std::vector<VkImageView> mipViews_;             // one per level (storage views hold one level)
+    std::vector<vk::StorageImageIndex> mipStorage_;
+    vk::SampledIndex sampled_;                      // all levels
+    vk::SamplerIndex sampler_;
     bool written_ = false;  // a frame has written the grid (its layout and contents are defined)
 };
 

@@ -2,19 +2,21 @@
 // glTF metallic-roughness BRDF per punctual light, environment ambient times occlusion, plus emission, written
 // as linear radiance into an RGBA16F storage image. Ports IDKEngine's DeferredLighting pass (a fullscreen
 // fragment shader there, ToScreen/vertex.glsl + DeferredLighting/fragment.glsl) with point-light cube shadows
-// (passes/point_shadows.cpp); GI comes later.
+// (passes/point_shadows.cpp); inside the VXGI grid the cone-traced light replaces the ambient (vxgi_ambient.glsl).
 #include "passes/passes.hpp"
 
 #include <memory>
 
 #include "shared/deferred_types.h"
+#include "shared/vxgi_types.h"
 
 namespace idk::passes {
 
 graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                              const GBufferOutputs& gbuffer, graph::BufferHandle frame,
                                              graph::BufferHandle lights, graph::TextureHandle environment,
-                                             graph::TextureHandle target, const PointShadowOutputs& shadows) {
+                                             graph::TextureHandle target, const PointShadowOutputs& shadows,
+                                             const IndirectLightImages& indirect) {
     auto written = std::make_shared<graph::TextureHandle>();
     const GBufferOutputs g = gbuffer;
     graph.addPass(
@@ -30,9 +32,13 @@ graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Cont
                 b.read(shadows.table, graph::Access::StorageRead, kCs);
                 for (graph::TextureHandle cube : shadows.cubes) b.read(cube, graph::Access::SampledRead, kCs);
             }
+            if (indirect.diffuse.valid()) {
+                b.read(indirect.diffuse, graph::Access::StorageRead, kCs);
+                b.read(indirect.specular, graph::Access::StorageRead, kCs);
+            }
             *written = b.write(target, graph::Access::StorageWrite, kCs);
         },
-        [&ctx, &shaders, g, frame, written, table = shadows.table](graph::PassContext& pc) {
+        [&ctx, &shaders, g, frame, written, table = shadows.table, indirect](graph::PassContext& pc) {
             VkCommandBuffer cmd = pc.commandBuffer();
             vk::ComputePipelineDesc desc;
             desc.shader = vk::ShaderId::deferred_lighting_lighting_comp;
@@ -49,6 +55,8 @@ graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Cont
             push.depth = pc.texture(g.depth).storageIndex;
             push.target = pc.texture(*written).storageIndex;
             push.pointShadows = table.valid() ? pc.buffer(table).address : 0;
+            push.vxgiDiffuse = indirect.diffuse.valid() ? pc.texture(indirect.diffuse).storageIndex : gpu::kNoVxgi;
+            push.vxgiSpecular = indirect.specular.valid() ? pc.texture(indirect.specular).storageIndex : gpu::kNoVxgi;
             vk::pushConstants(cmd, ctx, push);
             VkExtent3D extent = pc.texture(*written).extent;
             vkCmdDispatch(cmd, vk::groupCount(extent.width, gpu::kLightingGroupSize),

@@ -2,6 +2,8 @@
 #pragma once
 #include <glm/glm.hpp>
 
+#include <vector>
+
 #include "passes/passes.hpp"
 #include "vk/features.hpp"
 
@@ -27,5 +29,22 @@ struct VoxelizeInputs {
 };
 graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                        const VoxelizeInputs& inputs, graph::TextureHandle grid, IndirectDrawLog* log);
+
+// vxgi_cone_trace.cpp: "vxgi_mip L" (one pass per level, 2x2x2 box of level L - 1; mipViews[L] = storage index
+// of level L's view), then "vxgi_cone_trace": per G-buffer pixel inside the grid, diffuse irradiance from a
+// cosine-weighted cone set and the reflection cone's radiance (transient RGBA16F, render resolution).
+struct ConeTraceInputs {
+    GBufferOutputs gbuffer;
+    graph::BufferHandle frame;
+    graph::TextureHandle environment;
+    graph::TextureHandle grid;           // after the voxelization (mip 0 written)
+    std::vector<uint32_t> mipViews;      // storage index of each level's view
+    uint32_t gridSampler = 0;            // bindless sampler: trilinear, transparent-black border
+    VoxelGridBox box;
+    uint32_t ringCones = 5;
+    float stepFactor = 0.5f;
+};
+IndirectLightImages addConeTracePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                       const ConeTraceInputs& inputs);
 
 }  // namespace idk::passes

@@ -58,8 +58,10 @@ struct LightingPush {
     uint depth;      // R32F: 0 near .. 1 far (1 = background)
     uint target;     // RGBA16F: linear radiance
     DeviceAddress pointShadows;  // GpuPointShadow[lightCount] (shared/shadow_types.h), 0: no light casts one
+    uint vxgiDiffuse;            // RGBA16F VXGI irradiance (include/vxgi_ambient.glsl), kNoVxgi: GI off
+    uint vxgiSpecular;           // RGBA16F VXGI reflection radiance
 };
-IDK_GPU_SIZE(LightingPush, 40);
+IDK_GPU_SIZE(LightingPush, 48);
 
 // sky.comp: writes the environment where depth == 1.
 struct SkyPush {

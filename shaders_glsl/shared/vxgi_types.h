@@ -41,5 +41,38 @@ struct VoxelMergePush {
 };
 IDK_GPU_SIZE(VoxelMergePush, 32);
 
+// mip.comp: level L (dst) = the 2x2x2 box average of level L - 1 (src), premultiplied rgb and coverage alike.
+struct VoxelMipPush {
+    uint src;      // storage index of level L - 1's view
+    uint dst;      // storage index of level L's view
+    uint dstSize;  // voxels per side of level L
+    uint pad;
+};
+IDK_GPU_SIZE(VoxelMipPush, 16);
+
+IDK_CONST(uint, kConeGroupSize, 8u);   // cone_trace: 8x8 pixels
+IDK_CONST(uint, kNoVxgi, 0xFFFFFFFFu); // LightingPush::vxgiDiffuse when GI is off
+
+// cone_trace.comp: per G-buffer pixel, the irradiance the diffuse cones gather and the radiance of the specular
+// cone, written where the pixel lies inside the grid (alpha 1; alpha 0 outside: the SH ambient stays).
+struct ConeTracePush {
+    DeviceAddress frame;   // GpuFrame
+    uint normal;           // G-buffer R32UI (octahedral)
+    uint material;         // G-buffer RGBA8 (metallic, roughness, occlusion, lit)
+    uint depth;            // G-buffer R32F
+    uint diffuse;          // RGBA16F out: irradiance E (rgb), inside-grid flag (a)
+    uint specular;         // RGBA16F out: radiance along the reflection cone (rgb)
+    uint grid;             // sampled index of the grid (all mips)
+    uint gridSampler;      // trilinear, clamp to transparent-black border
+    uint ringCones;        // diffuse cones around the normal's cap cone
+    vec3 gridMin;
+    float voxelSize;
+    uint gridSize;
+    float maxLod;          // mip count - 1
+    float stepFactor;      // march step = sample diameter * stepFactor
+    uint pad;
+};
+IDK_GPU_SIZE(ConeTracePush, 72);
+
 IDK_GPU_END
 #endif

@@ -22,19 +22,10 @@ passes::VoxelGridBox fitVoxelGrid(const scene::Aabb& bounds, uint32_t n) {
 VxgiFeature::~VxgiFeature() { release(); }
 
 void VxgiFeature::release() {
-    if (!grid_.image) return;
-    for (vk::StorageImageIndex s : mipStorage_) ctx_.bindless().release(s);
-    ctx_.bindless().release(sampled_);
+    if (!grid_.image.image) return;
+    grid_.release(ctx_);
+    for (VoxelVolume& d : directions_) d.release(ctx_);
     ctx_.bindless().release(sampler_);
-    VkDevice device = ctx_.device();
-    ctx_.destroyDeferred([device, views = mipViews_] {
-        for (VkImageView v : views) vkDestroyImageView(device, v, nullptr);
-    });
-    ctx_.destroyDeferred(grid_);
-    grid_ = {};
-    mipViews_.clear();
-    mipStorage_.clear();
-    written_ = false;
 }
 
 void VxgiFeature::setScene(const render::GpuScene& scene) {
@@ -47,53 +38,29 @@ void VxgiFeature::addPasses(FrameContext& f) {
         release();  // --gi none holds nothing
         return;
     }
-    if (grid_.image && grid_.extent.width != s.voxels) release();
-    if (!grid_.image) {
-        vk::ImageDesc desc;
-        desc.type = VK_IMAGE_TYPE_3D;
-        desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-        desc.extent = {s.voxels, s.voxels, s.voxels};
+    if (grid_.image.image && grid_.image.extent.width != s.voxels) release();
+    if (!grid_.image.image) {
+        grid_.create(ctx_, "vxgi voxel grid", s.voxels, 1);
+        const uint32_t half = s.voxels / 2;
         uint32_t levels = 1;
-        while ((s.voxels >> levels) > 0) ++levels;
-        desc.mipLevels = levels;
-        desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-        desc.name = "vxgi voxel grid";
-        desc.category = "vxgi";
-        grid_ = ctx_.createImage(desc);
-        for (uint32_t level = 0; level < levels; ++level) {
-            VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-            view.image = grid_.image;
-            view.viewType = VK_IMAGE_VIEW_TYPE_3D;
-            view.format = desc.format;
-            view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, level, 1, 0, 1};
-            VkImageView v = VK_NULL_HANDLE;
-            vk::check(vkCreateImageView(ctx_.device(), &view, nullptr, &v));
-            mipViews_.push_back(v);
-            mipStorage_.push_back(ctx_.bindless().addStorage(v));
-        }
-        sampled_ = ctx_.bindless().addSampled(grid_.view);
+        while ((half >> levels) > 0) ++levels;
+        const char* names[6] = {"vxgi mips +x", "vxgi mips -x", "vxgi mips +y", "vxgi mips -y", "vxgi mips +z",
+                                "vxgi mips -z"};
+        for (uint32_t d = 0; d < 6; ++d) directions_[d].create(ctx_, names[d], half, levels);
         vk::SamplerDesc sampler;
         sampler.address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;  // transparent black: outside = empty
         sampler_ = ctx_.bindless().addSampler(sampler);
     }
     box_ = fitVoxelGrid(bounds_, s.voxels);
 
-    graph::PhysicalTexture p;
-    p.image = grid_.image;
-    p.view = grid_.view;
-    p.format = grid_.format;
-    p.extent = grid_.extent;
-    p.mips = uint32_t(mipViews_.size());
-    p.storageIndex = mipStorage_[0].value;  // the merge writes level 0
-    p.sampledIndex = sampled_.value;
-    // Each frame rewrites the whole grid, so its previous contents never matter; it ends in GENERAL (storage)
-    // where the last frame's merge left it.
+    // The grid ends each frame in GENERAL (storage) where the merge and the mip passes used it; tests read it
+    // back from there. The directional mips end where the cone tracer sampled them.
     constexpr VkPipelineStageFlags2 kCs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    graph::ResourceState state;
-    if (written_) state = graph::stateAfterAccess(graph::Access::StorageWrite, graph::ResourceKind::Image, kCs);
-    written_ = true;
-    graph::TextureHandle grid =
-        f.graph.importTexture("vxgi voxel grid", p, state, graph::FinalUse{graph::Access::StorageWrite, kCs});
+    graph::TextureHandle grid = grid_.import(f.graph, "vxgi voxel grid", {graph::Access::StorageRead, kCs});
+    const char* names[6] = {"vxgi mips +x", "vxgi mips -x", "vxgi mips +y", "vxgi mips -y", "vxgi mips +z",
+                            "vxgi mips -z"};
+    for (uint32_t d = 0; d < 6; ++d)
+        directionHandles_[d] = directions_[d].import(f.graph, names[d], {graph::Access::SampledRead, kCs});
 
     passes::VoxelizeInputs in{f.scene, f.frameConstants, f.pointShadows, box_,
                               f.ctx.ladder("vxgi-atomics").chosen};
@@ -108,7 +75,17 @@ void VxgiFeature::addConeTracing(FrameContext& f) {
     in.frame = f.frameConstants;
     in.environment = f.environment;
     in.grid = f.voxelGrid;
-    for (vk::StorageImageIndex s : mipStorage_) in.mipViews.push_back(s.value);
+    for (uint32_t d = 0; d < 6; ++d) {
+        in.directions[d] = directionHandles_[d];
+        in.directionSampled[d] = directions_[d].sampled.value;
+    }
+    in.gridStorage = grid_.levelStorage[0].value;
+    in.gridSampled = grid_.sampled.value;
+    for (uint32_t level = 0; level < directions_[0].levelStorage.size(); ++level) {
+        std::array<uint32_t, 6> views{};
+        for (uint32_t d = 0; d < 6; ++d) views[d] = directions_[d].levelStorage[level].value;
+        in.directionLevels.push_back(views);
+    }
     in.gridSampler = sampler_.value;
     in.box = box_;
     in.ringCones = f.settings.vxgi.ringCones;

@@ -2,6 +2,7 @@
 #pragma once
 #include <glm/glm.hpp>
 
+#include <array>
 #include <vector>
 
 #include "passes/passes.hpp"
@@ -30,15 +31,20 @@ struct VoxelizeInputs {
 graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                        const VoxelizeInputs& inputs, graph::TextureHandle grid, IndirectDrawLog* log);
 
-// vxgi_cone_trace.cpp: "vxgi_mip L" (one pass per level, 2x2x2 box of level L - 1; mipViews[L] = storage index
-// of level L's view), then "vxgi_cone_trace": per G-buffer pixel inside the grid, diffuse irradiance from a
+// vxgi_cone_trace.cpp: "vxgi_mip L" (one pass per level of the six directional volumes, each from the level
+// below: the grid for L = 0), then "vxgi_cone_trace": per G-buffer pixel inside the grid, diffuse irradiance from a
 // cosine-weighted cone set and the reflection cone's radiance (transient RGBA16F, render resolution).
 struct ConeTraceInputs {
     GBufferOutputs gbuffer;
     graph::BufferHandle frame;
     graph::TextureHandle environment;
-    graph::TextureHandle grid;           // after the voxelization (mip 0 written)
-    std::vector<uint32_t> mipViews;      // storage index of each level's view
+    graph::TextureHandle grid;           // after the voxelization (level 0 only)
+    uint32_t gridStorage = 0, gridSampled = 0;
+    // Anisotropic mips, one volume per direction (+x -x +y -y +z -z), level k = the grid's level k + 1:
+    // the frame's handles, their sampled indices, and the storage index of each level's view per direction.
+    std::array<graph::TextureHandle, 6> directions;
+    std::array<uint32_t, 6> directionSampled{};
+    std::vector<std::array<uint32_t, 6>> directionLevels;
     uint32_t gridSampler = 0;            // bindless sampler: trilinear, transparent-black border
     VoxelGridBox box;
     uint32_t ringCones = 5;

@@ -8,6 +8,25 @@
 #include "environment.glsl"
 #include "vxgi_types.h"
 
+vec4 sampleVolume(ConeTracePush c, uint volume, vec3 uvw, float lod) {
+    return textureLod(sampler3D(gTextures3D[nonuniformEXT(volume)], gSamplers[nonuniformEXT(c.gridSampler)]), uvw, lod);
+}
+
+// The grid seen along `dir` at `lod` (in grid levels): level 0 is the grid, above it the three directional volumes
+// facing the travel direction, weighted by |dir|: a thin surface facing axis a covers |dir_a| of what it covers
+// seen straight along a (its projected area), which dir^2 weights would understate; where the weights add up to
+// more than full coverage (solid blocks), the sample is scaled back to opacity 1. Between levels 0 and 1 a blend.
+vec4 sampleVoxels(ConeTracePush c, vec3 uvw, vec3 dir, float lod) {
+    vec3 w = abs(dir);
+    float l = max(lod - 1.0, 0.0);
+    vec4 directional = w.x * sampleVolume(c, c.directions[dir.x >= 0.0 ? 0 : 1], uvw, l) +
+                       w.y * sampleVolume(c, c.directions[dir.y >= 0.0 ? 2 : 3], uvw, l) +
+                       w.z * sampleVolume(c, c.directions[dir.z >= 0.0 ? 4 : 5], uvw, l);
+    if (directional.a > 1.0) directional /= directional.a;
+    if (lod >= 1.0) return directional;
+    return mix(sampleVolume(c, c.grid, uvw, 0.0), directional, lod);
+}
+
 // Radiance arriving at `origin` from the cone (unit axis `dir`, tangent of its half-angle `tanHalf`).
 vec3 traceCone(GpuFrame f, ConeTracePush c, vec3 origin, vec3 dir, float tanHalf) {
     const float gridWorld = c.voxelSize * float(c.gridSize);
@@ -20,8 +39,7 @@ vec3 traceCone(GpuFrame f, ConeTracePush c, vec3 origin, vec3 dir, float tanHalf
         if (lod > c.maxLod) break;
         vec3 uvw = (origin + dir * dist - c.gridMin) / gridWorld;
         if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) break;
-        vec4 s = textureLod(sampler3D(gTextures3D[nonuniformEXT(c.grid)], gSamplers[nonuniformEXT(c.gridSampler)]),
-                            uvw, lod);
+        vec4 s = sampleVoxels(c, uvw, dir, lod);
         float step = diameter * c.stepFactor;
         if (s.a > 0.0) {
             // The sample's coverage is that of a slab `diameter` thick; a step of `step` crosses step / diameter

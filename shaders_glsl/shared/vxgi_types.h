@@ -41,14 +41,17 @@ struct VoxelMergePush {
 };
 IDK_GPU_SIZE(VoxelMergePush, 32);
 
-// mip.comp: level L (dst) = the 2x2x2 box average of level L - 1 (src), premultiplied rgb and coverage alike.
+// mip.comp: one level of the anisotropic mip chain (Crassin et al. 2011): for each direction d of +x -x +y -y +z
+// -z, a voxel of level L is its 2x2x2 children of level L - 1 (of direction d; the grid itself for L = 0)
+// composited front to back in pairs along d, the four pairs averaged across. A thin wall thus stays opaque seen
+// across it at every level, where an isotropic mean would fade it by half per level.
 struct VoxelMipPush {
-    uint src;      // storage index of level L - 1's view
-    uint dst;      // storage index of level L's view
+    uint src[6];   // storage indices of the source level per direction (all the grid's for L = 0)
+    uint dst[6];   // storage indices of level L per direction
     uint dstSize;  // voxels per side of level L
     uint pad;
 };
-IDK_GPU_SIZE(VoxelMipPush, 16);
+IDK_GPU_SIZE(VoxelMipPush, 56);
 
 IDK_CONST(uint, kConeGroupSize, 8u);   // cone_trace: 8x8 pixels
 IDK_CONST(uint, kNoVxgi, 0xFFFFFFFFu); // LightingPush::vxgiDiffuse when GI is off
@@ -62,17 +65,18 @@ struct ConeTracePush {
     uint depth;            // G-buffer R32F
     uint diffuse;          // RGBA16F out: irradiance E (rgb), inside-grid flag (a)
     uint specular;         // RGBA16F out: radiance along the reflection cone (rgb)
-    uint grid;             // sampled index of the grid (all mips)
+    uint grid;             // sampled index of the grid (level 0)
+    uint directions[6];    // sampled indices of the directional mips (+x -x +y -y +z -z)
     uint gridSampler;      // trilinear, clamp to transparent-black border
     uint ringCones;        // diffuse cones around the normal's cap cone
     vec3 gridMin;
     float voxelSize;
     uint gridSize;
-    float maxLod;          // mip count - 1
+    float maxLod;          // in grid levels: the directional mips' count
     float stepFactor;      // march step = sample diameter * stepFactor
     uint pad;
 };
-IDK_GPU_SIZE(ConeTracePush, 72);
+IDK_GPU_SIZE(ConeTracePush, 96);
 
 IDK_GPU_END
 #endif

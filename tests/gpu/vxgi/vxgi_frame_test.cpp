@@ -1,5 +1,6 @@
 // vxgi_frame_test.cpp: whole frames with --gi vxgi against the path tracer, on a closed room (2 m cube of grey
 // inward-facing walls) lit only by an emissive panel in its ceiling, environment off, 64x64 pixels, 64^3 voxels.
+//  * --gi none: no vxgi_* pass runs and no grid exists; with vxgi all ten passes run (64^3: six mip levels).
 //  * --gi none: the room is black: every pixel that does not see the panel is exactly 0 (the rasterizer has no
 //    area lights; emission reaches other surfaces only through GI).
 //  * --gi vxgi (64^3 voxels, 1 + 8 diffuse cones, step 0.5): the walls receive the panel's light through the
@@ -17,6 +18,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <string>
 
 #include "render/path_tracer.hpp"
 #include "render/renderer.hpp"
@@ -69,6 +71,7 @@ scene::CameraView camera() {
 
 core::ImageRgba32f raster(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene::Scene& s, frame::GiMode gi,
                           uint32_t voxels = 64, float step = 0.5f, uint32_t cones = 8) {
+    const bool on = gi == frame::GiMode::Vxgi;
     render::RenderSettings settings;
     settings.output = render::OutputKind::Hdr;
     settings.environmentIntensity = 0.0f;
@@ -78,7 +81,13 @@ core::ImageRgba32f raster(vk::Context& ctx, vk::ShaderLibrary& shaders, const sc
     settings.vxgi.ringCones = cones;
     render::Renderer renderer(ctx, shaders, settings);
     renderer.setScene(s);
-    return renderer.renderOffscreen(camera(), kSize, kSize).image;
+    render::FrameResult frame = renderer.renderOffscreen(camera(), kSize, kSize);
+    // --gi none: no VXGI pass ran and nothing is held; vxgi: the voxelization, mip and cone passes all ran.
+    size_t vxgiPasses = 0;
+    for (const std::string& pass : frame.passesRun) vxgiPasses += pass.rfind("vxgi_", 0) == 0;
+    EXPECT_EQ(vxgiPasses, on ? 3u + 6u + 1u : 0u) << "clear, voxelize, merge, 6 mip levels (64^3), cone trace";
+    EXPECT_EQ(renderer.vxgi().grid() != nullptr, on);
+    return frame.image;
 }
 
 core::ImageRgba32f pathTrace(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene::Scene& s, uint32_t depth) {

@@ -35,7 +35,10 @@ vec3 traceCone(GpuFrame f, ConeTracePush c, vec3 origin, vec3 dir, float tanHalf
     float dist = c.voxelSize;  // the first voxel around the origin is the surface's own
     while (opacity < 0.99) {
         float diameter = max(c.voxelSize, 2.0 * tanHalf * dist);
-        float lod = log2(diameter / c.voxelSize);
+        // Trilinear filtering at level L blends cells of 2^L voxels with a tent two cells wide: the level whose
+        // filter spans the sample's diameter is one below log2(diameter / voxel). (Taking log2 itself would filter
+        // over twice the cone's width, and the cone would see the surface it starts from.)
+        float lod = max(log2(diameter / c.voxelSize) - 1.0, 0.0);
         if (lod > c.maxLod) break;
         vec3 uvw = (origin + dir * dist - c.gridMin) / gridWorld;
         if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) break;

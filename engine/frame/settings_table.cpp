@@ -64,6 +64,11 @@ std::vector<SettingOption> buildTable() {
     t.push_back({"--gi-step", "Global illumination", "cone step", "VXGI cone march step in sample diameters",
                  OptionKind::Number, 0.1, 1.0, {}, [](const RenderSettings& s) { return double(s.vxgi.stepFactor); },
                  [](RenderSettings& s, double v) { s.vxgi.stepFactor = float(v); }});
+    t.push_back({"--gi-raster", "Global illumination", "voxel raster",
+                 "VXGI voxelization: conservative (thin walls never leak) or centre (pixel centres only)",
+                 OptionKind::Choice, 0.0, 0.0, {"conservative", "centre"},
+                 [](const RenderSettings& s) { return double(s.vxgi.raster); },
+                 [](RenderSettings& s, double v) { s.vxgi.raster = frame::VoxelRaster(v); }});
     return t;
 }
 

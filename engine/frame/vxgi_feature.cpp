@@ -64,6 +64,8 @@ void VxgiFeature::addPasses(FrameContext& f) {
 
     passes::VoxelizeInputs in{f.scene, f.frameConstants, f.pointShadows, box_,
                               f.ctx.ladder("vxgi-atomics").chosen};
+    if (f.settings.vxgi.raster == VoxelRaster::Conservative)
+        in.conservative = f.ctx.ladder("conservative-raster").chosen;
     f.voxelGrid = passes::addVoxelizePasses(f.graph, f.ctx, f.shaders, in, grid, &f.log);
     f.voxelBox = box_;
 }

@@ -1,5 +1,6 @@
 // vxgi_passes.hpp: the passes of voxel global illumination (engine/frame/vxgi_feature.hpp drives them).
 #pragma once
+#include <optional>
 #include <glm/glm.hpp>
 
 #include <array>
@@ -27,6 +28,9 @@ struct VoxelizeInputs {
     PointShadowOutputs shadows;
     VoxelGridBox box;
     vk::Rung atomics = vk::Rung::Native;  // ladder "vxgi-atomics": Native float add, Fallback r32ui max
+    // Ladder "conservative-raster": Native VK_EXT_conservative_rasterization, Fallback geometry-shader dilation;
+    // none: pixel-centre rasterization (thin voxelization).
+    std::optional<vk::Rung> conservative;
 };
 graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                        const VoxelizeInputs& inputs, graph::TextureHandle grid, IndirectDrawLog* log);

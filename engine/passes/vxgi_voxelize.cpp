@@ -4,6 +4,8 @@
 // 3-draw fallback; the rung of write conflicts follows the "vxgi-atomics" ladder). The GL-interop rung of that
 // ladder (GL_NV_shader_atomic_fp16_vector straight into the RGBA16F image) belongs to the GL-interop issue: when it
 // lands it is one more `mode` here with its own fragment shader, and the merge pass is skipped.
+// Rasterisation follows the "conservative-raster" ladder unless --gi-raster centre: VK_EXT_conservative_rasterization
+// (overestimate) where the device has it, else voxelize.geom's triangle dilation, so thin walls never leak.
 #include "passes/vxgi_passes.hpp"
 
 #include <memory>
@@ -57,11 +59,13 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
     const graph::BufferHandle frame = in.frame;
     const graph::BufferHandle table = in.shadows.table;
     const VoxelGridBox box = in.box;
+    const std::optional<vk::Rung> conservative = in.conservative;
     graph.addPass(
         "vxgi_voxelize",
         [&](graph::PassBuilder& b) {
             constexpr VkPipelineStageFlags2 kVs = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT;
             constexpr VkPipelineStageFlags2 kFs = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+            // (voxelize.geom reads only its inputs: no buffer access, so no geometry-stage dependency.)
             for (uint32_t i = 0; i < acc->count; ++i)
                 acc->images[i] = b.write(acc->images[i], graph::Access::StorageReadWrite, kFs);
             b.read(frame, graph::Access::StorageRead, kVs | kFs);
@@ -80,7 +84,7 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             if (s.colors.valid()) b.read(s.colors, graph::Access::StorageRead, kVs);
             if (s.uv1.valid()) b.read(s.uv1, graph::Access::StorageRead, kVs);
         },
-        [&ctx, &shaders, s, frame, table, box, acc, mode, log](graph::PassContext& pc) {
+        [&ctx, &shaders, s, frame, table, box, acc, mode, conservative, log](graph::PassContext& pc) {
             if (s.drawCount == 0) return;
             VkCommandBuffer cmd = pc.commandBuffer();
             // No attachments: the fragments' only output is their atomics (the render area sets the raster grid).
@@ -89,6 +93,13 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             desc.vertex = vk::ShaderId::vxgi_voxelize_vert;
             desc.fragment = mode == gpu::kVoxelAtomicsFloatAdd ? vk::ShaderId::vxgi_voxelize_float_frag
                                                                : vk::ShaderId::vxgi_voxelize_uint_frag;
+            if (conservative == vk::Rung::Native) {
+                desc.conservative = true;
+            } else if (conservative == vk::Rung::Fallback) {
+                desc.geometry = vk::ShaderId::vxgi_voxelize_geom;
+                desc.fragment = mode == gpu::kVoxelAtomicsFloatAdd ? vk::ShaderId::vxgi_voxelize_float_dilated_frag
+                                                                   : vk::ShaderId::vxgi_voxelize_uint_dilated_frag;
+            }
             desc.depthTest = false;
             desc.depthWrite = false;
             desc.cull = VK_CULL_MODE_NONE;  // both faces: a wall seen from behind in the projection still fills

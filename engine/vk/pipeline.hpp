@@ -56,6 +56,8 @@ struct GraphicsPipelineDesc {
     uint32_t viewMask = 0;
     std::vector<SpecConstant> spec;
     uint32_t pushBytes = 0;
+    std::optional<ShaderId> geometry;      // between vertex and fragment (voxelization's triangle dilation)
+    bool conservative = false;             // VK_EXT_conservative_rasterization, overestimate (the device must have it)
 };
 
 // Checks one module against the engine's conventions; throws PipelineError naming the shader.

@@ -24,6 +24,9 @@ layout(location = 3) in vec2 inUv;
 layout(location = 4) flat in uint inDraw;
 layout(location = 5) in vec4 inColor;
 layout(location = 6) in vec2 inUv1;
+#ifdef IDK_VOXELIZE_DILATED
+layout(location = 7) flat in vec4 inBounds;  // voxelize.geom's dilated triangle: its original NDC bounds + 1/2 pixel
+#endif
 
 // Dominant axis of a plane's normal: the largest |component|, the lower axis on ties (the CPU oracle's rule).
 uint dominantAxis(vec3 n) {
@@ -45,6 +48,12 @@ bool voxelFragment(out ivec3 voxel, out vec3 radiance) {
     voxel = ivec3(0);
     radiance = vec3(0.0);
     if (dominantAxis(geometric) != p.axis) return false;
+#ifdef IDK_VOXELIZE_DILATED
+    // Keep a pixel only where its square overlaps the triangle's bounds: cuts the dilation's overshoot at sharp
+    // corners. The viewport is the plain N x N one (no y flip), so NDC = pixel / N * 2 - 1.
+    vec2 ndc = gl_FragCoord.xy / float(p.gridSize) * 2.0 - 1.0;
+    if (any(lessThan(ndc, inBounds.xy)) || any(greaterThan(ndc, inBounds.zw))) return false;
+#endif
     if (m.alphaMode == kAlphaMask && baseColor.a < m.alphaCutoff) return false;
 
     vec3 n = normalize(inNormal);

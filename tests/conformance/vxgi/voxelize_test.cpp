@@ -7,6 +7,10 @@
 //    rgb is the oracle's MEAN of its fragments within 0.2% (+1e-5); empty voxels are all-zero.
 //  * Portable rung (three r32ui + max, a context with forceFallbackRungs): the same against the oracle's MAX.
 //  * Both rungs give the same grid (within 0.1%) on the voxels holding one fragment.
+//  (These three use --gi-raster centre, the oracle's thin voxelization.)
+//  * Thin wall, conservative raster (the "conservative-raster" ladder; geometry-shader dilation on lavapipe): a
+//    wall one voxel thin whose edges stop inside voxels: every voxel column along its normal that the wall touches
+//    holds a wall voxel (no holes), and no column it does not touch does. Centre raster misses the edge columns.
 #include <gtest/gtest.h>
 
 #include <glm/gtc/packing.hpp>
@@ -100,12 +104,14 @@ struct GridResult {
     passes::VoxelGridBox box;
 };
 
-GridResult voxelize(vk::Context& ctx, vk::ShaderLibrary& shaders, const TestScene& t) {
+GridResult voxelize(vk::Context& ctx, vk::ShaderLibrary& shaders, const TestScene& t,
+                    frame::VoxelRaster raster = frame::VoxelRaster::Centre) {
     render::RenderSettings settings;
     settings.output = render::OutputKind::Hdr;
     settings.pointShadows.maxLights = 0;  // the oracle has no shadows
     settings.vxgi.mode = frame::GiMode::Vxgi;
     settings.vxgi.voxels = kVoxels;
+    settings.vxgi.raster = raster;  // Centre: the thin voxelization the oracle computes
     render::Renderer renderer(ctx, shaders, settings);
     renderer.setScene(toScene(t));
     scene::CameraView camera;
@@ -198,6 +204,44 @@ TEST_F(VoxelizeTest, RungsMatchCpuVoxelizer) {
     }
     std::printf("one-fragment voxels: %zu, bit-identical across rungs: %zu\n", single, identical);
     EXPECT_EQ(differing, 0u) << "of " << single << " one-fragment voxels";
+}
+
+// A wall (normal +x, one voxel thin) inside the open box, its edges stopping inside voxels (not at their centres).
+// Over the voxel columns along x (inner ones, away from the box's walls) counts those the wall's rectangle touches
+// at all, those of them holding a wall voxel (the wall's x layer or a neighbour), and untouched ones holding one.
+TEST_F(VoxelizeTest, ThinWallHasNoHolesWithConservativeRaster) {
+    TestScene t = makeTestScene();
+    t.quads.resize(6);  // the open box's walls only
+    t.quads.push_back(quad({0.013f, -0.012f, 0.021f}, {1, 0, 0}, {0.803f, 0.689f}, {0.8f, 0.8f, 0.8f}, true));
+    t.emissive.assign(t.quads.size(), glm::vec3(0.0f));
+    const PlacedQuad& wall = t.quads.back();
+    for (frame::VoxelRaster raster : {frame::VoxelRaster::Centre, frame::VoxelRaster::Conservative}) {
+        GridResult r = voxelize(ctx(), shaders(), t, raster);
+        ASSERT_EQ(r.grid.size(), size_t(kVoxels) * kVoxels * kVoxels);
+        const scene::Aabb wallBounds = makePlacedQuadScene({wall}).bounds;  // the quad's extent in y and z
+        const glm::dvec3 vmin(wallBounds.min), vmax(wallBounds.max);
+        const int layer = int(std::floor((double(wall.centre.x) - r.box.gridMin.x) / r.box.voxelSize));
+        size_t touched = 0, covered = 0, outside = 0;
+        for (int z = 1; z + 1 < int(kVoxels); ++z)
+            for (int y = 1; y + 1 < int(kVoxels); ++y) {
+                const double y0 = r.box.gridMin.y + y * double(r.box.voxelSize), y1 = y0 + r.box.voxelSize;
+                const double z0 = r.box.gridMin.z + z * double(r.box.voxelSize), z1 = z0 + r.box.voxelSize;
+                const bool touches = y1 > vmin.y && y0 < vmax.y && z1 > vmin.z && z0 < vmax.z;
+                bool holds = false;
+                for (int x = layer - 1; x <= layer + 1; ++x)
+                    holds = holds || r.grid[(size_t(z) * kVoxels + y) * kVoxels + x].a > 0.0f;
+                touched += touches;
+                covered += touches && holds;
+                outside += !touches && holds;
+            }
+        std::printf("thin wall, %s raster: %zu columns touched, %zu hold a wall voxel, %zu untouched columns do\n",
+                    raster == frame::VoxelRaster::Centre ? "centre" : "conservative", touched, covered, outside);
+        EXPECT_EQ(outside, 0u);
+        if (raster == frame::VoxelRaster::Conservative)
+            EXPECT_EQ(covered, touched) << "holes in the thin wall";
+        else
+            EXPECT_LT(covered, touched) << "the test's wall must have edge columns centre raster misses";
+    }
 }
 
 }  // namespace

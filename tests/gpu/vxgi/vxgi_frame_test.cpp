@@ -207,5 +207,66 @@ TEST_F(VxgiFrameTest, WhiteFloorUnderUniformSkyReflectsTheSky) {
     }
 }
 
+// Thin walls never leak: the closed room split at x = 0.013 by a one-voxel-thin double-sided wall (its plane inside
+// a voxel), the emissive panel over the lit half (x > 0) only, no sky, 64^3 voxels. A camera in each half looking
+// down -z; every surface the dark camera sees is in the dark half, whose true radiance is 0 (the path tracer's).
+// Asserted with conservative voxelization: the dark view's mean radiance is below 1% of the lit view's.
+// DISABLED: it fails today. Measured: dark/lit 0.4853 with conservative raster (0.00765 vs 0.01577), 0.4934 with
+// centre raster: the voxelized wall has no holes (VoxelizeTest.ThinWallHasNoHolesWithConservativeRaster), the
+// light crosses it in the cone march (suspected, not yet isolated): the trilinear tent at level >= 1 spans two
+// cells, one on each side of the wall, and the wall is opaque only in the +-x directional volumes, which the
+// mostly vertical cones of the dark floor weight by |dir.x| alone. Open VXGI defect; enable this test with its fix.
+TEST_F(VxgiFrameTest, DISABLED_ThinWallKeepsTheDarkHalfDark) {
+    std::vector<PlacedQuad> q;
+    q.push_back(wall({0, -1, 0}, {0, 1, 0}, {1, 1}));
+    q.push_back(wall({-1, 0, 0}, {1, 0, 0}, {1, 1}));
+    q.push_back(wall({1, 0, 0}, {-1, 0, 0}, {1, 1}));
+    q.push_back(wall({0, 0, -1}, {0, 0, 1}, {1, 1}));
+    q.push_back(wall({0, 0, 1}, {0, 0, -1}, {1, 1}));
+    q.push_back(wall({0.5f, 1, 0}, {0, -1, 0}, {0.3f, 0.3f}));  // the panel, over the lit half
+    q.push_back(wall({-0.4f, 1, 0}, {0, -1, 0}, {0.6f, 1}));
+    q.push_back(wall({0.9f, 1, 0}, {0, -1, 0}, {0.1f, 1}));
+    q.push_back(wall({0.5f, 1, -0.65f}, {0, -1, 0}, {0.3f, 0.35f}));
+    q.push_back(wall({0.5f, 1, 0.65f}, {0, -1, 0}, {0.3f, 0.35f}));
+    PlacedQuad divider = wall({0.013f, 0, 0}, {1, 0, 0}, {1, 1});
+    divider.doubleSided = true;
+    q.push_back(divider);
+    scene::Scene s = makePlacedQuadScene(q);
+    for (scene::Material& m : s.materials) m.metallic = 0.0f;
+    s.materials[5].emissive = glm::vec3(8.0f);
+    auto view = [](float x) {
+        scene::CameraView c;
+        c.position = {x, -0.2f, 0.9f};
+        c.forward = glm::normalize(glm::vec3(0.0f, -0.3f, -1.0f));
+        c.up = glm::normalize(glm::cross(glm::cross(c.forward, glm::vec3(0, 1, 0)), c.forward));
+        c.yfov = 0.5f;
+        c.znear = 0.01f;
+        return c;
+    };
+    for (frame::VoxelRaster raster : {frame::VoxelRaster::Centre, frame::VoxelRaster::Conservative}) {
+        render::RenderSettings settings;
+        settings.output = render::OutputKind::Hdr;
+        settings.environmentIntensity = 0.0f;
+        settings.vxgi.mode = frame::GiMode::Vxgi;
+        settings.vxgi.voxels = 64;
+        settings.vxgi.raster = raster;
+        render::Renderer renderer(ctx(), shaders(), settings);
+        renderer.setScene(s);
+        double mean[2] = {0.0, 0.0};
+        for (int side = 0; side < 2; ++side) {
+            const core::ImageRgba32f img = renderer.renderOffscreen(view(side == 0 ? -0.5f : 0.5f), kSize, kSize).image;
+            for (size_t i = 0; i < size_t(kSize) * kSize; ++i) mean[side] += luminance(img, i);
+            mean[side] /= double(kSize) * kSize;
+        }
+        std::printf("thin wall, %s raster: mean radiance dark half %.5f, lit half %.5f (ratio %.4f)\n",
+                    raster == frame::VoxelRaster::Centre ? "centre" : "conservative", mean[0], mean[1],
+                    mean[0] / mean[1]);
+        EXPECT_GT(mean[1], 0.0) << "the lit half is lit";
+        if (raster == frame::VoxelRaster::Conservative) {
+            EXPECT_LT(mean[0], 0.01 * mean[1]);
+        }
+    }
+}
+
 }  // namespace
 }  // namespace idk::test

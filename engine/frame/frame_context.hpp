@@ -12,6 +12,7 @@
 #include "graph/render_graph.hpp"
 #include "passes/culling.hpp"
 #include "passes/passes.hpp"
+#include "passes/vxgi_passes.hpp"
 #include "render/render_settings.hpp"
 #include "scene/camera.hpp"
 #include "shared/scene_types.h"
@@ -61,6 +62,9 @@ struct FrameContext {
     graph::TextureHandle motionVectors;
     bool temporalReset = true;                     // no usable history this frame (first frame, reset, resize)
     graph::TextureHandle ambientOcclusion;         // R32F ambient visibility (ssao_feature.cpp); invalid: none
+    graph::TextureHandle voxelGrid;                // VXGI: RGBA16F radiance + coverage grid (vxgi_feature.hpp)
+    passes::VoxelGridBox voxelBox;                 // its world cube
+    passes::IndirectLightImages indirectLight;     // VXGI cone-traced light per pixel (deferred lighting reads it)
 };
 
 }  // namespace idk::frame

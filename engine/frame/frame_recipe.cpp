@@ -31,6 +31,7 @@ void Features::setScene(vk::Context& ctx, const render::GpuScene& scene, uint32_
     pointShadows.reset();
     transparency.setScene(ctx, scene, framesInFlight);
     culling.setScene();
+    vxgi.setScene(scene);
 }
 
 graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Features& x) {
@@ -40,13 +41,15 @@ graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Fe
     // Shadows before the G-buffer: the installed validation layer counts every draw that uses the bindless
     // sampled array (the G-buffer's) as reading the cubes, so their write must not follow such a draw.
     x.pointShadows.addPasses(f, scene);                               // f.pointShadows
+    x.vxgi.addPasses(f);                                              // f.voxelGrid (--gi vxgi)
     f.gbuffer = x.culling.addGBuffer(f, scene);                       // GPU culling; f.depthPyramid
     x.temporal.addMotionVectors(f, scene);                            // f.motionVectors
     x.vrs.beginFrame(f);                                              // f.vrsRates: last frame's shading rates
     x.ssao.addPasses(f);                                              // f.ambientOcclusion
+    x.vxgi.addConeTracing(f);                                         // f.indirectLight (--gi vxgi)
     f.hdr = passes::addDeferredLightingPass(f.graph, f.ctx, f.shaders, f.gbuffer, f.frameConstants, f.scene.lights,
                                             f.environment, hdrTarget(f), f.pointShadows, f.vrsRates,
-                                            f.ambientOcclusion);
+                                            f.ambientOcclusion, f.indirectLight);
     f.hdr = passes::addSkyPass(f.graph, f.ctx, f.shaders, f.gbuffer.depth, f.frameConstants, f.environment, f.hdr,
                                f.vrsRates);
     x.vrs.addReconstructPass(f);                                      // VRS: fills the pixels not shaded

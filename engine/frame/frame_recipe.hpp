@@ -12,13 +12,14 @@
 #include "frame/temporal_feature.hpp"
 #include "frame/transparency_feature.hpp"
 #include "frame/vrs_feature.hpp"
+#include "frame/vxgi_feature.hpp"
 #include "render/gpu_scene.hpp"
 
 namespace idk::frame {
 
 struct Features {
     explicit Features(vk::Context& ctx)
-        : inputs(ctx), environment(ctx), vrs(ctx), culling(ctx), temporal(ctx), ssao(ctx) {}
+        : inputs(ctx), environment(ctx), vrs(ctx), culling(ctx), temporal(ctx), ssao(ctx), vxgi(ctx) {}
     void setScene(vk::Context& ctx, const render::GpuScene& scene, uint32_t framesInFlight);
 
     FrameInputs inputs;
@@ -30,6 +31,7 @@ struct Features {
     TemporalFeature temporal;
     BloomFeature bloom;
     SsaoFeature ssao;
+    VxgiFeature vxgi;
 };
 
 // Declares the whole PBR frame into f.graph, ending in f.output (imported by the caller): the tonemapped image

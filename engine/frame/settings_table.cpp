@@ -21,6 +21,14 @@ double cubeSizeIndex(uint32_t size) {
     return 2.0;
 }
 
+constexpr std::array<uint32_t, 5> kVoxelGridSizes = {64, 128, 256, 384, 512};
+
+double voxelSizeIndex(uint32_t size) {
+    for (size_t i = 0; i < kVoxelGridSizes.size(); ++i)
+        if (kVoxelGridSizes[i] == size) return double(i);
+    return 1.0;
+}
+
 std::vector<SettingOption> buildTable() {
     std::vector<SettingOption> t;
     // Tonemap and environment.
@@ -90,6 +98,27 @@ std::vector<SettingOption> buildTable() {
     t.push_back({"--ssao-samples", "SSAO", "samples", "occlusion rays per pixel per frame", OptionKind::Integer, 1.0,
                  64.0, {}, [](const RenderSettings& s) { return double(s.ssao.samples); },
                  [](RenderSettings& s, double v) { s.ssao.samples = uint32_t(v); }});
+    // Voxel global illumination (frame/vxgi_feature.hpp).
+    t.push_back({"--gi", "Global illumination", "global illumination",
+                 "indirect light: none (environment ambient only) or vxgi (voxel cone tracing)", OptionKind::Choice,
+                 0.0, 0.0, {"none", "vxgi"}, [](const RenderSettings& s) { return double(s.vxgi.mode); },
+                 [](RenderSettings& s, double v) { s.vxgi.mode = frame::GiMode(v); }});
+    t.push_back({"--voxels", "Global illumination", "voxel grid size", "VXGI grid voxels per side",
+                 OptionKind::Choice, 0.0, 0.0, {"64", "128", "256", "384", "512"},
+                 [](const RenderSettings& s) { return voxelSizeIndex(s.vxgi.voxels); },
+                 [](RenderSettings& s, double v) { s.vxgi.voxels = kVoxelGridSizes[size_t(v)]; }});
+    t.push_back({"--gi-cones", "Global illumination", "ring cones",
+                 "VXGI diffuse cones around the normal's cone (cosine-weighted set of 1 + N)", OptionKind::Integer,
+                 3.0, 16.0, {}, [](const RenderSettings& s) { return double(s.vxgi.ringCones); },
+                 [](RenderSettings& s, double v) { s.vxgi.ringCones = uint32_t(v); }});
+    t.push_back({"--gi-step", "Global illumination", "cone step", "VXGI cone march step in sample diameters",
+                 OptionKind::Number, 0.1, 1.0, {}, [](const RenderSettings& s) { return double(s.vxgi.stepFactor); },
+                 [](RenderSettings& s, double v) { s.vxgi.stepFactor = float(v); }});
+    t.push_back({"--gi-raster", "Global illumination", "voxel raster",
+                 "VXGI voxelization: conservative (thin walls never leak) or centre (pixel centres only)",
+                 OptionKind::Choice, 0.0, 0.0, {"conservative", "centre"},
+                 [](const RenderSettings& s) { return double(s.vxgi.raster); },
+                 [](RenderSettings& s, double v) { s.vxgi.raster = frame::VoxelRaster(v); }});
     return t;
 }
 

@@ -2,12 +2,13 @@
 // glTF metallic-roughness BRDF per punctual light, environment ambient times occlusion, plus emission, written
 // as linear radiance into an RGBA16F storage image. Ports IDKEngine's DeferredLighting pass (a fullscreen
 // fragment shader there, ToScreen/vertex.glsl + DeferredLighting/fragment.glsl) with point-light cube shadows
-// (passes/point_shadows.cpp); GI comes later.
+// (passes/point_shadows.cpp); inside the VXGI grid the cone-traced light replaces the ambient (vxgi_ambient.glsl).
 #include "passes/passes.hpp"
 
 #include <memory>
 
 #include "shared/deferred_types.h"
+#include "shared/vxgi_types.h"
 
 namespace idk::passes {
 
@@ -16,7 +17,8 @@ graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Cont
                                              graph::BufferHandle lights, graph::TextureHandle environment,
                                              graph::TextureHandle target, const PointShadowOutputs& shadows,
                                              graph::BufferHandle vrsRates,
-                                             graph::TextureHandle ambientOcclusion) {
+                                             graph::TextureHandle ambientOcclusion,
+                                             const IndirectLightImages& indirect) {
     auto written = std::make_shared<graph::TextureHandle>();
     const GBufferOutputs g = gbuffer;
     graph.addPass(
@@ -34,9 +36,14 @@ graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Cont
             }
             if (vrsRates.valid()) b.read(vrsRates, graph::Access::StorageRead, kCs);
             if (ambientOcclusion.valid()) b.read(ambientOcclusion, graph::Access::StorageRead, kCs);
+            if (indirect.diffuse.valid()) {
+                b.read(indirect.diffuse, graph::Access::StorageRead, kCs);
+                b.read(indirect.specular, graph::Access::StorageRead, kCs);
+            }
             *written = b.write(target, graph::Access::StorageWrite, kCs);
         },
-        [&ctx, &shaders, g, frame, written, table = shadows.table, vrsRates, ambientOcclusion](graph::PassContext& pc) {
+        [&ctx, &shaders, g, frame, written, table = shadows.table, vrsRates, ambientOcclusion,
+         indirect](graph::PassContext& pc) {
             VkCommandBuffer cmd = pc.commandBuffer();
             vk::ComputePipelineDesc desc;
             desc.shader = vk::ShaderId::deferred_lighting_lighting_comp;
@@ -55,6 +62,8 @@ graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Cont
             push.pointShadows = table.valid() ? pc.buffer(table).address : 0;
             push.vrsRates = vrsRates.valid() ? pc.buffer(vrsRates).address : 0;
             push.ambientOcclusion = ambientOcclusion.valid() ? pc.texture(ambientOcclusion).storageIndex : gpu::kLightingNoAo;
+            push.vxgiDiffuse = indirect.diffuse.valid() ? pc.texture(indirect.diffuse).storageIndex : gpu::kNoVxgi;
+            push.vxgiSpecular = indirect.specular.valid() ? pc.texture(indirect.specular).storageIndex : gpu::kNoVxgi;
             vk::pushConstants(cmd, ctx, push);
             VkExtent3D extent = pc.texture(*written).extent;
             vkCmdDispatch(cmd, vk::groupCount(extent.width, gpu::kLightingGroupSize),

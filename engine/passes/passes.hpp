@@ -105,13 +105,19 @@ PointShadowOutputs addPointShadowPass(graph::RenderGraph& graph, vk::Context& ct
                                       const SceneBuffers& scene, render::PointShadowMaps& maps,
                                       const std::vector<gpu::GpuLight>& lights, IndirectDrawLog* log);
 
+// Traced indirect light per pixel (VXGI, passes/vxgi_passes.hpp): invalid handles when GI is off.
+struct IndirectLightImages {
+    graph::TextureHandle diffuse, specular;
+};
+
 // deferred_lighting.cpp: shades the G-buffer's geometry pixels into `target` (RGBA16F); returns its new version.
 graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                              const GBufferOutputs& gbuffer, graph::BufferHandle frame,
                                              graph::BufferHandle lights, graph::TextureHandle environment,
                                              graph::TextureHandle target, const PointShadowOutputs& shadows = {},
                                              graph::BufferHandle vrsRates = {},  // software VRS (vrs_passes.hpp)
-                                             graph::TextureHandle ambientOcclusion = {});  // SSAO (ssao.hpp)
+                                             graph::TextureHandle ambientOcclusion = {},   // SSAO (ssao.hpp)
+                                             const IndirectLightImages& indirect = {});   // VXGI (vxgi_passes.hpp)
 
 // sky.cpp: writes the environment into the background pixels of `target` (depth == 1); returns its new version.
 graph::TextureHandle addSkyPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,

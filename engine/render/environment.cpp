@@ -43,16 +43,23 @@ glm::vec2 equirectUv(const glm::vec3& d) {
     return glm::vec2(float(phi / (2.0 * kPi) + 0.5), float(theta / kPi));
 }
 
+// Each texel is constant over its patch of the sphere. A coarse map (the 1x1 constant environment) is integrated
+// over sub-samples of each texel, at least kMinRows x 2 kMinRows over the sphere: a texel's centre direction alone
+// would stand for its whole patch (one horizon direction for the 1x1 map, which made a floor's E 0.589 pi L).
+// Each sub-row weighs its exact solid angle dPhi (cos t0 - cos t1).
 ShIrradiance projectIrradianceSh(const core::ImageRgba32f& img) {
+    constexpr uint32_t kMinRows = 128;
+    const uint32_t subY = (kMinRows + img.height - 1) / img.height, subX = (2 * kMinRows + img.width - 1) / img.width;
+    const uint32_t rows = img.height * subY, cols = img.width * subX;
+    const double dPhi = 2.0 * kPi / cols, dTheta = kPi / rows;
     std::array<glm::dvec3, 9> sum{};
-    const double dPhi = 2.0 * kPi / img.width, dTheta = kPi / img.height;
-    for (uint32_t y = 0; y < img.height; ++y) {
+    for (uint32_t y = 0; y < rows; ++y) {
         double theta = (y + 0.5) * dTheta;
-        double solidAngle = dPhi * dTheta * std::sin(theta);
-        for (uint32_t x = 0; x < img.width; ++x) {
-            double phi = 2.0 * kPi * ((x + 0.5) / img.width - 0.5);
+        double solidAngle = dPhi * (std::cos(y * dTheta) - std::cos((y + 1) * dTheta));
+        for (uint32_t x = 0; x < cols; ++x) {
+            double phi = 2.0 * kPi * ((x + 0.5) / cols - 0.5);
             glm::dvec3 d(std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi));
-            const float* p = &img.pixels[(size_t(y) * img.width + x) * 4];
+            const float* p = &img.pixels[(size_t(y / subY) * img.width + x / subX) * 4];
             glm::dvec3 radiance(p[0], p[1], p[2]);
             std::array<double, 9> poly = shPolynomials(d);
             for (int k = 0; k < 9; ++k) sum[k] += radiance * (poly[k] * kShConstants[k] * solidAngle);

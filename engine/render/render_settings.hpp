@@ -10,6 +10,7 @@
 #include "frame/bloom_settings.hpp"
 #include "frame/ssao_settings.hpp"
 #include "frame/temporal_settings.hpp"
+#include "frame/vxgi_settings.hpp"
 #include "render/point_shadow_maps.hpp"
 #include "frame/culling_settings.hpp"
 
@@ -35,6 +36,7 @@ struct RenderSettings {
     frame::TemporalSettings temporal;  // --aa, --temporal-frames (frame/temporal_feature.hpp)
     frame::BloomSettings bloom;        // --bloom, --bloom-strength (frame/bloom_feature.hpp)
     frame::SsaoSettings ssao;          // --ssao, --ssao-radius, --ssao-samples (frame/ssao_feature.hpp)
+    frame::VxgiSettings vxgi;          // voxel global illumination (--gi, --voxels)
 };
 
 }  // namespace idk::render

@@ -100,6 +100,8 @@ public:
     // Jitter, motion vectors and TAA (tests capture the motion vectors through it).
     frame::TemporalFeature& temporal() noexcept { return features_.temporal; }
     frame::SsaoFeature& ssao() noexcept { return features_.ssao; }  // tests capture its inputs and output
+    // The VXGI voxel grid of the last frame and its features (nullptr with --gi none): tests read it back.
+    const frame::VxgiFeature& vxgi() const noexcept { return features_.vxgi; }
     // Runs inside each frame's command buffer before the frame's graph is built (TextureStreamer::pump goes
     // here: textures it makes ready reach this frame's materials through the scene_update pass).
     void setBeforeFrame(std::function<void(VkCommandBuffer)> hook) { beforeFrame_ = std::move(hook); }

@@ -123,6 +123,11 @@ VkPipeline createGraphicsPipeline(Context& ctx, std::span<const GraphicsStageCod
     raster.cullMode = desc.cull;
     raster.frontFace = desc.frontFace;
     raster.lineWidth = 1.0f;
+    // Overestimation: a fragment for every pixel the primitive touches at all (voxelization's thin walls).
+    VkPipelineRasterizationConservativeStateCreateInfoEXT conservative{
+        VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_CONSERVATIVE_STATE_CREATE_INFO_EXT};
+    conservative.conservativeRasterizationMode = VK_CONSERVATIVE_RASTERIZATION_MODE_OVERESTIMATE_EXT;
+    if (desc.conservative) raster.pNext = &conservative;
     VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
     multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
     VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};

@@ -57,6 +57,8 @@ struct GraphicsPipelineDesc {
     std::vector<SpecConstant> spec;
     uint32_t pushBytes = 0;
     uint32_t fragmentPushBytes = 0;  // the fragment stage's push block when it reads only a prefix (0: pushBytes)
+    std::optional<ShaderId> geometry;      // between vertex and fragment (voxelization's triangle dilation)
+    bool conservative = false;             // VK_EXT_conservative_rasterization, overestimate (the device must have it)
 };
 
 // Checks one module against the engine's conventions; throws PipelineError naming the shader.

@@ -58,6 +58,7 @@ std::string keyOf(const GraphicsPipelineDesc& d) {
     for (BlendMode b : d.blend) out << int(b) << ',';
     out << '|' << d.depthFormat << '|' << d.depthCompare << '|' << d.depthWrite << d.depthTest << '|' << d.cull << '|'
         << d.frontFace << '|' << d.topology << '|' << d.polygonMode << '|' << d.viewMask << '|' << specKey(d.spec)
+        << '|' << (d.geometry ? int(*d.geometry) : -1) << '|' << d.conservative
         << '|' << d.pushBytes << '|' << d.fragmentPushBytes;
     return out.str();
 }
@@ -94,7 +95,7 @@ const shader::ShaderInfo& ShaderLibrary::info(ShaderId id) { return module(id).i
 bool ShaderLibrary::uses(const Entry& e, ShaderId id) {
     if (e.computeDesc) return e.computeDesc->shader == id;
     const GraphicsPipelineDesc& g = *e.graphicsDesc;
-    return g.vertex == id || g.task == id || g.fragment == id;
+    return g.vertex == id || g.task == id || g.fragment == id || g.geometry == id;
 }
 
 VkPipeline ShaderLibrary::build(const Entry& e, const std::map<ShaderId, const Module*>& override) {
@@ -123,6 +124,7 @@ VkPipeline ShaderLibrary::build(const Entry& e, const std::map<ShaderId, const M
     };
     if (d.task) add(*d.task);
     add(d.vertex);
+    if (d.geometry) add(*d.geometry);
     if (d.fragment) add(*d.fragment);
     return createGraphicsPipeline(ctx_, stages, d, name);
 }

@@ -11,6 +11,7 @@
 #include "color.glsl"
 #include "surface_lighting.glsl"
 #include "vrs_rates.glsl"
+#include "vxgi_ambient.glsl"
 
 layout(local_size_x = kLightingGroupSize, local_size_y = kLightingGroupSize) in;
 layout(push_constant, scalar) uniform Push { LightingPush p; };
@@ -41,6 +42,8 @@ void main() {
 
     vec3 radiance = imageLoad(gImagesRgba16f[p.emissive], pixel).rgb;
     radiance += shadeSurface(f, p.pointShadows, position, n, v, baseColor, metallic, roughness, occlusion);
+    radiance += vxgiAmbientDelta(f, p.vxgiDiffuse, p.vxgiSpecular, pixel, n, v, baseColor, metallic, roughness,
+                                 occlusion);  // inside the VXGI grid: traced light replaces the SH ambient
 
     imageStore(gImagesRgba16f[p.target], pixel, vec4(radiance, 1.0));  // alpha 1: geometry
 }

@@ -60,9 +60,11 @@ struct LightingPush {
     DeviceAddress pointShadows;  // GpuPointShadow[lightCount] (shared/shadow_types.h), 0: no light casts one
     DeviceAddress vrsRates;      // software VRS: shade only cell anchors (shared/vrs_types.h); 0: every pixel
     uint ambientOcclusion;       // R32F storage: SSAO visibility of the ambient light; kLightingNoAo: none
+    uint vxgiDiffuse;            // RGBA16F VXGI irradiance (include/vxgi_ambient.glsl), kNoVxgi: GI off
+    uint vxgiSpecular;           // RGBA16F VXGI reflection radiance
     uint pad;
 };
-IDK_GPU_SIZE(LightingPush, 56);
+IDK_GPU_SIZE(LightingPush, 64);
 IDK_CONST(uint, kLightingNoAo, 0xFFFFFFFFu);
 
 // sky.comp: writes the environment where depth == 1.

@@ -64,6 +64,18 @@ case "$case_name" in
     grep -q '"vrs_overlay"' "$tmp/f.json" || fail "--vrs-debug drew no overlay"
     "$idk" render --size 8x8 --out "$tmp/x.png" --vrs maybe 2>"$tmp/err"; [ $? -eq 2 ] || fail "--vrs maybe should exit 2"
     grep -q -- "--vrs 'maybe'" "$tmp/err" || fail "error does not name --vrs: $(cat "$tmp/err")"
+  gi_selection)
+    # --gi none (the default) allocates and runs nothing of VXGI; --gi vxgi runs its passes and holds its volumes.
+    "$idk" render --size 16x16 --out "$tmp/n.png" --json >"$tmp/none.json" || fail "render --gi none failed"
+    grep -q '"gi": "none"' "$tmp/none.json" || fail "--json settings lack gi none"
+    [ "$(grep -c '"vxgi' "$tmp/none.json")" -eq 0 ] || fail "--gi none ran or allocated VXGI: $(grep vxgi "$tmp/none.json")"
+    "$idk" render --size 16x16 --out "$tmp/v.png" --gi vxgi --voxels 64 --json >"$tmp/vxgi.json" \
+      || fail "render --gi vxgi failed"
+    for key in '"gi": "vxgi"' '"voxels": "64"' '"vxgi_voxelize"' '"vxgi_merge"' '"vxgi_cone_trace"' '"vxgi": '; do
+      grep -q "$key" "$tmp/vxgi.json" || fail "--gi vxgi --json lacks $key: $(cat "$tmp/vxgi.json")"
+    done
+    "$idk" render --size 8x8 --out "$tmp/x.png" --voxels 100 2>"$tmp/err"; [ $? -eq 2 ] || fail "--voxels 100 should exit 2"
+    grep -q -- "--voxels" "$tmp/err" || fail "error does not name --voxels: $(cat "$tmp/err")"
     ;;
   info_json)
     "$idk" info --json >"$tmp/info.json" || fail "idk info --json failed"

@@ -48,6 +48,19 @@ TEST(Environment, ShIrradianceOfAConstantEnvironmentIsPiL) {
     }
 }
 
+// The renderer's constant environment (`--environment none`) is a 1x1 image: one texel covers the whole sphere,
+// so the projection must integrate over the texel's area, not take its centre direction (which put all the light
+// on the horizon and gave a floor E = 0.589 pi L). Same 0.2% tolerance at every size down to one texel.
+TEST(Environment, ShIrradianceOfACoarseConstantEnvironmentIsPiL) {
+    for (glm::uvec2 size : {glm::uvec2(1, 1), glm::uvec2(2, 1), glm::uvec2(4, 2), glm::uvec2(3, 5)}) {
+        render::ShIrradiance sh = render::projectIrradianceSh(
+            equirect(size.x, size.y, [](const glm::vec3&) { return glm::vec3(0.5f); }));
+        for (const glm::vec3& n : kNormals)
+            EXPECT_NEAR(render::evaluateIrradianceSh(sh, glm::normalize(n)).r, kPi * 0.5, 2e-3 * kPi * 0.5)
+                << size.x << "x" << size.y << " texels, n = (" << n.x << ", " << n.y << ", " << n.z << ")";
+    }
+}
+
 TEST(Environment, ShIrradianceOfALinearGradientMatchesTheAnalyticIntegral) {
     render::ShIrradiance sh =
         render::projectIrradianceSh(equirect(256, 128, [](const glm::vec3& d) { return glm::vec3(1.0f + d.y); }));

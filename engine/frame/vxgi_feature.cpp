@@ -1,0 +1,98 @@
+// vxgi_feature.cpp: the voxel grid's lifetime and placement, and the per-frame voxelization.
+#include "frame/vxgi_feature.hpp"
+
+#include <algorithm>
+
+#include "render/draw_bounds.hpp"
+#include "vk/check.hpp"
+
+namespace idk::frame {
+
+passes::VoxelGridBox fitVoxelGrid(const scene::Aabb& bounds, uint32_t n) {
+    passes::VoxelGridBox box;
+    box.size = n;
+    if (bounds.empty()) return box;
+    const glm::vec3 extent = bounds.max - bounds.min;
+    const float side = std::max({extent.x, extent.y, extent.z, 1e-3f}) * float(n) / float(n - 1);
+    box.voxelSize = side / float(n);
+    box.gridMin = (bounds.min + bounds.max) * 0.5f - glm::vec3(side * 0.5f);
+    return box;
+}
+
+VxgiFeature::~VxgiFeature() { release(); }
+
+void VxgiFeature::release() {
+    if (!grid_.image.image) return;
+    grid_.release(ctx_);
+    for (VoxelVolume& d : directions_) d.release(ctx_);
+    ctx_.bindless().release(sampler_);
+}
+
+void VxgiFeature::setScene(const render::GpuScene& scene) {
+    bounds_ = render::sceneBounds(scene.data(), render::meshBounds(scene.data()));
+}
+
+void VxgiFeature::addPasses(FrameContext& f) {
+    const VxgiSettings& s = f.settings.vxgi;
+    if (s.mode != GiMode::Vxgi) {
+        release();  // --gi none holds nothing
+        return;
+    }
+    if (grid_.image.image && grid_.image.extent.width != s.voxels) release();
+    if (!grid_.image.image) {
+        grid_.create(ctx_, "vxgi voxel grid", s.voxels, 1);
+        const uint32_t half = s.voxels / 2;
+        uint32_t levels = 1;
+        while ((half >> levels) > 0) ++levels;
+        const char* names[6] = {"vxgi mips +x", "vxgi mips -x", "vxgi mips +y", "vxgi mips -y", "vxgi mips +z",
+                                "vxgi mips -z"};
+        for (uint32_t d = 0; d < 6; ++d) directions_[d].create(ctx_, names[d], half, levels);
+        vk::SamplerDesc sampler;
+        sampler.address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;  // transparent black: outside = empty
+        sampler_ = ctx_.bindless().addSampler(sampler);
+    }
+    box_ = fitVoxelGrid(bounds_, s.voxels);
+
+    // The grid ends each frame in GENERAL (storage) where the merge and the mip passes used it; tests read it
+    // back from there. The directional mips end where the cone tracer sampled them.
+    constexpr VkPipelineStageFlags2 kCs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    graph::TextureHandle grid = grid_.import(f.graph, "vxgi voxel grid", {graph::Access::StorageRead, kCs});
+    const char* names[6] = {"vxgi mips +x", "vxgi mips -x", "vxgi mips +y", "vxgi mips -y", "vxgi mips +z",
+                            "vxgi mips -z"};
+    for (uint32_t d = 0; d < 6; ++d)
+        directionHandles_[d] = directions_[d].import(f.graph, names[d], {graph::Access::SampledRead, kCs});
+
+    passes::VoxelizeInputs in{f.scene, f.frameConstants, f.pointShadows, box_,
+                              f.ctx.ladder("vxgi-atomics").chosen};
+    if (f.settings.vxgi.raster == VoxelRaster::Conservative)
+        in.conservative = f.ctx.ladder("conservative-raster").chosen;
+    f.voxelGrid = passes::addVoxelizePasses(f.graph, f.ctx, f.shaders, in, grid, &f.log);
+    f.voxelBox = box_;
+}
+
+void VxgiFeature::addConeTracing(FrameContext& f) {
+    if (!f.voxelGrid.valid()) return;
+    passes::ConeTraceInputs in;
+    in.gbuffer = f.gbuffer;
+    in.frame = f.frameConstants;
+    in.environment = f.environment;
+    in.grid = f.voxelGrid;
+    for (uint32_t d = 0; d < 6; ++d) {
+        in.directions[d] = directionHandles_[d];
+        in.directionSampled[d] = directions_[d].sampled.value;
+    }
+    in.gridStorage = grid_.levelStorage[0].value;
+    in.gridSampled = grid_.sampled.value;
+    for (uint32_t level = 0; level < directions_[0].levelStorage.size(); ++level) {
+        std::array<uint32_t, 6> views{};
+        for (uint32_t d = 0; d < 6; ++d) views[d] = directions_[d].levelStorage[level].value;
+        in.directionLevels.push_back(views);
+    }
+    in.gridSampler = sampler_.value;
+    in.box = box_;
+    in.ringCones = f.settings.vxgi.ringCones;
+    in.stepFactor = f.settings.vxgi.stepFactor;
+    f.indirectLight = passes::addConeTracePasses(f.graph, f.ctx, f.shaders, in);
+}
+
+}  // namespace idk::frame

@@ -1,0 +1,48 @@
+// vxgi_feature.hpp: voxel global illumination. Owns the persistent RGBA16F voxel grid and its six directional mip
+// volumes (created only while --gi vxgi is on, re-created when the size changes) whose cube fits the scene's
+// bounds; adds the voxelization passes before the G-buffer and the mip + cone-tracing passes after it
+// (passes/vxgi_passes.hpp); fills FrameContext::voxelGrid / voxelBox / indirectLight. Ports IDKEngine's
+// VXGI/Voxelizer.cs (its grid box is set by hand or follows the camera; here it fits the scene).
+#pragma once
+#include "frame/frame_context.hpp"
+#include "frame/voxel_volume.hpp"
+#include "passes/vxgi_passes.hpp"
+#include "render/gpu_scene.hpp"
+#include "vk/bindless.hpp"
+#include "vk/resources.hpp"
+
+#include <array>
+#include <vector>
+
+namespace idk::frame {
+
+// The grid's cube around `bounds`: centred on it, side = its largest extent * n / (n - 1), i.e. half a voxel of
+// margin on each side so that surfaces on the bounds lie on voxel centres, not on voxel faces.
+passes::VoxelGridBox fitVoxelGrid(const scene::Aabb& bounds, uint32_t n);
+
+class VxgiFeature {
+public:
+    explicit VxgiFeature(vk::Context& ctx) : ctx_(ctx) {}
+    ~VxgiFeature();
+    VxgiFeature(const VxgiFeature&) = delete;
+    VxgiFeature& operator=(const VxgiFeature&) = delete;
+
+    void setScene(const render::GpuScene& scene);
+    void addPasses(FrameContext& f);       // voxelization; nothing unless settings.vxgi.mode == Vxgi
+    void addConeTracing(FrameContext& f);  // after the G-buffer: mips + cone tracing into f.indirectLight
+    // The grid of the last frame (RGBA16F, size^3; left in GENERAL layout) or nullptr: tests read it back.
+    const vk::Image* grid() const noexcept { return grid_.image.image ? &grid_.image : nullptr; }
+    const passes::VoxelGridBox& box() const noexcept { return box_; }
+
+private:
+    void release();
+    vk::Context& ctx_;
+    scene::Aabb bounds_;
+    passes::VoxelGridBox box_;
+    VoxelVolume grid_;                      // level 0: the voxelized radiance and coverage
+    std::array<VoxelVolume, 6> directions_; // anisotropic mips (+x -x +y -y +z -z), level k = grid level k + 1
+    vk::SamplerIndex sampler_;
+    graph::TextureHandle directionHandles_[6];  // this frame's imports
+};
+
+}  // namespace idk::frame

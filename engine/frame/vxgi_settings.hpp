@@ -1,0 +1,23 @@
+// vxgi_settings.hpp: the options of voxel global illumination (frame/vxgi_feature.hpp), a member of
+// render::RenderSettings; the rows of frame/settings_table.cpp set them (--gi, --voxels).
+#pragma once
+#include <cstdint>
+
+namespace idk::frame {
+
+enum class GiMode : uint8_t { None, Vxgi };
+
+// How voxelization rasterizes: Conservative (every voxel a triangle touches, by the "conservative-raster" ladder:
+// VK_EXT_conservative_rasterization or geometry-shader dilation; thin walls never leak) or Centre (only voxels
+// whose centre the triangle covers in its dominant projection: thin, as the CPU oracle of the conformance test).
+enum class VoxelRaster : uint8_t { Conservative, Centre };
+
+struct VxgiSettings {
+    GiMode mode = GiMode::None;  // None: nothing allocated, compiled or dispatched
+    uint32_t voxels = 128;       // grid size per side (64..512)
+    uint32_t ringCones = 5;      // diffuse cones around the normal's cap cone (cosine-weighted set of 1 + ring)
+    float stepFactor = 0.5f;     // cone march step in sample diameters (sampling only: opacity is step-corrected)
+    VoxelRaster raster = VoxelRaster::Conservative;
+};
+
+}  // namespace idk::frame

@@ -1,0 +1,60 @@
+// vxgi_passes.hpp: the passes of voxel global illumination (engine/frame/vxgi_feature.hpp drives them).
+#pragma once
+#include <optional>
+#include <glm/glm.hpp>
+
+#include <array>
+#include <vector>
+
+#include "passes/passes.hpp"
+#include "vk/features.hpp"
+
+namespace idk::passes {
+
+// The grid's cube in world space: gridMin + [0, size * voxelSize]^3.
+struct VoxelGridBox {
+    glm::vec3 gridMin{0.0f};
+    float voxelSize = 1.0f;
+    uint32_t size = 64;
+};
+
+// vxgi_voxelize.cpp: "vxgi_clear" zeroes the write-conflict accumulators (transient 3D images of the atomic rung's
+// formats), "vxgi_voxelize" rasterizes the scene three times (one orthographic projection per axis; each triangle
+// keeps the fragments of its dominant axis) and adds every fragment's outgoing diffuse radiance to its voxel,
+// "vxgi_merge" resolves them into `grid` (RGBA16F, size^3, mip 0). Returns the grid's new version.
+struct VoxelizeInputs {
+    SceneBuffers scene;
+    graph::BufferHandle frame;
+    PointShadowOutputs shadows;
+    VoxelGridBox box;
+    vk::Rung atomics = vk::Rung::Native;  // ladder "vxgi-atomics": Native float add, Fallback r32ui max
+    // Ladder "conservative-raster": Native VK_EXT_conservative_rasterization, Fallback geometry-shader dilation;
+    // none: pixel-centre rasterization (thin voxelization).
+    std::optional<vk::Rung> conservative;
+};
+graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                       const VoxelizeInputs& inputs, graph::TextureHandle grid, IndirectDrawLog* log);
+
+// vxgi_cone_trace.cpp: "vxgi_mip L" (one pass per level of the six directional volumes, each from the level
+// below: the grid for L = 0), then "vxgi_cone_trace": per G-buffer pixel inside the grid, diffuse irradiance from a
+// cosine-weighted cone set and the reflection cone's radiance (transient RGBA16F, render resolution).
+struct ConeTraceInputs {
+    GBufferOutputs gbuffer;
+    graph::BufferHandle frame;
+    graph::TextureHandle environment;
+    graph::TextureHandle grid;           // after the voxelization (level 0 only)
+    uint32_t gridStorage = 0, gridSampled = 0;
+    // Anisotropic mips, one volume per direction (+x -x +y -y +z -z), level k = the grid's level k + 1:
+    // the frame's handles, their sampled indices, and the storage index of each level's view per direction.
+    std::array<graph::TextureHandle, 6> directions;
+    std::array<uint32_t, 6> directionSampled{};
+    std::vector<std::array<uint32_t, 6>> directionLevels;
+    uint32_t gridSampler = 0;            // bindless sampler: trilinear, transparent-black border
+    VoxelGridBox box;
+    uint32_t ringCones = 5;
+    float stepFactor = 0.5f;
+};
+IndirectLightImages addConeTracePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                       const ConeTraceInputs& inputs);
+
+}  // namespace idk::passes

@@ -1,0 +1,164 @@
+// vxgi_voxelize.cpp: voxelization of the scene's direct diffuse light into a 3D grid: clear the accumulators, draw
+// the scene once per projection axis into an attachment-less N x N render pass whose fragments write their voxel
+// with image atomics, and merge the accumulators into the RGBA16F grid. Ports IDKEngine's Voxelizer.cs (its
+// 3-draw fallback; the rung of write conflicts follows the "vxgi-atomics" ladder). The GL-interop rung of that
+// ladder (GL_NV_shader_atomic_fp16_vector straight into the RGBA16F image) belongs to the GL-interop issue: when it
+// lands it is one more `mode` here with its own fragment shader, and the merge pass is skipped.
+// Rasterisation follows the "conservative-raster" ladder unless --gi-raster centre: VK_EXT_conservative_rasterization
+// (overestimate) where the device has it, else voxelize.geom's triangle dilation, so thin walls never leak.
+#include "passes/vxgi_passes.hpp"
+
+#include <memory>
+#include <stdexcept>
+
+#include "passes/rendering.hpp"
+#include "shared/vxgi_types.h"
+
+namespace idk::passes {
+namespace {
+
+struct Accumulators {
+    graph::TextureHandle images[4];
+    uint32_t count = 0;
+};
+
+uint32_t modeOf(vk::Rung rung) {
+    if (rung == vk::Rung::Native) return gpu::kVoxelAtomicsFloatAdd;
+    if (rung == vk::Rung::Fallback) return gpu::kVoxelAtomicsUintMax;
+    throw std::logic_error("vxgi-atomics: the gl-interop rung is not wired yet (GL-interop issue)");
+}
+
+}  // namespace
+
+graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                       const VoxelizeInputs& in, graph::TextureHandle grid, IndirectDrawLog* log) {
+    const uint32_t mode = modeOf(in.atomics);
+    const uint32_t n = in.box.size;
+    auto acc = std::make_shared<Accumulators>();
+    graph.addPass(
+        "vxgi_clear",
+        [&](graph::PassBuilder& b) {
+            graph::TextureDesc desc;
+            desc.format = mode == gpu::kVoxelAtomicsFloatAdd ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32_UINT;
+            desc.sizeMode = graph::SizeMode::Absolute;
+            desc.extent = {n, n, n};
+            acc->count = mode == gpu::kVoxelAtomicsFloatAdd ? 4 : 3;
+            const char* names[4] = {"vxgi accum r", "vxgi accum g", "vxgi accum b", "vxgi accum count"};
+            for (uint32_t i = 0; i < acc->count; ++i)
+                acc->images[i] = b.write(b.create(names[i], desc), graph::Access::TransferDst);
+        },
+        [acc](graph::PassContext& pc) {
+            VkClearColorValue zero{};
+            VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+            for (uint32_t i = 0; i < acc->count; ++i)
+                vkCmdClearColorImage(pc.commandBuffer(), pc.image(acc->images[i]),
+                                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
+        });
+
+    const SceneBuffers s = in.scene;
+    const graph::BufferHandle frame = in.frame;
+    const graph::BufferHandle table = in.shadows.table;
+    const VoxelGridBox box = in.box;
+    const std::optional<vk::Rung> conservative = in.conservative;
+    graph.addPass(
+        "vxgi_voxelize",
+        [&](graph::PassBuilder& b) {
+            constexpr VkPipelineStageFlags2 kVs = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT;
+            constexpr VkPipelineStageFlags2 kFs = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+            // (voxelize.geom reads only its inputs: no buffer access, so no geometry-stage dependency.)
+            for (uint32_t i = 0; i < acc->count; ++i)
+                acc->images[i] = b.write(acc->images[i], graph::Access::StorageReadWrite, kFs);
+            b.read(frame, graph::Access::StorageRead, kVs | kFs);
+            if (s.lights.valid()) b.read(s.lights, graph::Access::StorageRead, kFs);
+            if (table.valid()) {
+                b.read(table, graph::Access::StorageRead, kFs);
+                for (graph::TextureHandle cube : in.shadows.cubes) b.read(cube, graph::Access::SampledRead, kFs);
+            }
+            if (s.drawCount == 0) return;
+            b.read(s.vertices, graph::Access::StorageRead, kVs);
+            b.read(s.indices, graph::Access::VertexRead);
+            b.read(s.instances, graph::Access::StorageRead, kVs | kFs);
+            b.read(s.meshes, graph::Access::StorageRead, kFs);
+            b.read(s.materials, graph::Access::StorageRead, kFs);
+            b.read(s.drawCommands, graph::Access::IndirectRead);
+            if (s.colors.valid()) b.read(s.colors, graph::Access::StorageRead, kVs);
+            if (s.uv1.valid()) b.read(s.uv1, graph::Access::StorageRead, kVs);
+        },
+        [&ctx, &shaders, s, frame, table, box, acc, mode, conservative, log](graph::PassContext& pc) {
+            if (s.drawCount == 0) return;
+            VkCommandBuffer cmd = pc.commandBuffer();
+            // No attachments: the fragments' only output is their atomics (the render area sets the raster grid).
+            beginRendering(cmd, {box.size, box.size}, {});
+            vk::GraphicsPipelineDesc desc;
+            desc.vertex = vk::ShaderId::vxgi_voxelize_vert;
+            desc.fragment = mode == gpu::kVoxelAtomicsFloatAdd ? vk::ShaderId::vxgi_voxelize_float_frag
+                                                               : vk::ShaderId::vxgi_voxelize_uint_frag;
+            if (conservative == vk::Rung::Native) {
+                desc.conservative = true;
+            } else if (conservative == vk::Rung::Fallback) {
+                desc.geometry = vk::ShaderId::vxgi_voxelize_geom;
+                desc.fragment = mode == gpu::kVoxelAtomicsFloatAdd ? vk::ShaderId::vxgi_voxelize_float_dilated_frag
+                                                                   : vk::ShaderId::vxgi_voxelize_uint_dilated_frag;
+            }
+            desc.depthTest = false;
+            desc.depthWrite = false;
+            desc.cull = VK_CULL_MODE_NONE;  // both faces: a wall seen from behind in the projection still fills
+            desc.pushBytes = sizeof(gpu::VoxelizePush);
+            vk::bindPipeline(cmd, shaders.graphics(desc));
+            ctx.bindless().bind(cmd);
+            gpu::VoxelizePush push{};
+            push.frame = pc.buffer(frame).address;
+            push.vertices = pc.buffer(s.vertices).address;
+            push.instances = pc.buffer(s.instances).address;
+            push.meshes = pc.buffer(s.meshes).address;
+            push.materials = pc.buffer(s.materials).address;
+            push.colors = s.colors.valid() ? pc.buffer(s.colors).address : 0;
+            push.uv1 = s.uv1.valid() ? pc.buffer(s.uv1).address : 0;
+            push.pointShadows = table.valid() ? pc.buffer(table).address : 0;
+            push.gridMin = box.gridMin;
+            push.voxelSize = box.voxelSize;
+            push.gridSize = box.size;
+            for (uint32_t i = 0; i < acc->count; ++i) push.accum[i] = pc.texture(acc->images[i]).storageIndex;
+            vkCmdBindIndexBuffer(cmd, pc.vkBuffer(s.indices), 0, VK_INDEX_TYPE_UINT32);
+            // Three draws, one per projection axis (IDKEngine's measured-fastest fallback): a real GPU with
+            // VK_NV_geometry_shader_passthrough + VK_NV_viewport_swizzle would do it in one.
+            for (uint32_t axis = 0; axis < 3; ++axis) {
+                push.axis = axis;
+                vk::pushConstants(cmd, ctx, push);
+                vkCmdDrawIndexedIndirect(cmd, pc.vkBuffer(s.drawCommands), 0, s.drawCount,
+                                         sizeof(VkDrawIndexedIndirectCommand));
+                if (log) log->record(pc.passName(), s.drawCount);
+            }
+            vkCmdEndRendering(cmd);
+        });
+
+    auto written = std::make_shared<graph::TextureHandle>();
+    graph.addPass(
+        "vxgi_merge",
+        [&](graph::PassBuilder& b) {
+            constexpr VkPipelineStageFlags2 kCs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+            for (uint32_t i = 0; i < acc->count; ++i) b.read(acc->images[i], graph::Access::StorageRead, kCs);
+            *written = b.write(grid, graph::Access::StorageWrite, kCs);
+            b.sideEffect();  // the grid is persistent state: later frames and readers outside the graph use it
+        },
+        [&ctx, &shaders, acc, written, n, mode](graph::PassContext& pc) {
+            VkCommandBuffer cmd = pc.commandBuffer();
+            vk::ComputePipelineDesc desc;
+            desc.shader = vk::ShaderId::vxgi_merge_comp;
+            desc.pushBytes = sizeof(gpu::VoxelMergePush);
+            desc.localSize = {gpu::kVoxelGroupSize, gpu::kVoxelGroupSize, gpu::kVoxelGroupSize};
+            vk::bindPipeline(cmd, shaders.compute(desc));
+            ctx.bindless().bind(cmd);
+            gpu::VoxelMergePush push{};
+            for (uint32_t i = 0; i < acc->count; ++i) push.accum[i] = pc.texture(acc->images[i]).storageIndex;
+            push.grid = pc.texture(*written).storageIndex;
+            push.gridSize = n;
+            push.mode = mode;
+            vk::pushConstants(cmd, ctx, push);
+            const uint32_t groups = vk::groupCount(n, gpu::kVoxelGroupSize);
+            vkCmdDispatch(cmd, groups, groups, groups);
+        });
+    return *written;
+}
+
+}  // namespace idk::passes

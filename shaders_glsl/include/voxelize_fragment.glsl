@@ -1,0 +1,89 @@
+// voxelize_fragment.glsl: the fragment side of voxelization shared by the atomic rungs (voxelize_float.frag,
+// voxelize_uint.frag): keeps a fragment only in the draw of its triangle's dominant axis (so each triangle is
+// rasterized once, in the projection where it covers the most voxels), evaluates the material and the radiance
+// the surface leaves diffusely (every punctual light times its cube shadow, times albedo / pi, plus emission), and
+// finds its voxel. Ports IDKEngine's VXGI/Voxelize fragment shader, without its fudge terms (0.02 albedo ambient):
+// the voxel holds exactly the outgoing diffuse radiance of first-bounce light, which the cone tracer gathers.
+#ifndef IDK_VOXELIZE_FRAGMENT_GLSL
+#define IDK_VOXELIZE_FRAGMENT_GLSL
+#extension GL_EXT_nonuniform_qualifier : require
+#include "scene_buffers.glsl"
+#include "bindless.glsl"
+#include "material_eval.glsl"
+#include "pbr.glsl"
+#include "shadows.glsl"
+#include "vxgi_types.h"
+#include "voxel_images.glsl"
+
+layout(push_constant, scalar) uniform Push { VoxelizePush p; };
+
+layout(location = 0) in vec3 inWorldPosition;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec4 inTangent;
+layout(location = 3) in vec2 inUv;
+layout(location = 4) flat in uint inDraw;
+layout(location = 5) in vec4 inColor;
+layout(location = 6) in vec2 inUv1;
+#ifdef IDK_VOXELIZE_DILATED
+layout(location = 7) flat in vec4 inBounds;  // voxelize.geom's dilated triangle: its original NDC bounds + 1/2 pixel
+#endif
+
+// Dominant axis of a plane's normal: the largest |component|, the lower axis on ties (the CPU oracle's rule).
+uint dominantAxis(vec3 n) {
+    vec3 a = abs(n);
+    if (a.x >= a.y && a.x >= a.z) return 0u;
+    return a.y >= a.z ? 1u : 2u;
+}
+
+// Returns false when this fragment belongs to another draw or is cut away; else its voxel and radiance.
+bool voxelFragment(out ivec3 voxel, out vec3 radiance) {
+    // The triangle's plane from the world position's screen derivatives: exact for a triangle (its interpolants
+    // are affine), taken before any discard so the whole quad is alive.
+    vec3 geometric = cross(dFdx(inWorldPosition), dFdy(inWorldPosition));
+    GpuInstance instance = InstanceBuffer(p.instances).data[inDraw];
+    GpuMaterial m = MaterialBuffer(p.materials).data[nonuniformEXT(MeshBuffer(p.meshes).data[instance.mesh].material)];
+    vec4 baseColor = m.baseColorFactor * sampleMaterialSlot(m.slots[kSlotBaseColor], inUv, inUv1) * inColor;
+    vec4 mr = sampleMaterialSlot(m.slots[kSlotMetallicRoughness], inUv, inUv1);
+    vec3 emissive = m.emissiveFactor * sampleMaterialSlot(m.slots[kSlotEmissive], inUv, inUv1).rgb;
+    voxel = ivec3(0);
+    radiance = vec3(0.0);
+    if (dominantAxis(geometric) != p.axis) return false;
+#ifdef IDK_VOXELIZE_DILATED
+    // Keep a pixel only where its square overlaps the triangle's bounds: cuts the dilation's overshoot at sharp
+    // corners. The viewport is the plain N x N one (no y flip), so NDC = pixel / N * 2 - 1.
+    vec2 ndc = gl_FragCoord.xy / float(p.gridSize) * 2.0 - 1.0;
+    if (any(lessThan(ndc, inBounds.xy)) || any(greaterThan(ndc, inBounds.zw))) return false;
+#endif
+    if (m.alphaMode == kAlphaMask && baseColor.a < m.alphaCutoff) return false;
+
+    vec3 n = normalize(inNormal);
+    bool doubleSided = (m.flags & kMaterialDoubleSided) != 0u;
+    vec3 diffuseAlbedo = baseColor.rgb * (1.0 - clamp(m.metallicFactor * mr.b, 0.0, 1.0)) / kPi;
+    if ((m.flags & kMaterialUnlit) != 0u) {
+        radiance = baseColor.rgb;  // KHR_materials_unlit: the colour is the radiance
+    } else {
+        GpuFrame f = FrameBuffer(p.frame).frame;
+        LightBuffer lights = LightBuffer(f.lights);
+        for (uint i = 0; i < f.lightCount; ++i) {
+            vec3 l;
+            vec3 incident = lightIncidence(lights.data[i], inWorldPosition, l);
+            // A double-sided surface is lit on whichever side faces the light; a single-sided one on its front.
+            vec3 side = doubleSided && dot(n, l) < 0.0 ? -n : n;
+            float cosine = max(dot(side, l), 0.0);
+            if (cosine <= 0.0) continue;
+            float visibility = 1.0;
+            if (p.pointShadows != 0) {
+                GpuPointShadow s = PointShadowBuffer(p.pointShadows).data[i];
+                if (s.cube != kNoShadow) visibility = pointShadowVisibility(s, inWorldPosition, side, l);
+            }
+            radiance += diffuseAlbedo * incident * (cosine * visibility);
+        }
+        radiance += emissive;
+    }
+    voxel = ivec3(floor((inWorldPosition - p.gridMin) / p.voxelSize));
+    if (any(lessThan(voxel, ivec3(0))) || any(greaterThanEqual(voxel, ivec3(p.gridSize)))) return false;
+    radiance = max(radiance, vec3(0.0));  // never negative (the max rung's bit ordering needs it)
+    return true;
+}
+
+#endif

@@ -1,0 +1,28 @@
+#version 460
+// merge.comp.glsl: resolves the voxelization's accumulators into the RGBA16F grid (mip 0): rgb = the voxel's
+// radiance (mean of its fragments for the float-add rung, per-channel max for the r32ui rung), alpha = coverage
+// (1 where a fragment landed, 0 elsewhere). Ports IDKEngine's VXGI/Voxelize merge compute shader (4x4x4 groups).
+#extension GL_GOOGLE_include_directive : require
+#include "vxgi_types.h"
+#include "voxel_images.glsl"
+
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+layout(push_constant, scalar) uniform Push { VoxelMergePush p; };
+
+void main() {
+    ivec3 voxel = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(voxel, ivec3(p.gridSize)))) return;
+    vec4 value = vec4(0.0);
+    if (p.mode == kVoxelAtomicsFloatAdd) {
+        float count = imageLoad(gVoxelsR32f[p.accum[3]], voxel).r;
+        if (count > 0.0) {
+            value = vec4(imageLoad(gVoxelsR32f[p.accum[0]], voxel).r, imageLoad(gVoxelsR32f[p.accum[1]], voxel).r,
+                         imageLoad(gVoxelsR32f[p.accum[2]], voxel).r, count) / count;
+        }
+    } else {
+        uvec3 bits = uvec3(imageLoad(gVoxelsR32ui[p.accum[0]], voxel).r, imageLoad(gVoxelsR32ui[p.accum[1]], voxel).r,
+                           imageLoad(gVoxelsR32ui[p.accum[2]], voxel).r);
+        if (bits.r != 0u) value = vec4(uintBitsToFloat(bits - 1u), 1.0);
+    }
+    imageStore(gVoxelsRgba16f[p.grid], voxel, value);
+}

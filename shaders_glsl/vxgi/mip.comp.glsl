@@ -1,0 +1,36 @@
+#version 460
+// mip.comp.glsl: one level of the anisotropic mip chain (shared/vxgi_types.h, VoxelMipPush): per direction, the
+// eight children composited front to back in pairs along it (premultiplied rgb and coverage), the four pairs
+// averaged. Ports IDKEngine's VXGI mipmap shader (4x4x4 groups), which keeps one isotropic chain of 7-tap means
+// instead: a thin emitter then fades by half per level and the cones see too little of it.
+#extension GL_GOOGLE_include_directive : require
+#include "vxgi_types.h"
+#include "voxel_images.glsl"
+
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+layout(push_constant, scalar) uniform Push { VoxelMipPush p; };
+
+vec4 over(vec4 front, vec4 back) { return front + (1.0 - front.a) * back; }
+
+void main() {
+    ivec3 voxel = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(voxel, ivec3(p.dstSize)))) return;
+    ivec3 base = voxel * 2;
+    for (uint d = 0; d < 6; ++d) {
+        int axis = int(d / 2u);
+        bool positive = (d & 1u) == 0u;  // travelling towards +axis: the lower child is in front
+        ivec3 step = ivec3(0);
+        step[axis] = 1;
+        ivec3 u = ivec3(0), w = ivec3(0);
+        u[(axis + 1) % 3] = 1;
+        w[(axis + 2) % 3] = 1;
+        vec4 sum = vec4(0.0);
+        for (int i = 0; i < 4; ++i) {
+            ivec3 c = base + u * (i & 1) + w * (i >> 1);
+            vec4 lo = imageLoad(gVoxelsRgba16f[p.src[d]], c);
+            vec4 hi = imageLoad(gVoxelsRgba16f[p.src[d]], c + step);
+            sum += positive ? over(lo, hi) : over(hi, lo);
+        }
+        imageStore(gVoxelsRgba16f[p.dst[d]], voxel, sum * 0.25);
+    }
+}

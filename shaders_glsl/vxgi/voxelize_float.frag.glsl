@@ -1,0 +1,16 @@
+#version 460
+// voxelize_float.frag.glsl: native rung of "vxgi-atomics": float image atomics (shaderImageFloat32AtomicAdd) sum
+// the fragments' radiance and count them; the merge pass averages (less flicker than max as geometry moves).
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_shader_atomic_float : require
+#include "voxelize_fragment.glsl"
+
+void main() {
+    ivec3 voxel;
+    vec3 radiance;
+    if (!voxelFragment(voxel, radiance)) discard;
+    imageAtomicAdd(gVoxelsR32f[p.accum[0]], voxel, radiance.r);
+    imageAtomicAdd(gVoxelsR32f[p.accum[1]], voxel, radiance.g);
+    imageAtomicAdd(gVoxelsR32f[p.accum[2]], voxel, radiance.b);
+    imageAtomicAdd(gVoxelsR32f[p.accum[3]], voxel, 1.0);
+}

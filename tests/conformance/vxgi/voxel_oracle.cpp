@@ -1,0 +1,92 @@
+// voxel_oracle.cpp: the CPU voxelizer of voxel_oracle.hpp, in double precision.
+#include "voxel_oracle.hpp"
+
+#include <cmath>
+
+namespace idk::test {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kTie = 1e-4;  // in voxels
+
+// The same frame as placed_quads.cpp's quadAxes (the quad's local x and y in world space).
+void quadAxes(const glm::dvec3& n, glm::dvec3& x, glm::dvec3& y) {
+    glm::dvec3 helper = std::abs(n.y) < 0.9 ? glm::dvec3(0.0, 1.0, 0.0) : glm::dvec3(0.0, 0.0, -1.0);
+    x = glm::normalize(glm::cross(helper, n));
+    y = glm::cross(n, x);
+}
+
+int dominantAxis(const glm::dvec3& n) {
+    glm::dvec3 a = glm::abs(n);
+    if (a.x >= a.y && a.x >= a.z) return 0;
+    return a.y >= a.z ? 1 : 2;
+}
+
+glm::dvec3 radiance(const PlacedQuad& q, const glm::dvec3& n, const glm::dvec3& p, const glm::dvec3& emission,
+                    const std::vector<OracleLight>& lights) {
+    glm::dvec3 sum(0.0);
+    for (const OracleLight& light : lights) {
+        glm::dvec3 d = light.position - p;
+        double d2 = glm::dot(d, d);
+        glm::dvec3 l = d / std::sqrt(d2);
+        double c = glm::dot(n, l);
+        if (q.doubleSided) c = std::abs(c);
+        if (c > 0.0) sum += light.intensity * (c / d2);
+    }
+    return glm::dvec3(q.baseColor) / kPi * sum + emission;
+}
+
+}  // namespace
+
+std::vector<OracleVoxel> voxelizeOnCpu(const std::vector<PlacedQuad>& quads, const std::vector<glm::vec3>& emissive,
+                                       const std::vector<OracleLight>& lights, const passes::VoxelGridBox& box) {
+    const int n = int(box.size);
+    const double v = box.voxelSize;
+    const glm::dvec3 gmin(box.gridMin);
+    std::vector<OracleVoxel> grid(size_t(n) * n * n);
+    for (size_t qi = 0; qi < quads.size(); ++qi) {
+        const PlacedQuad& q = quads[qi];
+        const glm::dvec3 nrm = glm::normalize(glm::dvec3(q.normal));
+        glm::dvec3 ax, ay;
+        quadAxes(nrm, ax, ay);
+        const glm::dvec3 c(q.centre);
+        const glm::dvec3 emission = qi < emissive.size() ? glm::dvec3(emissive[qi]) : glm::dvec3(0.0);
+        const int a = dominantAxis(nrm), u = (a + 1) % 3, w = (a + 2) % 3;
+        for (int i = 0; i < n; ++i) {
+            for (int j = 0; j < n; ++j) {
+                // The voxel-centre sample of this column, moved onto the quad's plane along axis a.
+                glm::dvec3 p(0.0);
+                p[u] = gmin[u] + (i + 0.5) * v;
+                p[w] = gmin[w] + (j + 0.5) * v;
+                p[a] = c[a] - (nrm[u] * (p[u] - c[u]) + nrm[w] * (p[w] - c[w])) / nrm[a];
+                // Inside the quad: |local x| <= hx, |local y| <= hy. The distance to an edge, measured in the
+                // projection (per voxel), decides ties.
+                const glm::dvec3 r = p - c;
+                const double lx = glm::dot(r, ax), ly = glm::dot(r, ay);
+                const double ex = double(q.halfSize.x) - std::abs(lx), ey = double(q.halfSize.y) - std::abs(ly);
+                const double t = (p[a] - gmin[a]) / v;
+                const int k = int(std::floor(t));
+                const bool tie = std::abs(ex) < 1e-3 * v || std::abs(ey) < 1e-3 * v ||
+                                 std::abs(t - std::round(t)) < kTie;
+                if ((ex < 0.0 || ey < 0.0) && !tie) continue;
+                if (k < 0 || k >= n) continue;
+                glm::ivec3 voxel;
+                voxel[a] = k;
+                voxel[u] = i;
+                voxel[w] = j;
+                OracleVoxel& o = grid[(size_t(voxel.z) * n + voxel.y) * n + voxel.x];
+                if (tie) {
+                    o.ambiguous = true;
+                    continue;
+                }
+                glm::dvec3 value = radiance(q, nrm, p, emission, lights);
+                o.sum += value;
+                o.max = glm::max(o.max, value);
+                ++o.count;
+            }
+        }
+    }
+    return grid;
+}
+
+}  // namespace idk::test

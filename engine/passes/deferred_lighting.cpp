@@ -14,7 +14,8 @@ namespace idk::passes {
 graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                              const GBufferOutputs& gbuffer, graph::BufferHandle frame,
                                              graph::BufferHandle lights, graph::TextureHandle environment,
-                                             graph::TextureHandle target, const PointShadowOutputs& shadows) {
+                                             graph::TextureHandle target, const PointShadowOutputs& shadows,
+                                             graph::BufferHandle materials) {
     auto written = std::make_shared<graph::TextureHandle>();
     const GBufferOutputs g = gbuffer;
     graph.addPass(
@@ -26,13 +27,14 @@ graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Cont
             b.read(environment, graph::Access::SampledRead, kCs);
             b.read(frame, graph::Access::StorageRead, kCs);
             if (lights.valid()) b.read(lights, graph::Access::StorageRead, kCs);
+            if (materials.valid()) b.read(materials, graph::Access::StorageRead, kCs);
             if (shadows.table.valid()) {
                 b.read(shadows.table, graph::Access::StorageRead, kCs);
                 for (graph::TextureHandle cube : shadows.cubes) b.read(cube, graph::Access::SampledRead, kCs);
             }
             *written = b.write(target, graph::Access::StorageWrite, kCs);
         },
-        [&ctx, &shaders, g, frame, written, table = shadows.table](graph::PassContext& pc) {
+        [&ctx, &shaders, g, frame, written, materials, table = shadows.table](graph::PassContext& pc) {
             VkCommandBuffer cmd = pc.commandBuffer();
             vk::ComputePipelineDesc desc;
             desc.shader = vk::ShaderId::deferred_lighting_lighting_comp;
@@ -49,6 +51,7 @@ graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Cont
             push.depth = pc.texture(g.depth).storageIndex;
             push.target = pc.texture(*written).storageIndex;
             push.pointShadows = table.valid() ? pc.buffer(table).address : 0;
+            push.materials = materials.valid() ? pc.buffer(materials).address : 0;
             vk::pushConstants(cmd, ctx, push);
             VkExtent3D extent = pc.texture(*written).extent;
             vkCmdDispatch(cmd, vk::groupCount(extent.width, gpu::kLightingGroupSize),

@@ -104,7 +104,8 @@ PointShadowOutputs addPointShadowPass(graph::RenderGraph& graph, vk::Context& ct
 graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                              const GBufferOutputs& gbuffer, graph::BufferHandle frame,
                                              graph::BufferHandle lights, graph::TextureHandle environment,
-                                             graph::TextureHandle target, const PointShadowOutputs& shadows = {});
+                                             graph::TextureHandle target, const PointShadowOutputs& shadows = {},
+                                             graph::BufferHandle materials = {});
 
 // sky.cpp: writes the environment into the background pixels of `target` (depth == 1); returns its new version.
 graph::TextureHandle addSkyPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,

@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "core/log.hpp"
+#include "pathtrace/albedo_integrator.hpp"
 #include "vk/check.hpp"
 #include "shared/deferred_types.h"
 #include "vk/transfer.hpp"
@@ -53,6 +54,7 @@ Renderer::~Renderer() {
     gpuScene_.reset();
     if (environment_) destroyEnvironment(ctx_, *environment_);
     for (vk::Buffer& b : frameConstants_) ctx_.destroy(b);
+    if (albedoTables_) ctx_.destroy(albedoTables_);
     for (vk::Buffer& b : lightBuffers_)
         if (b) ctx_.destroy(b);
 }
@@ -128,6 +130,16 @@ graph::TextureHandle Renderer::renderPbr(graph::RenderGraph& graph, const scene:
             frameConstants_.push_back(ctx_.createBuffer(desc));
         }
     }
+    if (!albedoTables_) {  // static: written once (the upload waits for its copy) and only read after
+        const std::vector<float> tables = pathtrace::albedoTableData();
+        vk::BufferDesc desc;
+        desc.size = tables.size() * sizeof(float);
+        desc.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+        desc.name = "albedo tables";
+        desc.category = "frame constants";
+        albedoTables_ = ctx_.createBuffer(desc);
+        vk::uploadBuffer(ctx_, albedoTables_, tables.data(), desc.size);
+    }
     // This frame's slot: begin() has waited until the GPU finished the slot's previous frame.
     const vk::Buffer& frameBuffer = frameConstants_[frames_.slotIndex()];
 
@@ -136,6 +148,7 @@ graph::TextureHandle Renderer::renderPbr(graph::RenderGraph& graph, const scene:
     f.viewProjection = scene::projectionMatrix(camera, aspect) * scene::viewMatrix(camera);
     f.inverseViewProjection = glm::inverse(f.viewProjection);
     f.cameraPosition = camera.position;
+    f.albedoTables = albedoTables_.address;
     // Extra lights (the viewer's shot lights) join the scene's in a per-slot host-visible copy of the list.
     const std::vector<gpu::GpuLight>& lights = extraLights_.empty() ? s.data().lights : combinedLights_;
     if (!extraLights_.empty()) {
@@ -182,7 +195,12 @@ graph::TextureHandle Renderer::renderPbr(graph::RenderGraph& graph, const scene:
     sb.meshes = importBuffer(graph, "scene meshes", s.meshes());
     sb.instances = importBuffer(graph, "scene instances", s.instances(), readByGBuffer);
     sb.drawCommands = importBuffer(graph, "scene draw commands", s.drawCommands());
-    sb.materials = importBuffer(graph, "scene materials", s.materialBuffer(), readByGBuffer);
+    // The deferred lighting pass (compute) reads the materials too: the factors of the BSDF extensions.
+    const auto readByGBufferAndLighting = graph::stateAfterAccess(
+        graph::Access::StorageRead, graph::ResourceKind::Buffer,
+        VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
+            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    sb.materials = importBuffer(graph, "scene materials", s.materialBuffer(), readByGBufferAndLighting);
     sb.lights = importBuffer(graph, "scene lights", lightBuffer);
     sb.colors = importBuffer(graph, "scene vertex colors", s.colors());
     sb.uv1 = importBuffer(graph, "scene uv1", s.uv1());
@@ -216,7 +234,8 @@ graph::TextureHandle Renderer::renderPbr(graph::RenderGraph& graph, const scene:
         desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
         hdr = graph.createTexture("hdr radiance", desc);
     }
-    hdr = passes::addDeferredLightingPass(graph, ctx_, shaders_, g, frame, sb.lights, environmentTexture, hdr, shadows);
+    hdr = passes::addDeferredLightingPass(graph, ctx_, shaders_, g, frame, sb.lights, environmentTexture, hdr, shadows,
+                                          sb.materials);
     hdr = passes::addSkyPass(graph, ctx_, shaders_, g.depth, frame, environmentTexture, hdr);
     if (blendDraws_) {  // sorted for this frame's eye into this slot's host-visible indirect buffer
         const vk::Buffer& sorted = blendDraws_->sort(frames_.slotIndex(), s.data(), camera.position);

@@ -134,6 +134,7 @@ private:
     std::optional<GpuEnvironment> environment_;
     bool environmentLoaded_ = false;  // environment_ holds the configured map (not the intensity-0 stand-in)
     std::vector<vk::Buffer> frameConstants_;  // one host-visible GpuFrame per frame slot
+    vk::Buffer albedoTables_;                 // pathtrace::albedoTableData(), uploaded with the first frame
     vk::StorageImageIndex outputStorage_;     // the frame's output image while it renders
     std::function<void(VkCommandBuffer)> beforeFrame_;
     std::vector<gpu::GpuLight> extraLights_;

@@ -16,6 +16,7 @@ layout(push_constant, scalar) uniform Push { LightingPush p; };
 
 void main() {
     GpuFrame f = FrameBuffer(p.frame).frame;
+    gPtAlbedoTables = f.albedoTables;
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(uvec2(pixel), f.extent))) return;
     float depth = imageLoad(gImagesR32f[p.depth], pixel).r;
@@ -36,8 +37,12 @@ void main() {
         return;
     }
 
-    vec3 radiance = imageLoad(gImagesRgba16f[p.emissive], pixel).rgb;
-    radiance += shadeSurface(f, p.pointShadows, position, n, v, baseColor, metallic, roughness, occlusion);
+    vec4 emissive = imageLoad(gImagesRgba16f[p.emissive], pixel);
+    uint layered = uint(emissive.a + 0.5);  // 1 + material index for materials with BSDF extensions, else 0
+    SurfaceLayers layers = layered > 0u && p.materials != 0 ? materialLayers(MaterialBuffer(p.materials).data[layered - 1u])
+                                                            : noLayers();
+    vec3 radiance = emissive.rgb;
+    radiance += shadeSurface(f, p.pointShadows, position, n, v, baseColor, metallic, roughness, occlusion, layers);
 
     imageStore(gImagesRgba16f[p.target], pixel, vec4(radiance, 1.0));  // alpha 1: geometry
 }

@@ -16,6 +16,7 @@ void main() {
     if (i >= queue.count) return;
     uint pixel = queue.items[i];
     GpuPtSceneDesc s = WfSceneRef(pc.scene).d;
+    gPtAlbedoTables = s.albedoTables;
     GpuPtPath path = WfPathRef(pc.paths).p[pixel];
     GpuPtHit hit = WfHitRef(pc.hits).h[pixel];
     WfShadeResult r = wfShade(s, path, hit, pc.bounce, pc.maxDepth, pc.rouletteDepth, kPtNee != 0u);

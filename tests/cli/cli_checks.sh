@@ -35,6 +35,33 @@ case "$case_name" in
     "$idk" render --size 16x16 --out "$tmp/g.png" --graph "$tmp/frame.dot" || fail "render with --graph failed"
     grep -q "digraph" "$tmp/frame.dot" || fail "--graph .dot is not graphviz: $(head -3 "$tmp/frame.dot")"
     ;;
+  material_variants)
+    # KHR_materials_variants: scenes/material_spheres.gltf with two variants; "velvet" gives the first sphere the
+    # sheen material. --variant velvet changes the image, --variant studio (no mapping) does not, an unknown
+    # name is a usage error (exit 2, one line) that lists the variants.
+    src="$(dirname "$0")/../../scenes/material_spheres.gltf"
+    python3 - "$src" "$tmp/variants.gltf" <<'PY' || fail "could not write the variants scene"
+import json, sys
+d = json.load(open(sys.argv[1]))
+d["extensionsUsed"].append("KHR_materials_variants")
+d["extensions"]["KHR_materials_variants"] = {"variants": [{"name": "studio"}, {"name": "velvet"}]}
+d["meshes"][1]["primitives"][0]["extensions"] = {"KHR_materials_variants": {"mappings": [{"material": 3, "variants": [1]}]}}
+json.dump(d, open(sys.argv[2], "w"))
+PY
+    "$idk" render "$tmp/variants.gltf" --size 48x48 --out "$tmp/plain.png" 2>/dev/null || fail "render failed"
+    "$idk" render "$tmp/variants.gltf" --variant velvet --size 48x48 --out "$tmp/velvet.png" 2>/dev/null \
+      || fail "--variant velvet failed"
+    "$idk" render "$tmp/variants.gltf" --variant studio --size 48x48 --out "$tmp/studio.png" 2>/dev/null \
+      || fail "--variant studio failed"
+    "$idk" compare "$tmp/velvet.png" "$tmp/plain.png" --fail-above 0.001 >/dev/null && fail "velvet looks like the default"
+    "$idk" compare "$tmp/studio.png" "$tmp/plain.png" --fail-above 0 >/dev/null || fail "studio differs from the default"
+    "$idk" render "$tmp/variants.gltf" --variant nope --size 8x8 --out "$tmp/x.png" 2>"$tmp/err"
+    code=$?
+    [ "$code" -eq 2 ] || fail "unknown variant: exit code $code, expected 2"
+    [ "$(wc -l <"$tmp/err")" -eq 1 ] || fail "expected one line on stderr, got: $(cat "$tmp/err")"
+    grep -q "'nope'" "$tmp/err" && grep -q "'studio', 'velvet'" "$tmp/err" || fail "message: $(cat "$tmp/err")"
+    [ -e "$tmp/x.png" ] && fail "an output was written"
+    ;;
   info_json)
     "$idk" info --json >"$tmp/info.json" || fail "idk info --json failed"
     for key in '"device"' '"ladders"' '"subgroupSize"' '"chosen"' '"apiVersion"'; do

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <random>
 
+#include "pathtrace/albedo_integrator.hpp"
 #include "shared/pt_probe_types.h"
 #include "shared/pt_sampling.h"
 #include "support/gpu_fixture.hpp"
@@ -25,8 +26,9 @@ struct ProbePush {
     uint64_t cases;
     uint64_t results;
     uint32_t count, envWidth, envHeight, pad;
+    uint64_t albedoTables;  // pathtrace::albedoTableData() (shared/pt_energy.h)
 };
-static_assert(sizeof(ProbePush) == 32);
+static_assert(sizeof(ProbePush) == 40);
 
 constexpr uint32_t kEnvWidth = 64, kEnvHeight = 32;
 
@@ -49,6 +51,14 @@ GpuPtProbeCase randomCase(std::mt19937& gen, uint32_t i) {
     s.attenuationColor = glm::vec3(1.0f);
     s.geometricNormal = randomUnit(gen);
     s.shadingNormal = glm::normalize(s.geometricNormal + 0.3f * randomUnit(gen));
+    // Material extensions (shared/pt_bsdf_frame.h), each on a share of the cases: KHR_materials_specular,
+    // _clearcoat (exact 0 roughness: a delta coat), _sheen. The rest keep the core defaults.
+    s.specular = i % 4 == 0 ? uni(gen) : 1.0f;
+    s.specularColor = i % 4 == 0 ? glm::vec3(uni(gen), uni(gen), uni(gen)) * 2.0f : glm::vec3(1.0f);
+    s.clearcoat = i % 6 == 1 ? uni(gen) : 0.0f;
+    s.clearcoatRoughness = i % 12 == 1 ? 0.0f : uni(gen);
+    s.sheenColor = i % 5 == 2 ? glm::vec3(uni(gen), uni(gen), uni(gen)) : glm::vec3(0.0f);
+    s.sheenRoughness = uni(gen);
     c.wo = randomUnit(gen);
     c.wi = randomUnit(gen);
     c.u = glm::vec3(uni(gen), uni(gen), uni(gen));
@@ -120,9 +130,13 @@ TEST_F(PtMathTest, GlslMatchesCpp) {
     vk::Buffer out = ctx().createBuffer({count * sizeof(GpuPtProbeResult), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                          vk::MemoryUsage::GpuOnly, "pt probe results", "test"});
     vk::uploadBuffer(ctx(), in, std::span<const GpuPtProbeCase>(cases));
+    const std::vector<float> albedo = pathtrace::albedoTableData();
+    vk::Buffer tables = ctx().createBuffer({albedo.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                            vk::MemoryUsage::GpuOnly, "albedo tables", "test"});
+    vk::uploadBuffer(ctx(), tables, std::span<const float>(albedo));
     const vk::Pipeline& probe =
         shaders().compute({vk::ShaderId::conformance_pt_bsdf_probe_comp, {}, sizeof(ProbePush), {{64, 1, 1}}});
-    ProbePush push{in.address, out.address, count, kEnvWidth, kEnvHeight, 0};
+    ProbePush push{in.address, out.address, count, kEnvWidth, kEnvHeight, 0, tables.address};
     ctx().runImmediate([&](VkCommandBuffer cmd) {
         vk::bindPipeline(cmd, probe);
         vk::pushConstants(cmd, ctx(), push);
@@ -131,8 +145,10 @@ TEST_F(PtMathTest, GlslMatchesCpp) {
     const std::vector<GpuPtProbeResult> gpu = vk::downloadBuffer<GpuPtProbeResult>(ctx(), out, count);
     ctx().destroy(in);
     ctx().destroy(out);
+    ctx().destroy(tables);
 
     uint32_t lobeFlips = 0, lightFlips = 0, texelFlips = 0, evaluated = 0, sampled = 0, lit = 0;
+    uint32_t lobeCounts[8] = {};  // agreeing samples per lobe (kPtLobe*)
     for (uint32_t i = 0; i < count; ++i) {
         const GpuPtProbeResult cpu = cpuResult(cases[i]);
         const GpuPtProbeResult& g = gpu[i];
@@ -152,6 +168,7 @@ TEST_F(PtMathTest, GlslMatchesCpp) {
             EXPECT_TRUE(close3(g.sampleWeight, cpu.sampleWeight, 5e-3f)) << i;
             EXPECT_TRUE(close(g.samplePdf, cpu.samplePdf, 5e-3f)) << i << ": " << g.samplePdf << " vs " << cpu.samplePdf;
             ++sampled;
+            ++lobeCounts[std::min<uint32_t>(cpu.sampleLobe & ~kPtLobeDeltaFlag, 7u)];
         }
         // Lights.
         if (g.lightOk != cpu.lightOk) {
@@ -179,6 +196,13 @@ TEST_F(PtMathTest, GlslMatchesCpp) {
     EXPECT_GT(evaluated, count / 4);
     EXPECT_GT(sampled, count / 2);
     EXPECT_GT(lit, count / 3);
+    for (uint32_t lobe : {kPtLobeDiffuse, kPtLobeSpecular, kPtLobeTransmission, kPtLobeMultiScatter, kPtLobeSheen,
+                          kPtLobeClearcoat})
+        EXPECT_GT(lobeCounts[lobe], 20u) << "lobe " << lobe << " is hardly sampled: the cases miss it";
+    std::printf("pt_math: samples per lobe: diffuse %u specular %u transmission %u multiscatter %u sheen %u "
+                "clearcoat %u\n", lobeCounts[kPtLobeDiffuse], lobeCounts[kPtLobeSpecular],
+                lobeCounts[kPtLobeTransmission], lobeCounts[kPtLobeMultiScatter], lobeCounts[kPtLobeSheen],
+                lobeCounts[kPtLobeClearcoat]);
     std::printf("pt_math: %u evaluated, %u sampled, %u lit; flips: lobe %u, light %u, texel %u\n", evaluated, sampled,
                 lit, lobeFlips, lightFlips, texelFlips);
 }

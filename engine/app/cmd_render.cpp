@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <stdexcept>
 
 #include "app/camera_spec.hpp"
 #include "app/cli_context.hpp"
@@ -47,6 +48,8 @@ const char* const kRenderHelp =
     "  --time T         pose the scene at T seconds before rendering (keyframes clamped, no looping; the same T\n"
     "                   gives the same image); without --time the file's rest pose is drawn\n"
     "  --animation N    play only animation N (0-based; default: all of them); implies --time 0 when alone\n"
+    "  --variant NAME   KHR_materials_variants: render the file's material variant NAME (an unknown name is a\n"
+    "                   usage error listing the file's variants)\n"
     "  --stats          print the passes that ran, their GPU times and GPU memory by category\n"
     "  --json           print the stats as JSON (implies --stats)\n"
     "  --graph FILE     write the frame's render graph: .dot (graphviz) or any other name (text)\n"
@@ -142,7 +145,7 @@ int runRender(const std::vector<std::string>& argv, std::vector<vk::Ladder>* run
                                   {"--out", "--size", "--graph", "--shading", "--environment", "--time", "--animation", "--replay", "--video", "--frames",
                                    "--spp", "--max-depth", "--seed", "--light-sampling", "--sampler", "--sort", "--traversal",
                                    "--camera", "--orbit", "--camera-index", "--orbit-frames", "--background", "--fps",
-                                   "--rung", "--sample-range", "--crf"}})));
+                                   "--rung", "--sample-range", "--crf", "--variant"}})));
     if (args.has("--help")) {
         std::fputs(kRenderHelp, stdout);
         std::fputs("rasterizer settings (also the viewer's panels and --json's \"settings\"):\n", stdout);
@@ -194,6 +197,13 @@ int runRender(const std::vector<std::string>& argv, std::vector<vk::Ladder>* run
     // Load first: a bad scene path fails fast, before any Vulkan work.
     scene::Scene scene = args.positional.empty() ? loadDefaultScene() : scene::loadGltf(args.positional[0], loadOptionsFromCli(args));
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "idk render: warning: %s\n", w.c_str());
+    if (std::optional<std::string> variant = args.get("--variant")) {
+        try {
+            scene::applyMaterialVariant(scene, *variant);
+        } catch (const std::invalid_argument& e) {
+            throw core::CliError(std::string("--variant: ") + e.what());
+        }
+    }
     posePerOptions(args, scene);
     if (args.get("--sample-range") && (replay || orbitVideo || !args.has("--pathtrace")))
         throw core::CliError("--sample-range a:b: only for a path-traced still (--pathtrace --out F.exr)");

@@ -11,6 +11,7 @@
 #include <random>
 
 #include "conformance/conformance.hpp"
+#include "pathtrace/albedo_integrator.hpp"
 #include "shared/pt_probe_types.h"
 #include "shared/pt_sampling.h"
 #include "vk/context.hpp"
@@ -26,8 +27,9 @@ struct ProbePush {
     uint64_t cases;
     uint64_t results;
     uint32_t count, envWidth, envHeight, pad;
+    uint64_t albedoTables;  // pathtrace::albedoTableData() (shared/pt_energy.h)
 };
-static_assert(sizeof(ProbePush) == 32);
+static_assert(sizeof(ProbePush) == 40);
 
 constexpr uint32_t kEnvWidth = 64, kEnvHeight = 32;
 
@@ -50,6 +52,14 @@ GpuPtProbeCase randomCase(std::mt19937& gen, uint32_t i) {
     s.attenuationColor = glm::vec3(1.0f);
     s.geometricNormal = randomUnit(gen);
     s.shadingNormal = glm::normalize(s.geometricNormal + 0.3f * randomUnit(gen));
+    // Material extensions (shared/pt_bsdf_frame.h), each on a share of the cases: KHR_materials_specular,
+    // _clearcoat (exact 0 roughness: a delta coat), _sheen. The rest keep the core defaults.
+    s.specular = i % 4 == 0 ? uni(gen) : 1.0f;
+    s.specularColor = i % 4 == 0 ? glm::vec3(uni(gen), uni(gen), uni(gen)) * 2.0f : glm::vec3(1.0f);
+    s.clearcoat = i % 6 == 1 ? uni(gen) : 0.0f;
+    s.clearcoatRoughness = i % 12 == 1 ? 0.0f : uni(gen);
+    s.sheenColor = i % 5 == 2 ? glm::vec3(uni(gen), uni(gen), uni(gen)) : glm::vec3(0.0f);
+    s.sheenRoughness = uni(gen);
     c.wo = randomUnit(gen);
     c.wi = randomUnit(gen);
     c.u = glm::vec3(uni(gen), uni(gen), uni(gen));
@@ -119,9 +129,13 @@ void bsdfProbe(CheckEnv& env, Verdict& v) {
     vk::Buffer out = env.ctx.createBuffer({count * sizeof(GpuPtProbeResult), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                          vk::MemoryUsage::GpuOnly, "pt probe results", "conformance"});
     vk::uploadBuffer(env.ctx, in, std::span<const GpuPtProbeCase>(cases));
+    const std::vector<float> albedo = pathtrace::albedoTableData();
+    vk::Buffer tables = env.ctx.createBuffer({albedo.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                            vk::MemoryUsage::GpuOnly, "albedo tables", "conformance"});
+    vk::uploadBuffer(env.ctx, tables, std::span<const float>(albedo));
     const vk::Pipeline& probe =
         env.shaders.compute({vk::ShaderId::conformance_pt_bsdf_probe_comp, {}, sizeof(ProbePush), {{64, 1, 1}}});
-    ProbePush push{in.address, out.address, count, kEnvWidth, kEnvHeight, 0};
+    ProbePush push{in.address, out.address, count, kEnvWidth, kEnvHeight, 0, tables.address};
     env.ctx.runImmediate([&](VkCommandBuffer cmd) {
         vk::bindPipeline(cmd, probe);
         vk::pushConstants(cmd, env.ctx, push);
@@ -130,8 +144,10 @@ void bsdfProbe(CheckEnv& env, Verdict& v) {
     const std::vector<GpuPtProbeResult> gpu = vk::downloadBuffer<GpuPtProbeResult>(env.ctx, out, count);
     env.ctx.destroy(in);
     env.ctx.destroy(out);
+    env.ctx.destroy(tables);
 
     uint32_t lobeFlips = 0, lightFlips = 0, texelFlips = 0, evaluated = 0, sampled = 0, lit = 0;
+    uint32_t lobeCounts[8] = {};  // agreeing samples per lobe (kPtLobe*)
     for (uint32_t i = 0; i < count; ++i) {
         const GpuPtProbeResult cpu = cpuResult(cases[i]);
         const GpuPtProbeResult& g = gpu[i];
@@ -151,6 +167,7 @@ void bsdfProbe(CheckEnv& env, Verdict& v) {
             v.expect(close3(g.sampleWeight, cpu.sampleWeight, 5e-3f), "case " + std::to_string(i) + ": sampleWeight");
             v.expect(close(g.samplePdf, cpu.samplePdf, 5e-3f), "case " + std::to_string(i) + ": samplePdf");
             ++sampled;
+            ++lobeCounts[std::min<uint32_t>(cpu.sampleLobe & ~kPtLobeDeltaFlag, 7u)];
         }
         // Lights.
         if (g.lightOk != cpu.lightOk) {
@@ -178,6 +195,10 @@ void bsdfProbe(CheckEnv& env, Verdict& v) {
     v.expect(evaluated > count / 4, "evaluated = " + std::to_string(evaluated) + ", limit > " + std::to_string(count / 4));
     v.expect(sampled > count / 2, "sampled = " + std::to_string(sampled) + ", limit > " + std::to_string(count / 2));
     v.expect(lit > count / 3, "lit = " + std::to_string(lit) + ", limit > " + std::to_string(count / 3));
+    for (uint32_t lobe : {kPtLobeDiffuse, kPtLobeSpecular, kPtLobeTransmission, kPtLobeMultiScatter, kPtLobeSheen,
+                          kPtLobeClearcoat})
+        v.expect(lobeCounts[lobe] > 20u, "lobe " + std::to_string(lobe) + " is hardly sampled (" +
+                                             std::to_string(lobeCounts[lobe]) + " cases): the cases miss it");
 }
 
 }  // namespace

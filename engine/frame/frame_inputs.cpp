@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <string>
 
+#include "pathtrace/albedo_integrator.hpp"
 #include "render/gpu_animation.hpp"
 #include "shared/deferred_types.h"
 #include "vk/transfer.hpp"
@@ -34,6 +35,7 @@ graph::BufferHandle importBuffer(graph::RenderGraph& graph, const char* name, co
 
 FrameInputs::~FrameInputs() {
     for (vk::Buffer& b : frameConstants_) ctx_.destroy(b);
+    if (albedoTables_) ctx_.destroy(albedoTables_);
     for (vk::Buffer& b : lightBuffers_)
         if (b) ctx_.destroy(b);
 }
@@ -77,6 +79,16 @@ void FrameInputs::addPasses(FrameContext& f, render::GpuScene& s, const render::
             frameConstants_.push_back(ctx_.createBuffer(desc));
         }
     }
+    if (!albedoTables_) {  // static: written once (the upload waits for its copy) and only read after
+        const std::vector<float> tables = pathtrace::albedoTableData();
+        vk::BufferDesc desc;
+        desc.size = tables.size() * sizeof(float);
+        desc.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+        desc.name = "albedo tables";
+        desc.category = "frame constants";
+        albedoTables_ = ctx_.createBuffer(desc);
+        vk::uploadBuffer(ctx_, albedoTables_, tables.data(), desc.size);
+    }
     // This frame's slot: the frame ring has waited until the GPU finished the slot's previous frame.
     const vk::Buffer& frameBuffer = frameConstants_[f.slot];
     const vk::Buffer& lights = lightBuffer(f, s);
@@ -85,6 +97,7 @@ void FrameInputs::addPasses(FrameContext& f, render::GpuScene& s, const render::
     g.viewProjection = f.viewProjection;
     g.inverseViewProjection = glm::inverse(f.viewProjection);
     g.cameraPosition = f.camera.position;
+    g.albedoTables = albedoTables_.address;
     g.lightCount = uint32_t(f.lights->size());
     g.lights = lights ? lights.address : 0;
     g.extent = glm::uvec2(f.width, f.height);
@@ -111,7 +124,12 @@ void FrameInputs::addPasses(FrameContext& f, render::GpuScene& s, const render::
     sb.meshes = importBuffer(f.graph, "scene meshes", s.meshes());
     sb.instances = importBuffer(f.graph, "scene instances", s.instances(), readByGBuffer);
     sb.drawCommands = importBuffer(f.graph, "scene draw commands", s.drawCommands());
-    sb.materials = importBuffer(f.graph, "scene materials", s.materialBuffer(), readByGBuffer);
+    // The deferred lighting pass (compute) reads the materials too: the factors of the BSDF extensions.
+    const auto readByGBufferAndLighting = graph::stateAfterAccess(
+        graph::Access::StorageRead, graph::ResourceKind::Buffer,
+        VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
+            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    sb.materials = importBuffer(f.graph, "scene materials", s.materialBuffer(), readByGBufferAndLighting);
     sb.lights = importBuffer(f.graph, "scene lights", lights);
     sb.colors = importBuffer(f.graph, "scene vertex colors", s.colors());
     sb.uv1 = importBuffer(f.graph, "scene uv1", s.uv1());

@@ -29,6 +29,7 @@ private:
 
     vk::Context& ctx_;
     std::vector<vk::Buffer> frameConstants_;      // one host-visible GpuFrame per frame slot
+    vk::Buffer albedoTables_;                     // pathtrace::albedoTableData() (GGX energy compensation), static
     std::vector<gpu::GpuLight> extraLights_;
     std::vector<gpu::GpuLight> combinedLights_;   // scene lights + extra lights of the frame being built
     std::vector<vk::Buffer> lightBuffers_;        // per frame slot, only while there are extra lights

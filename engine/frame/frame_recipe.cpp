@@ -47,9 +47,9 @@ graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Fe
     x.vrs.beginFrame(f);                                              // f.vrsRates: last frame's shading rates
     x.ssao.addPasses(f);                                              // f.ambientOcclusion
     x.vxgi.addConeTracing(f);                                         // f.indirectLight (--gi vxgi)
-    f.hdr = passes::addDeferredLightingPass(f.graph, f.ctx, f.shaders, f.gbuffer, f.frameConstants, f.scene.lights,
-                                            f.environment, hdrTarget(f), f.pointShadows, f.vrsRates,
-                                            f.ambientOcclusion, f.indirectLight);
+    f.hdr = passes::addDeferredLightingPass(
+        f.graph, f.ctx, f.shaders, f.gbuffer, f.frameConstants, f.scene.lights, f.environment, hdrTarget(f),
+        {f.pointShadows, f.scene.materials, f.vrsRates, f.ambientOcclusion, f.indirectLight});
     f.hdr = passes::addSkyPass(f.graph, f.ctx, f.shaders, f.gbuffer.depth, f.frameConstants, f.environment, f.hdr,
                                f.vrsRates);
     x.vrs.addReconstructPass(f);                                      // VRS: fills the pixels not shaded

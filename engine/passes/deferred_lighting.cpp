@@ -15,10 +15,7 @@ namespace idk::passes {
 graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                              const GBufferOutputs& gbuffer, graph::BufferHandle frame,
                                              graph::BufferHandle lights, graph::TextureHandle environment,
-                                             graph::TextureHandle target, const PointShadowOutputs& shadows,
-                                             graph::BufferHandle vrsRates,
-                                             graph::TextureHandle ambientOcclusion,
-                                             const IndirectLightImages& indirect) {
+                                             graph::TextureHandle target, const LightingInputs& in) {
     auto written = std::make_shared<graph::TextureHandle>();
     const GBufferOutputs g = gbuffer;
     graph.addPass(
@@ -30,20 +27,20 @@ graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Cont
             b.read(environment, graph::Access::SampledRead, kCs);
             b.read(frame, graph::Access::StorageRead, kCs);
             if (lights.valid()) b.read(lights, graph::Access::StorageRead, kCs);
-            if (shadows.table.valid()) {
-                b.read(shadows.table, graph::Access::StorageRead, kCs);
-                for (graph::TextureHandle cube : shadows.cubes) b.read(cube, graph::Access::SampledRead, kCs);
+            if (in.materials.valid()) b.read(in.materials, graph::Access::StorageRead, kCs);
+            if (in.shadows.table.valid()) {
+                b.read(in.shadows.table, graph::Access::StorageRead, kCs);
+                for (graph::TextureHandle cube : in.shadows.cubes) b.read(cube, graph::Access::SampledRead, kCs);
             }
-            if (vrsRates.valid()) b.read(vrsRates, graph::Access::StorageRead, kCs);
-            if (ambientOcclusion.valid()) b.read(ambientOcclusion, graph::Access::StorageRead, kCs);
-            if (indirect.diffuse.valid()) {
-                b.read(indirect.diffuse, graph::Access::StorageRead, kCs);
-                b.read(indirect.specular, graph::Access::StorageRead, kCs);
+            if (in.vrsRates.valid()) b.read(in.vrsRates, graph::Access::StorageRead, kCs);
+            if (in.ambientOcclusion.valid()) b.read(in.ambientOcclusion, graph::Access::StorageRead, kCs);
+            if (in.indirect.diffuse.valid()) {
+                b.read(in.indirect.diffuse, graph::Access::StorageRead, kCs);
+                b.read(in.indirect.specular, graph::Access::StorageRead, kCs);
             }
             *written = b.write(target, graph::Access::StorageWrite, kCs);
         },
-        [&ctx, &shaders, g, frame, written, table = shadows.table, vrsRates, ambientOcclusion,
-         indirect](graph::PassContext& pc) {
+        [&ctx, &shaders, g, frame, written, in](graph::PassContext& pc) {
             VkCommandBuffer cmd = pc.commandBuffer();
             vk::ComputePipelineDesc desc;
             desc.shader = vk::ShaderId::deferred_lighting_lighting_comp;
@@ -59,11 +56,14 @@ graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Cont
             push.emissive = pc.texture(g.emissive).storageIndex;
             push.depth = pc.texture(g.depth).storageIndex;
             push.target = pc.texture(*written).storageIndex;
-            push.pointShadows = table.valid() ? pc.buffer(table).address : 0;
-            push.vrsRates = vrsRates.valid() ? pc.buffer(vrsRates).address : 0;
-            push.ambientOcclusion = ambientOcclusion.valid() ? pc.texture(ambientOcclusion).storageIndex : gpu::kLightingNoAo;
-            push.vxgiDiffuse = indirect.diffuse.valid() ? pc.texture(indirect.diffuse).storageIndex : gpu::kNoVxgi;
-            push.vxgiSpecular = indirect.specular.valid() ? pc.texture(indirect.specular).storageIndex : gpu::kNoVxgi;
+            push.pointShadows = in.shadows.table.valid() ? pc.buffer(in.shadows.table).address : 0;
+            push.materials = in.materials.valid() ? pc.buffer(in.materials).address : 0;
+            push.vrsRates = in.vrsRates.valid() ? pc.buffer(in.vrsRates).address : 0;
+            push.ambientOcclusion =
+                in.ambientOcclusion.valid() ? pc.texture(in.ambientOcclusion).storageIndex : gpu::kLightingNoAo;
+            push.vxgiDiffuse = in.indirect.diffuse.valid() ? pc.texture(in.indirect.diffuse).storageIndex : gpu::kNoVxgi;
+            push.vxgiSpecular =
+                in.indirect.specular.valid() ? pc.texture(in.indirect.specular).storageIndex : gpu::kNoVxgi;
             vk::pushConstants(cmd, ctx, push);
             VkExtent3D extent = pc.texture(*written).extent;
             vkCmdDispatch(cmd, vk::groupCount(extent.width, gpu::kLightingGroupSize),

@@ -110,14 +110,20 @@ struct IndirectLightImages {
     graph::TextureHandle diffuse, specular;
 };
 
+// The deferred lighting pass's optional inputs, one per feature that feeds it (invalid handles: that feature is off).
+struct LightingInputs {
+    PointShadowOutputs shadows;             // point-light cube shadows (point_shadows.cpp)
+    graph::BufferHandle materials;          // the BSDF extensions' factors (include/material_layers.glsl)
+    graph::BufferHandle vrsRates;           // software VRS: shade cell anchors only (vrs_passes.hpp)
+    graph::TextureHandle ambientOcclusion;  // SSAO visibility of the ambient light (ssao.hpp)
+    IndirectLightImages indirect;           // VXGI cone-traced light (vxgi_passes.hpp)
+};
+
 // deferred_lighting.cpp: shades the G-buffer's geometry pixels into `target` (RGBA16F); returns its new version.
 graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                              const GBufferOutputs& gbuffer, graph::BufferHandle frame,
                                              graph::BufferHandle lights, graph::TextureHandle environment,
-                                             graph::TextureHandle target, const PointShadowOutputs& shadows = {},
-                                             graph::BufferHandle vrsRates = {},  // software VRS (vrs_passes.hpp)
-                                             graph::TextureHandle ambientOcclusion = {},   // SSAO (ssao.hpp)
-                                             const IndirectLightImages& indirect = {});   // VXGI (vxgi_passes.hpp)
+                                             graph::TextureHandle target, const LightingInputs& in = {});
 
 // sky.cpp: writes the environment into the background pixels of `target` (depth == 1); returns its new version.
 graph::TextureHandle addSkyPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,

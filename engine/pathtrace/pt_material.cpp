@@ -82,6 +82,12 @@ PtMaterialHit evaluateMaterial(const PathTraceScene& pts, const PtHitPoint& hit,
     s.attenuationDistance = pm.attenuationDistance;
     s.emission = emissionAt(pts, hit, wo);
     s.geometricNormal = hit.geometricNormal;
+    s.specular = pm.specular;
+    s.specularColor = pm.specularColor;
+    s.clearcoat = pm.clearcoat;
+    s.clearcoatRoughness = pm.clearcoatRoughness;
+    s.sheenColor = pm.sheenColor;
+    s.sheenRoughness = pm.sheenRoughness;
 
     // Normal mapping in the vertex tangent frame (B = cross(N, T) * w), z rebuilt from the remapped xy.
     glm::vec3 n = hit.normal;
@@ -109,6 +115,8 @@ PtMaterialHit evaluateMaterial(const PathTraceScene& pts, const PtHitPoint& hit,
         s.metallic = 0.0f;
         s.transmission = 0.0f;
         s.ior = 1.0f;  // no Fresnel reflection either: nothing scatters
+        s.clearcoat = 0.0f;
+        s.sheenColor = glm::vec3(0.0f);
     }
     return out;
 }

@@ -97,6 +97,12 @@ std::vector<gpu::GpuPtMaterial> packPtMaterials(const scene::Scene& scene) {
             p.transmissionTexCoord = m.transmissionTexture->texCoord;
             textureTransformRows(*m.transmissionTexture, p.transmissionRow0, p.transmissionRow1);
         }
+        p.specular = m.specular;
+        p.specularColor = m.specularColor;
+        p.clearcoat = m.clearcoat;
+        p.clearcoatRoughness = m.clearcoatRoughness;
+        p.sheenColor = m.sheenColor;
+        p.sheenRoughness = m.sheenRoughness;
         out.push_back(p);
     }
     return out;

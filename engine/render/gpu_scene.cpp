@@ -70,6 +70,17 @@ gpu::GpuMaterial packMaterial(const scene::Material& m, const TextureBindings& b
     g.slots[gpu::kSlotNormal] = slotFor(m.normalTexture, b.flatNormal, b);
     g.slots[gpu::kSlotOcclusion] = slotFor(m.occlusionTexture, b.white, b);
     g.slots[gpu::kSlotEmissive] = slotFor(m.emissiveTexture, b.white, b);
+    g.specular = m.specular;
+    g.specularColor = m.specularColor;
+    g.clearcoat = m.clearcoat;
+    g.clearcoatRoughness = m.clearcoatRoughness;
+    g.sheenColor = m.sheenColor;
+    g.sheenRoughness = m.sheenRoughness;
+    if (!m.unlit) {
+        if (m.specular != 1.0f || m.specularColor != glm::vec3(1.0f)) g.flags |= gpu::kMaterialSpecular;
+        if (m.clearcoat > 0.0f) g.flags |= gpu::kMaterialClearcoat;
+        if (glm::any(glm::greaterThan(m.sheenColor, glm::vec3(0.0f)))) g.flags |= gpu::kMaterialSheen;
+    }
     return g;
 }
 

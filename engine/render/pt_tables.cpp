@@ -1,6 +1,7 @@
 // pt_tables.cpp: uploads PT-A's light, environment and material tables (see pt_tables.hpp).
 #include "render/pt_tables.hpp"
 
+#include "pathtrace/albedo_integrator.hpp"
 #include "vk/context.hpp"
 #include "vk/transfer.hpp"
 
@@ -40,6 +41,7 @@ PtTables uploadPtTables(vk::Context& ctx, const pathtrace::PathTraceScene& pts,
         samplers[i] = b.sampler;
     }
     t.desc.ptMaterials = upload(ctx, t, materials, "pt materials");
+    t.desc.albedoTables = upload(ctx, t, pathtrace::albedoTableData(), "pt albedo tables");
     t.desc.ptSamplers = upload(ctx, t, samplers, "pt material samplers");
     t.desc.lights = upload(ctx, t, pts.lights, "pt lights");
     t.desc.lightAlias = upload(ctx, t, pts.lightAlias, "pt light alias");

@@ -153,7 +153,14 @@ std::optional<DracoGeometry> decodeDraco(const Ctx& ctx, const tinygltf::Primiti
 
 void loadTextures(const Ctx& ctx);    // gltf_materials.cpp: images (recorded, not decoded) and samplers
 void loadMaterials(const Ctx& ctx);   // gltf_materials.cpp
+// KHR_materials_specular, _clearcoat, _sheen of one material (gltf_material_ext.cpp); where names the material.
+void loadMaterialExtensions(const Ctx& ctx, const tinygltf::Material& src, const std::string& where, Material& mat);
 void loadMeshes(const Ctx& ctx);      // gltf_meshes.cpp: attributes, morph targets, tangents
+// KHR_materials_variants (material_variants.cpp): the file's variant names (before loadMeshes), a primitive's
+// mappings (where names the primitive for warnings).
+void loadVariantNames(const Ctx& ctx);
+void loadVariantMappings(const Ctx& ctx, const tinygltf::ExtensionMap& extensions, Primitive& prim,
+                         const std::string& where);
 void loadNodes(const Ctx& ctx);       // gltf_nodes.cpp: hierarchy, TRS, EXT_mesh_gpu_instancing
 void loadSkins(const Ctx& ctx);       // gltf_nodes.cpp: skins + joint index validation of skinned meshes
 void loadAnimations(const Ctx& ctx);  // gltf_animation.cpp

@@ -21,11 +21,12 @@ LoadError::LoadError(const std::filesystem::path& file, const std::string& cause
     : std::runtime_error(file.string() + ": " + cause), file_(file), cause_(cause) {}
 
 bool isSupportedExtension(const std::string& name) {
-    static const std::array<const char*, 11> kSupported = {
+    static const std::array<const char*, 15> kSupported = {
         "KHR_mesh_quantization",           "KHR_draco_mesh_compression", "EXT_meshopt_compression",
         "EXT_mesh_gpu_instancing",         "KHR_lights_punctual",        "KHR_texture_transform",
         "KHR_materials_emissive_strength", "KHR_materials_unlit",        "KHR_materials_transmission",
-        "KHR_materials_ior",               "KHR_materials_volume"};
+        "KHR_materials_ior",               "KHR_materials_volume",       "KHR_materials_specular",
+        "KHR_materials_clearcoat",         "KHR_materials_sheen",        "KHR_materials_variants"};
     return std::any_of(kSupported.begin(), kSupported.end(), [&](const char* s) { return name == s; });
 }
 
@@ -234,6 +235,7 @@ Scene loadGltfFromMemory(std::span<const uint8_t> bytes, const std::filesystem::
         gltf::decodeMeshoptViews(ctx, model);
         gltf::loadTextures(ctx);
         gltf::loadMaterials(ctx);
+        gltf::loadVariantNames(ctx);
         gltf::loadMeshes(ctx);
         gltf::loadNodes(ctx);
         gltf::loadSkins(ctx);

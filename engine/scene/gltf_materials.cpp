@@ -1,7 +1,8 @@
 // gltf_materials.cpp: glTF images, textures and materials for the loader (the material half of IDKEngine's
 // ModelLoader): images recorded (never decoded) with missing files and unknown formats flagged for the magenta
 // placeholder; the full metallic-roughness material (every texture with texCoord and KHR_texture_transform,
-// normal scale, occlusion strength) and KHR_materials_emissive_strength, _unlit, _transmission, _ior, _volume.
+// normal scale, occlusion strength) and KHR_materials_emissive_strength, _unlit, _transmission, _ior, _volume
+// (the BSDF extensions: gltf_material_ext.cpp).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -232,6 +233,7 @@ void loadMaterials(const Ctx& ctx) {
             if (distance > 0.0 && std::isfinite(distance)) mat.attenuationDistance = float(distance);
             mat.attenuationColor = glm::clamp(vec3Or(*ext, "attenuationColor", glm::vec3(1.0f)), 0.0f, 1.0f);
         }
+        loadMaterialExtensions(ctx, src, where + (src.name.empty() ? "" : " '" + src.name + "'"), mat);
         ctx.scene.materials.push_back(std::move(mat));
     }
 }

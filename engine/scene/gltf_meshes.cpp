@@ -217,6 +217,7 @@ bool readPrimitive(const Ctx& ctx, const tinygltf::Primitive& sp, const std::str
                      str(ctx.model.materials.size()) + ")");
         prim.material = uint32_t(sp.material);
     }
+    loadVariantMappings(ctx, sp.extensions, prim, where);
     if (prim.indices.empty()) {
         ctx.warn(where + " has no triangles; skipped");
         return false;

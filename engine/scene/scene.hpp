@@ -35,6 +35,8 @@ struct Primitive {
     std::vector<glm::vec2> uv0;        // TEXCOORD_0, empty when the primitive has none
     std::vector<uint32_t> indices;     // triangle list, 3 per triangle, each < positions.size()
     std::optional<uint32_t> material;  // index into Scene::materials; empty: the glTF default material
+    // KHR_materials_variants: (variant index into Scene::variantNames, material) pairs; applyMaterialVariant.
+    std::vector<std::pair<uint32_t, uint32_t>> variantMaterials;
     std::vector<glm::vec2> uv1;        // TEXCOORD_1 (dequantized like uv0; KHR_texture_transform is not baked in)
     std::vector<glm::vec4> colors;     // COLOR_0 as linear RGBA (vec3 files get alpha 1), normalized ints decoded
     // Unit xyz orthogonal to the normal, w = +1 or -1: bitangent = w * cross(normal, tangent.xyz). From the file's
@@ -93,6 +95,13 @@ struct Material {
     std::optional<TextureRef> thicknessTexture;
     float attenuationDistance = std::numeric_limits<float>::infinity();  // infinity: no absorption
     glm::vec3 attenuationColor{1.0f};
+    // BSDF extensions (factors; their textures are not read yet, the loader warns): gltf_material_ext.cpp.
+    float specular = 1.0f;                 // KHR_materials_specular specularFactor, [0, 1]
+    glm::vec3 specularColor{1.0f};         // specularColorFactor, linear, >= 0 (may exceed 1)
+    float clearcoat = 0.0f;                // KHR_materials_clearcoat clearcoatFactor, [0, 1]
+    float clearcoatRoughness = 0.0f;       // clearcoatRoughnessFactor, [0, 1]
+    glm::vec3 sheenColor{0.0f};            // KHR_materials_sheen sheenColorFactor, linear, [0, 1]
+    float sheenRoughness = 0.0f;           // sheenRoughnessFactor, [0, 1]
 };
 
 // Filtering and wrapping as glTF enums (9728 NEAREST, 9729 LINEAR, ...; 10497 REPEAT, 33071 CLAMP, 33648 MIRROR).
@@ -282,8 +291,13 @@ struct Scene {
     std::vector<Animation> animations;
     uint32_t sceneIndex = 0;              // which glTF scene was placed (LoadOptions::scene, else the default)
     std::vector<std::string> sceneNames;  // every scene in the file (may be empty names; empty if none)
+    std::vector<std::string> variantNames;  // KHR_materials_variants, in file order (empty: none)
 
     SceneFeatures features() const;  // computed on each call (scene.cpp)
 };
+
+// KHR_materials_variants: gives every primitive mapped for the variant called `name` that variant's material
+// (the others keep theirs). Throws std::invalid_argument naming the variant and listing the file's variants.
+void applyMaterialVariant(Scene& scene, const std::string& name);
 
 }  // namespace idk::scene

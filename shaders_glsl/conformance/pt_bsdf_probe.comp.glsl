@@ -12,11 +12,12 @@ layout(local_size_x = 64) in;
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer CaseArray { GpuPtProbeCase data[]; };
 layout(buffer_reference, scalar, buffer_reference_align = 4) writeonly buffer ResultArray { GpuPtProbeResult data[]; };
 layout(push_constant, scalar) uniform Push { CaseArray cases; ResultArray results; uint count; uint envWidth;
-                                             uint envHeight; uint pad; } p;
+                                             uint envHeight; uint pad; uint64_t albedoTables; } p;
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= p.count) return;
+    gPtAlbedoTables = p.albedoTables;
     GpuPtProbeCase c = p.cases.data[i];
     GpuPtProbeResult r;
 

@@ -18,6 +18,7 @@ layout(push_constant, scalar) uniform Push { LightingPush p; };
 
 void main() {
     GpuFrame f = FrameBuffer(p.frame).frame;
+    gPtAlbedoTables = f.albedoTables;
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (!vrsAnchorOfInvocation(p.vrsRates, pixel)) return;  // software VRS: vrs/reconstruct.comp fills the rest
     if (any(greaterThanEqual(uvec2(pixel), f.extent))) return;
@@ -40,8 +41,12 @@ void main() {
         return;
     }
 
-    vec3 radiance = imageLoad(gImagesRgba16f[p.emissive], pixel).rgb;
-    radiance += shadeSurface(f, p.pointShadows, position, n, v, baseColor, metallic, roughness, occlusion);
+    vec4 emissive = imageLoad(gImagesRgba16f[p.emissive], pixel);
+    uint layered = uint(emissive.a + 0.5);  // 1 + material index for materials with BSDF extensions, else 0
+    SurfaceLayers layers = layered > 0u && p.materials != 0 ? materialLayers(MaterialBuffer(p.materials).data[layered - 1u])
+                                                            : noLayers();
+    vec3 radiance = emissive.rgb;
+    radiance += shadeSurface(f, p.pointShadows, position, n, v, baseColor, metallic, roughness, occlusion, layers);
     radiance += vxgiAmbientDelta(f, p.vxgiDiffuse, p.vxgiSpecular, pixel, n, v, baseColor, metallic, roughness,
                                  occlusion);  // inside the VXGI grid: traced light replaces the SH ambient
 

@@ -23,7 +23,7 @@ layout(location = 6) in vec2 inUv1;
 layout(location = 0) out vec4 outAlbedo;    // RGBA8: sRGB-encoded base colour, alpha
 layout(location = 1) out uint outNormal;    // R32UI: octahedral world normal (facing the viewer's side)
 layout(location = 2) out vec4 outMaterial;  // RGBA8: metallic, roughness, occlusion, lit (0: unlit)
-layout(location = 3) out vec4 outEmissive;  // RGBA16F: emitted radiance
+layout(location = 3) out vec4 outEmissive;  // RGBA16F: emitted radiance, alpha: layered material index + 1
 layout(location = 4) out float outDepth;    // R32F: the fragment's depth (what the depth test kept)
 
 vec4 sampleSlot(GpuTextureSlot slot) { return sampleMaterialSlot(slot, inUv, inUv1); }
@@ -58,6 +58,10 @@ void main() {
     outNormal = packSnorm2x16(octEncode(n));
     outMaterial = vec4(clamp(m.metallicFactor * mr.b, 0.0, 1.0), clamp(m.roughnessFactor * mr.g, 0.0, 1.0),
                        1.0 + m.occlusionStrength * (ao - 1.0), (m.flags & kMaterialUnlit) != 0u ? 0.0 : 1.0);
-    outEmissive = vec4(emissive, 1.0);
+    // Emissive alpha: 1 + the material index when the material uses a BSDF extension (the lighting pass reads its
+    // factors from the material buffer), else 0. RGBA16F holds integers exactly up to 2048; a material past that
+    // is shaded without its extensions (a real renderer with more would add an R16UI target).
+    bool layered = (m.flags & kMaterialLayers) != 0u && materialIndex < 2047u;
+    outEmissive = vec4(emissive, layered ? float(materialIndex + 1u) : 0.0);
     outDepth = gl_FragCoord.z;
 }

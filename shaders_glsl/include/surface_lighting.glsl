@@ -5,20 +5,20 @@
 #ifndef IDK_SURFACE_LIGHTING_GLSL
 #define IDK_SURFACE_LIGHTING_GLSL
 #include "scene_buffers.glsl"
-#include "pbr.glsl"
+#include "material_layers.glsl"
 #include "environment.glsl"
 #include "shadows.glsl"
 
 // n: unit shading normal on the viewer's side; v: unit direction to the eye. pointShadows: GpuPointShadow[] per
-// light, or 0 when no light casts a shadow.
+// light, or 0 when no light casts a shadow. layers: the material's extensions (noLayers() for none).
 vec3 shadeSurface(GpuFrame f, uint64_t pointShadows, vec3 position, vec3 n, vec3 v, vec3 baseColor, float metallic,
-                  float roughness, float occlusion) {
+                  float roughness, float occlusion, SurfaceLayers layers) {
     vec3 radiance = vec3(0.0);
     LightBuffer lights = LightBuffer(f.lights);
     for (uint i = 0; i < f.lightCount; ++i) {
         vec3 l;
         vec3 incident = lightIncidence(lights.data[i], position, l);
-        vec3 direct = brdfCosine(baseColor, metallic, roughness, n, v, l) * incident;
+        vec3 direct = layeredBrdfCosine(layers, baseColor, metallic, roughness, n, v, l) * incident;
         if (pointShadows != 0 && any(greaterThan(direct, vec3(0.0)))) {
             GpuPointShadow s = PointShadowBuffer(pointShadows).data[i];
             if (s.cube != kNoShadow) direct *= pointShadowVisibility(s, position, n, l);
@@ -27,14 +27,29 @@ vec3 shadeSurface(GpuFrame f, uint64_t pointShadows, vec3 position, vec3 n, vec3
     }
 
     // Ambient. Specular: split-sum, radiance from a box-filtered environment lookup times the directional albedo
-    // E_s = f0 A + B. Diffuse: c_diff / pi * E(n), weighted by (1 - E_s) as the direct term's (1 - F), so a white
-    // surface in a constant environment reflects exactly the environment (the furnace test checks it).
+    // E_s = f0 A + f90 B with the multiple-scattering factor (material_layers.glsl). Diffuse: c_diff / pi * E(n),
+    // weighted by (1 - E_s) as the direct term's (1 - F), so a white surface in a constant environment reflects
+    // exactly the environment (the furnace test checks it). Sheen and clearcoat: their albedo at n.v times the
+    // irradiance / pi (sheen) or the coat-roughness radiance (coat), the layers beneath scaled as in direct light.
     float NdotV = max(dot(n, v), 1e-4);
     float r = clamp(roughness, kMinRoughness, 1.0);
-    vec3 specularAlbedo = environmentBrdfApprox(specularF0(baseColor, metallic), r, NdotV);
-    vec3 diffuse = (1.0 - clamp(specularAlbedo, 0.0, 1.0)) * baseColor * (1.0 - metallic) / kPi * shIrradiance(f, n);
+    vec3 specularAlbedo = ambientSpecularAlbedo(layers, baseColor, metallic, r, NdotV);
+    vec3 irradiance = shIrradiance(f, n);
+    vec3 diffuse = (1.0 - clamp(specularAlbedo, 0.0, 1.0)) * baseColor * (1.0 - metallic) / kPi * irradiance;
     vec3 specular = environmentRadiance(f, reflect(-v, n), environmentLod(f, r)) * specularAlbedo;
-    return radiance + (diffuse + specular) * occlusion;
+    vec3 ambient = diffuse + specular;
+    if ((layers.flags & kMaterialSheen) != 0u) {
+        float sheenAlbedo = ptAlbedoSheen(NdotV, layers.sheenRoughness);
+        ambient = ambient * max(1.0 - maxOf(layers.sheenColor) * sheenAlbedo, 0.0) +
+                  layers.sheenColor * sheenAlbedo * irradiance / kPi;
+    }
+    if ((layers.flags & kMaterialClearcoat) != 0u) {
+        float cr = clamp(layers.clearcoatRoughness, kMinRoughness, 1.0);
+        float coat = layers.clearcoat * fresnelSchlick(vec3(0.04), NdotV).x;
+        vec3 coatAlbedo = layers.clearcoat * environmentBrdfApprox(vec3(0.04), cr, NdotV);
+        ambient = ambient * (1.0 - coat) + environmentRadiance(f, reflect(-v, n), environmentLod(f, cr)) * coatAlbedo;
+    }
+    return radiance + ambient * occlusion;
 }
 
 #endif

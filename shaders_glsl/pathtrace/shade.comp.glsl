@@ -16,6 +16,7 @@ void main() {
     if (i >= queue.count) return;
     uint pixel = queue.items[i];
     GpuPtSceneDesc s = WfSceneRef(pc.scene).d;
+    gPtAlbedoTables = s.albedoTables;
     GpuPtPath path = WfPathRef(pc.paths).p[pixel];
     GpuPtHit hit = WfHitRef(pc.hits).h[pixel];
     PtRng rng = wfResumeRng(path.rngState, pixel, pc.sampleIndex, pc.seed, pc.flags);

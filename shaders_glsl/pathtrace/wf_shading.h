@@ -82,6 +82,12 @@ PtSurface wfEvaluateMaterial(GpuPtSceneDesc sc, WfHitPoint hit, vec3 wo, out boo
     s.attenuationDistance = pm.attenuationDistance;
     s.emission = wfEmissionAt(m, hit, wo);
     s.geometricNormal = hit.geometricNormal;
+    s.specular = pm.specular;
+    s.specularColor = pm.specularColor;
+    s.clearcoat = pm.clearcoat;
+    s.clearcoatRoughness = pm.clearcoatRoughness;
+    s.sheenColor = pm.sheenColor;
+    s.sheenRoughness = pm.sheenRoughness;
     // Normal mapping in the vertex tangent frame (B = cross(N, T) * w), z rebuilt from the remapped xy. A slot
     // without a normal texture samples the flat placeholder (xy = 0), which leaves n unchanged.
     vec3 n = hit.normal;
@@ -106,6 +112,8 @@ PtSurface wfEvaluateMaterial(GpuPtSceneDesc sc, WfHitPoint hit, vec3 wo, out boo
         s.metallic = 0.0;
         s.transmission = 0.0;
         s.ior = 1.0;
+        s.clearcoat = 0.0;
+        s.sheenColor = vec3(0.0);
     }
     return s;
 }

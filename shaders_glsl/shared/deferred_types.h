@@ -15,6 +15,7 @@ struct GpuFrame {
     vec3 cameraPosition;         // world
     uint lightCount;
     DeviceAddress lights;        // GpuLight[lightCount]; 0 when the scene has none
+    DeviceAddress albedoTables;  // float[]: the GGX/sheen albedo tables (shared/pt_energy.h, gPtAlbedoTables)
     uvec2 extent;                // render size in pixels
     // Diffuse irradiance E(n) = sh[0] + sh[1] y + sh[2] z + sh[3] x + sh[4] xy + sh[5] yz + sh[6] (3z^2 - 1)
     // + sh[7] xz + sh[8] (x^2 - y^2): the SH9 projection of the environment with the cosine-lobe factors and
@@ -28,7 +29,7 @@ struct GpuFrame {
     float environmentHeight;     // mip 0 height in texels (keeps filtering off the poles' far side)
     uint pad;
 };
-IDK_GPU_SIZE(GpuFrame, 296);
+IDK_GPU_SIZE(GpuFrame, 304);
 
 // gbuffer.vert/.frag: scene buffers by device address (they may exceed a descriptor's range).
 struct GBufferPush {
@@ -54,17 +55,18 @@ struct LightingPush {
     uint albedo;     // RGBA8: sRGB-encoded base colour, alpha
     uint normal;     // R32UI: octahedral world normal, packSnorm2x16
     uint material;   // RGBA8: metallic, roughness, occlusion, lit (0: unlit, output = albedo)
-    uint emissive;   // RGBA16F: emitted radiance
+    uint emissive;   // RGBA16F: emitted radiance; alpha 1 + material index of a layered material (else 0)
     uint depth;      // R32F: 0 near .. 1 far (1 = background)
     uint target;     // RGBA16F: linear radiance
     DeviceAddress pointShadows;  // GpuPointShadow[lightCount] (shared/shadow_types.h), 0: no light casts one
+    DeviceAddress materials;     // GpuMaterial[] (the BSDF extension factors of layered materials), 0: none
     DeviceAddress vrsRates;      // software VRS: shade only cell anchors (shared/vrs_types.h); 0: every pixel
     uint ambientOcclusion;       // R32F storage: SSAO visibility of the ambient light; kLightingNoAo: none
     uint vxgiDiffuse;            // RGBA16F VXGI irradiance (include/vxgi_ambient.glsl), kNoVxgi: GI off
     uint vxgiSpecular;           // RGBA16F VXGI reflection radiance
     uint pad;
 };
-IDK_GPU_SIZE(LightingPush, 64);
+IDK_GPU_SIZE(LightingPush, 72);
 IDK_CONST(uint, kLightingNoAo, 0xFFFFFFFFu);
 
 // sky.comp: writes the environment where depth == 1.

@@ -1,118 +1,21 @@
-// pt_bsdf.h: the glTF metallic-roughness BSDF for the path tracers (C++ and GLSL, see pt_sampling.h for the
-// model and how it differs from IDKEngine's Shading.glsl). Three lobes, chosen by estimated albedo:
-//   specular     GGX reflection, F = mix(exact dielectric Fresnel(IOR), Schlick(baseColor), metallic)
-//   diffuse      Lambert, (1 - metallic) (1 - transmission) (1 - F_dielectric) baseColor / pi
-//   transmission (1 - metallic) transmission (1 - F_dielectric) baseColor: rough refraction (Walter 2007) when the
-//                material has a volume (thickness > 0), else the reflection lobe mirrored through the surface.
-// Non-delta samples return the full one-sample-MIS pdf (sum over lobes), so ptSampleBsdf's pdf equals
-// ptEvalBsdf's pdf for the same direction. GGX alpha below kPtDeltaAlpha makes the specular and transmission
-// lobes delta (perfect mirror / refraction): ptEvalBsdf leaves them out and ptSampleBsdf flags them.
+// pt_bsdf.h: the path tracers' BSDF, evaluation and sampling (C++ and GLSL, see pt_sampling.h for the model and
+// how it differs from IDKEngine's Shading.glsl; pt_bsdf_frame.h for the layers). Lobes, chosen by estimated albedo
+// (one-sample MIS: a non-delta sample returns the pdf summed over all lobes, so ptSampleBsdf's pdf equals
+// ptEvalBsdf's for the same direction):
+//   specular     GGX reflection, F = mix(dielectric F (KHR_materials_specular), Schlick(baseColor), metallic)
+//   diffuse      Lambert, (1 - metallic) (1 - transmission) (1 - max F_dielectric) baseColor / pi
+//   transmission (1 - metallic) transmission (1 - max F_dielectric) baseColor: rough refraction (Walter 2007) when
+//                the material has a volume (thickness > 0), else the reflection lobe mirrored through the surface
+//   multiscatter GGX energy compensation (pt_energy.h), sampled by its own tabulated density
+//   sheen        KHR_materials_sheen (pt_sheen.h), cosine-sampled
+//   clearcoat    KHR_materials_clearcoat, GGX visible normals of the coat roughness
+// The base lobes carry the layer weight of clearcoat and sheen. GGX alpha below kPtDeltaAlpha makes the specular
+// and transmission lobes (and the clearcoat) delta: ptEvalBsdf leaves them out and ptSampleBsdf flags them.
 #ifndef IDK_PT_BSDF_H
 #define IDK_PT_BSDF_H
-#include "pt_microfacet.h"
+#include "pt_bsdf_frame.h"
 
 IDK_GPU_BEGIN
-
-// ---------------------------------------------------------------------------------------------------- setup
-// A surface prepared for one outgoing direction: the shading frame turned to wo's side, the lobe probabilities.
-struct PtBsdfFrame {
-    vec3 t;
-    vec3 b;
-    vec3 n;             // shading normal on wo's side, with dot(wo, n) > 0
-    vec3 ng;            // geometric normal on wo's side
-    vec3 wo;            // local
-    vec3 baseColor;     // sanitised
-    float metallic;
-    float transmission;
-    float alpha;        // GGX alpha (>= kPtDeltaAlpha when not delta)
-    bool delta;         // specular and transmission lobes are delta
-    bool transDelta;    // the transmission lobe is delta (delta, or a volume of IOR ~1: refraction does not bend)
-    bool thick;         // transmission refracts (volume); else thin-walled
-    float eta;          // thick: IOR on the far side / IOR on wo's side
-    float etaFresnel;   // the eta of the Fresnel term on wo's side (eta when thick, the IOR when thin)
-    float pSpec;        // lobe selection probabilities (sum 1)
-    float pDiff;
-    float pTrans;
-};
-
-IDK_INLINE vec3 ptSpecularFresnel(PtBsdfFrame f, float c) {
-    return mix(vec3(ptFresnelDielectric(c, f.etaFresnel)), ptFresnelSchlick(f.baseColor, c), f.metallic);
-}
-
-// False when nothing can scatter (invalid input or a black surface).
-IDK_INLINE bool ptBsdfSetup(PtSurface s, vec3 wo, IDK_OUT(PtBsdfFrame) f) {
-    f.t = vec3(1.0f, 0.0f, 0.0f);
-    f.b = vec3(0.0f, 1.0f, 0.0f);
-    f.n = vec3(0.0f, 0.0f, 1.0f);
-    f.ng = f.n;
-    f.wo = f.n;
-    f.baseColor = vec3(ptSaturate(s.baseColor.x), ptSaturate(s.baseColor.y), ptSaturate(s.baseColor.z));
-    f.metallic = ptSaturate(s.metallic);
-    f.transmission = ptSaturate(s.transmission);
-    float roughness = ptSaturate(s.roughness);
-    f.alpha = roughness * roughness;
-    f.delta = f.alpha < kPtDeltaAlpha;
-    f.transDelta = f.delta;
-    f.alpha = max(f.alpha, kPtDeltaAlpha);
-    f.pSpec = 0.0f;
-    f.pDiff = 0.0f;
-    f.pTrans = 0.0f;
-    float ior = ptFinite(s.ior) ? clamp(s.ior, 1.0f, 4.0f) : 1.5f;
-    f.thick = s.thickness > 0.0f;
-    f.eta = 1.0f;
-    f.etaFresnel = ior;
-    if (!ptFinite3(wo) || !(dot(wo, wo) > 0.5f)) return false;
-
-    vec3 ng = s.geometricNormal;
-    vec3 n = s.shadingNormal;
-    bool ngValid = ptFinite3(ng) && dot(ng, ng) > 0.25f;
-    bool nValid = ptFinite3(n) && dot(n, n) > 0.25f;
-    if (!ngValid) ng = nValid ? n : wo;
-    if (!nValid) n = ng;
-    ng = normalize(ng);
-    n = normalize(n);
-    bool outside = dot(wo, ng) >= 0.0f;
-    if (!outside) {
-        ng = -ng;
-        n = -n;
-    }
-    if (dot(n, ng) <= 0.0f) n = ng;
-    float cosO = dot(wo, n);
-    if (cosO < kPtMinCos) {  // a shading normal facing away from wo: tilt it toward wo just enough
-        vec3 bent = n + wo * (2.0f * kPtMinCos - cosO);
-        n = dot(bent, bent) > 1.0e-12f ? normalize(bent) : ng;
-    }
-    f.n = n;
-    f.ng = ng;
-    ptBasis(n, f.t, f.b);
-    f.wo = ptToLocal(wo, f.t, f.b, n);
-    f.wo.z = max(f.wo.z, kPtMinCos);
-    if (f.thick) {
-        f.eta = outside ? ior : 1.0f / ior;
-        f.etaFresnel = f.eta;
-    }
-    // With eta ~1 rough refraction degenerates (the generalized half vector wo + eta wi vanishes): every facet
-    // passes the ray straight on, a delta lobe.
-    f.transDelta = f.delta || (f.thick && abs(f.eta - 1.0f) < 1.0e-3f);
-
-    // Selection probabilities estimate each lobe's albedo from the Fresnel term at the macro normal. They are
-    // floored wherever the lobe can still scatter (microfacets see other angles: total internal reflection at the
-    // macro normal does not stop refraction through tilted facets, a black metal still has a grazing Schlick
-    // term), so that every direction with f > 0 keeps a pdf > 0 and BSDF sampling stays unbiased.
-    float fo = ptFresnelDielectric(f.wo.z, f.etaFresnel);
-    float dielectric = 1.0f - f.metallic;
-    float base = dielectric * max(1.0f - fo, 0.05f) * ptAverage(f.baseColor);
-    float pSpec = ptAverage(ptSpecularFresnel(f, f.wo.z));
-    if (f.metallic > 0.0f || f.etaFresnel != 1.0f) pSpec = max(pSpec, 1.0e-3f);
-    float pDiff = base * (1.0f - f.transmission);
-    float pTrans = base * f.transmission;
-    float sum = pSpec + pDiff + pTrans;
-    if (!(sum > 0.0f) || !ptFinite(sum)) return false;
-    f.pSpec = pSpec / sum;
-    f.pDiff = pDiff / sum;
-    f.pTrans = pTrans / sum;
-    return true;
-}
 
 // ---------------------------------------------------------------------------------------------------- evaluate
 // f * |cos(wi)| of the non-delta lobes for local directions, and the matching pdf. wiSide: dot(wi, ng) in world.
@@ -123,16 +26,28 @@ IDK_INLINE vec3 ptEvalLocal(PtBsdfFrame f, vec3 wi, float wiSide, IDK_OUT(float)
     if (wi.z > 0.0f && wiSide > 0.0f) {
         vec3 h = normalize(wo + wi);
         float cosOH = max(dot(wo, h), 0.0f);
-        float fd = ptFresnelDielectric(cosOH, f.etaFresnel);
-        value += f.baseColor * ((1.0f - f.metallic) * (1.0f - f.transmission) * (1.0f - fd) * kPtInvPi * wi.z);
+        float pass = ptDielectricPass(f, cosOH);
+        vec3 base = f.baseColor * ((1.0f - f.metallic) * (1.0f - f.transmission) * pass * kPtInvPi * wi.z);
         pdf += f.pDiff * wi.z * kPtInvPi;
         if (!f.delta) {
             float d = ptGgxD(h.z, f.alpha);
-            value += ptSpecularFresnel(f, cosOH) * (d * ptGgxG2(wo.z, wi.z, f.alpha) / (4.0f * wo.z));
+            base += ptSpecularFresnel(f, cosOH) * (d * ptGgxG2(wo.z, wi.z, f.alpha) / (4.0f * wo.z));
             pdf += f.pSpec * ptGgxG1(wo.z, f.alpha) * d / (4.0f * wo.z);
+            base += f.msColor * ((1.0f - ptAlbedoMetal(wi.z, f.roughness)) * wi.z);
+            if (f.pMs > 0.0f) pdf += f.pMs * ptMsPdf(wi.z, f.roughness);
+        }
+        value += base * f.layer;
+        if (f.pSheen > 0.0f) {
+            value += f.sheenColor * (f.coatLayer * ptSheenCos(wo, wi, f.sheenAlpha));
+            pdf += f.pSheen * wi.z * kPtInvPi;
+        }
+        if (f.pCoat > 0.0f && !f.coatDelta) {
+            float d = ptGgxD(h.z, f.coatAlpha);
+            value += vec3(f.clearcoat * ptCoatFresnel(cosOH) * d * ptGgxG2(wo.z, wi.z, f.coatAlpha) / (4.0f * wo.z));
+            pdf += f.pCoat * ptGgxG1(wo.z, f.coatAlpha) * d / (4.0f * wo.z);
         }
     } else if (wi.z < 0.0f && wiSide < 0.0f && !f.transDelta && f.pTrans > 0.0f) {
-        vec3 tint = f.baseColor * ((1.0f - f.metallic) * f.transmission);
+        vec3 tint = f.baseColor * ((1.0f - f.metallic) * f.transmission * f.transScale * f.layer);
         if (f.thick) {
             vec3 h = normalize(wo + wi * f.eta);
             if (h.z < 0.0f) h = -h;
@@ -141,17 +56,17 @@ IDK_INLINE vec3 ptEvalLocal(PtBsdfFrame f, vec3 wi, float wiSide, IDK_OUT(float)
             if (cosOH > 0.0f && cosIH < 0.0f) {
                 float denom = cosOH + f.eta * cosIH;
                 float d = ptGgxD(h.z, f.alpha);
-                float fd = ptFresnelDielectric(cosOH, f.eta);
+                float pass = ptDielectricPass(f, cosOH);
                 float g2 = ptGgxG2(wo.z, -wi.z, f.alpha);
-                value += tint * ((1.0f - fd) * d * g2 * (-cosIH) * cosOH / (wo.z * denom * denom));
+                value += tint * (pass * d * g2 * (-cosIH) * cosOH / (wo.z * denom * denom));
                 pdf += f.pTrans * ptGgxVndfPdf(wo, h, f.alpha) * f.eta * f.eta * (-cosIH) / (denom * denom);
             }
         } else {
             vec3 wr = vec3(wi.x, wi.y, -wi.z);
             vec3 h = normalize(wo + wr);
             float d = ptGgxD(h.z, f.alpha);
-            float fd = ptFresnelDielectric(max(dot(wo, h), 0.0f), f.etaFresnel);
-            value += tint * ((1.0f - fd) * d * ptGgxG2(wo.z, wr.z, f.alpha) / (4.0f * wo.z));
+            float pass = ptDielectricPass(f, max(dot(wo, h), 0.0f));
+            value += tint * (pass * d * ptGgxG2(wo.z, wr.z, f.alpha) / (4.0f * wo.z));
             pdf += f.pTrans * ptGgxG1(wo.z, f.alpha) * d / (4.0f * wo.z);
         }
     }
@@ -172,6 +87,12 @@ IDK_INLINE vec3 ptEvalBsdf(PtSurface s, vec3 wo, vec3 wi, IDK_OUT(float) pdf) {
 }
 
 // ---------------------------------------------------------------------------------------------------- sample
+IDK_INLINE vec3 ptSampleCosine(float u1, float u2) {
+    float r = sqrt(u1);
+    float phi = 2.0f * kPtPi * u2;
+    return vec3(r * cos(phi), r * sin(phi), sqrt(max(1.0f - u1, 0.0f)));
+}
+
 // Samples wi for wo with three uniforms (u.x picks the lobe, u.y/u.z the direction). weight = f |cos| / pdf,
 // pdf is the solid-angle density (for a delta lobe: the lobe's discrete probability, with kPtLobeDeltaFlag set).
 // Returns the lobe (kPtLobe*, kPtLobeNone with zero weight when the path is absorbed).
@@ -189,27 +110,47 @@ IDK_INLINE uint ptSampleBsdf(PtSurface s, vec3 wo, vec3 u, IDK_OUT(vec3) wi, IDK
     bool isDelta = false;
     vec3 deltaWeight = vec3(0.0f);
     float deltaPdf = 0.0f;
-    if (u.x < f.pSpec) {
+    float c0 = f.pCoat;
+    float c1 = c0 + f.pSheen;
+    float c2 = c1 + f.pSpec;
+    float c3 = c2 + f.pMs;
+    float c4 = c3 + f.pDiff;
+    if (u.x < c0) {
+        chosen = kPtLobeClearcoat;
+        if (f.coatDelta) {
+            l = vec3(-o.x, -o.y, o.z);
+            isDelta = true;
+            deltaPdf = f.pCoat;
+            deltaWeight = vec3(f.clearcoat * ptCoatFresnel(o.z) / f.pCoat);
+        } else {
+            vec3 h = ptSampleGgxVndf(o, f.coatAlpha, u.y, u.z);
+            l = h * (2.0f * dot(o, h)) - o;
+        }
+    } else if (u.x < c1) {
+        chosen = kPtLobeSheen;
+        l = ptSampleCosine(u.y, u.z);
+    } else if (u.x < c2) {
         chosen = kPtLobeSpecular;
         if (f.delta) {
             l = vec3(-o.x, -o.y, o.z);
             isDelta = true;
             deltaPdf = f.pSpec;
-            deltaWeight = ptSpecularFresnel(f, o.z) / f.pSpec;
+            deltaWeight = ptSpecularFresnel(f, o.z) * (f.layer / f.pSpec);
         } else {
             vec3 h = ptSampleGgxVndf(o, f.alpha, u.y, u.z);
             l = h * (2.0f * dot(o, h)) - o;
         }
-    } else if (u.x < f.pSpec + f.pDiff) {
+    } else if (u.x < c3) {
+        chosen = kPtLobeMultiScatter;
+        l = ptMsSample(f.roughness, (u.x - c2) / f.pMs, u.y, u.z);
+    } else if (u.x < c4) {
         chosen = kPtLobeDiffuse;
-        float r = sqrt(u.y);
-        float phi = 2.0f * kPtPi * u.z;
-        l = vec3(r * cos(phi), r * sin(phi), sqrt(max(1.0f - u.y, 0.0f)));
+        l = ptSampleCosine(u.y, u.z);
     } else if (f.pTrans > 0.0f) {
         chosen = kPtLobeTransmission;
         vec3 h = f.transDelta ? vec3(0.0f, 0.0f, 1.0f) : ptSampleGgxVndf(o, f.alpha, u.y, u.z);
         float cosOH = dot(o, h);
-        float fd = ptFresnelDielectric(cosOH, f.etaFresnel);
+        float pass = ptDielectricPass(f, cosOH);
         if (f.thick) {
             float sin2T = (1.0f - cosOH * cosOH) / (f.eta * f.eta);
             if (sin2T >= 1.0f) return lobe;  // total internal reflection: the specular lobe covers it
@@ -223,7 +164,8 @@ IDK_INLINE uint ptSampleBsdf(PtSurface s, vec3 wo, vec3 u, IDK_OUT(vec3) wi, IDK
             isDelta = true;
             deltaPdf = f.pTrans;
             float radianceScale = f.thick ? 1.0f / (f.eta * f.eta) : 1.0f;
-            deltaWeight = f.baseColor * ((1.0f - f.metallic) * f.transmission * (1.0f - fd) * radianceScale / f.pTrans);
+            deltaWeight = f.baseColor * ((1.0f - f.metallic) * f.transmission * pass * radianceScale * f.transScale *
+                                         f.layer / f.pTrans);
         }
     } else {
         return lobe;

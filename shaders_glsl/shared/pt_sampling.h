@@ -13,11 +13,13 @@
 // metal's coloured Fresnel), Lambert diffuse weighted by (1 - F), rough refraction through GGX (Walter et al.
 // 2007) for volumes and a mirrored reflection lobe for thin-walled transmission; every light is sampled by
 // next-event estimation (lights chosen by power through an alias table, the environment by texel luminance)
-// and combined with BSDF sampling by the power heuristic. Single-scattering GGX loses energy on rough metals
-// (no multiple-scattering compensation), and refraction transports radiance (the 1/eta^2 factor is applied).
+// and combined with BSDF sampling by the power heuristic. Refraction transports radiance (the 1/eta^2 factor is
+// applied). Material extensions (KHR_materials_specular, _clearcoat, _sheen) layer on the core model
+// (pt_bsdf_frame.h), and GGX's multiple scattering is compensated from precomputed albedo tables (pt_energy.h).
 //
 // Files: pt_types.h (GPU structs, conventions), pt_common.h (RNG, helpers, camera ray, roulette, absorption),
-// pt_microfacet.h (GGX, Fresnel), pt_bsdf.h (the lobes: ptEvalBsdf, ptSampleBsdf), pt_lights.h (alias tables,
+// pt_microfacet.h (GGX, Fresnel), pt_sheen.h (Charlie sheen), pt_energy.h + pt_albedo_tables.h (energy
+// compensation), pt_bsdf_frame.h (setup, layers), pt_bsdf.h (the lobes: ptEvalBsdf, ptSampleBsdf), pt_lights.h (alias tables,
 // ptSampleLight, ptLightPdf, environment mapping, ptSampleEnvironment, ptEnvironmentPdf).
 //
 // Common-subset rules: no swizzles longer than one component, IDK_OUT/IDK_INOUT for out parameters, no arrays

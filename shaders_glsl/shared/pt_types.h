@@ -90,8 +90,14 @@ struct GpuPtMaterial {
     uint transmissionTexCoord;  // 0 or 1
     vec3 transmissionRow0;      // KHR_texture_transform as in GpuTextureSlot
     vec3 transmissionRow1;
+    float specular;             // the material-extension factors of PtSurface (same meaning and defaults)
+    vec3 specularColor;
+    float clearcoat;
+    float clearcoatRoughness;
+    vec3 sheenColor;
+    float sheenRoughness;
 };
-IDK_GPU_SIZE(GpuPtMaterial, 60);
+IDK_GPU_SIZE(GpuPtMaterial, 100);
 
 // A surface at a hit, material already evaluated from its textures (both tracers fill it the same way).
 struct PtSurface {
@@ -107,14 +113,24 @@ struct PtSurface {
     float attenuationDistance;  // 0: no absorption
     vec3 shadingNormal;    // unit, normal-mapped, on the geometric normal's side
     vec3 geometricNormal;  // unit, front-face side (the outside of a closed volume)
+    // Material extensions (pt_bsdf_frame.h); the defaults (1, 1, 0, 0, 0, 0) leave the core glTF BSDF.
+    float specular;            // KHR_materials_specular specularFactor
+    vec3 specularColor;        // KHR_materials_specular specularColorFactor (linear)
+    float clearcoat;           // KHR_materials_clearcoat clearcoatFactor
+    float clearcoatRoughness;  // perceptual
+    vec3 sheenColor;           // KHR_materials_sheen sheenColorFactor (linear; 0: no sheen)
+    float sheenRoughness;      // perceptual
 };
-IDK_GPU_SIZE(PtSurface, 88);  // also a buffer element (conformance probe)
+IDK_GPU_SIZE(PtSurface, 128);  // also a buffer element (conformance probe)
 
 // Outcome of sampling the BSDF.
 IDK_CONST(uint, kPtLobeNone, 0);          // no valid direction (absorbed)
 IDK_CONST(uint, kPtLobeDiffuse, 1);
 IDK_CONST(uint, kPtLobeSpecular, 2);      // GGX reflection (metal or dielectric coat)
 IDK_CONST(uint, kPtLobeTransmission, 3);  // refraction (thick) or straight-through (thin-walled)
+IDK_CONST(uint, kPtLobeMultiScatter, 4);  // GGX energy compensation (pt_energy.h), a reflection
+IDK_CONST(uint, kPtLobeSheen, 5);         // KHR_materials_sheen, a reflection
+IDK_CONST(uint, kPtLobeClearcoat, 6);     // KHR_materials_clearcoat, a reflection
 IDK_CONST(uint, kPtLobeDeltaFlag, 16u);   // OR-ed into the lobe when the sampled lobe is a delta (smooth) lobe
 
 IDK_GPU_END

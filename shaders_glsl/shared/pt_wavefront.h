@@ -124,8 +124,9 @@ struct GpuPtSceneDesc {
     uint lightCount;
     uint instanceCount;
     uint pad;
+    DeviceAddress albedoTables;  // float[kPtAlbedoTableFloats]: the energy-compensation tables (pt_energy.h)
 };
-IDK_GPU_SIZE(GpuPtSceneDesc, 112);
+IDK_GPU_SIZE(GpuPtSceneDesc, 120);
 
 // The push block of every stage (<= 128 bytes). Per stage: camera fills queueIn (all pixels) and argsOut (its
 // dispatch), empties queueOut, shadow and aux (the other shadow queue), reads the GpuPtCamera at `accum`;

@@ -62,8 +62,14 @@ IDK_CONST(uint, kAlphaBlend, 2);
 
 IDK_CONST(uint, kMaterialDoubleSided, 1u);  // GpuMaterial::flags
 IDK_CONST(uint, kMaterialUnlit, 2u);        // KHR_materials_unlit: output = base colour
+// The BSDF extensions a material uses: shaders skip the lobes (and the G-buffer the material lookup) of the rest.
+IDK_CONST(uint, kMaterialSpecular, 4u);     // KHR_materials_specular (factor or colour not the default)
+IDK_CONST(uint, kMaterialClearcoat, 8u);    // KHR_materials_clearcoat with clearcoatFactor > 0
+IDK_CONST(uint, kMaterialSheen, 16u);       // KHR_materials_sheen with a sheen colour above 0
+IDK_CONST(uint, kMaterialLayers, 28u);      // any of the three
 
-// glTF metallic-roughness material (core + KHR_materials_emissive_strength, KHR_texture_transform).
+// glTF metallic-roughness material (core + KHR_materials_emissive_strength, KHR_texture_transform, and the
+// factors of KHR_materials_specular, _clearcoat, _sheen).
 struct GpuMaterial {
     vec4 baseColorFactor;  // linear RGBA
     vec3 emissiveFactor;   // linear, emissive strength applied
@@ -75,8 +81,15 @@ struct GpuMaterial {
     uint alphaMode;  // kAlpha*
     uint flags;      // kMaterial*
     GpuTextureSlot slots[kSlotCount];  // indexed by kSlot*
+    // BSDF extension factors (read when flags has the extension's bit; defaults 1, 1, 0, 0, 0, 0).
+    float specular;            // KHR_materials_specular specularFactor
+    vec3 specularColor;        // specularColorFactor
+    float clearcoat;           // KHR_materials_clearcoat clearcoatFactor
+    float clearcoatRoughness;
+    vec3 sheenColor;           // KHR_materials_sheen sheenColorFactor
+    float sheenRoughness;
 };
-IDK_GPU_SIZE(GpuMaterial, 236);
+IDK_GPU_SIZE(GpuMaterial, 276);
 
 IDK_CONST(uint, kLightDirectional, 0);
 IDK_CONST(uint, kLightPoint, 1);

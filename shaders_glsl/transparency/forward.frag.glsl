@@ -50,6 +50,7 @@ void main() {
     }
 
     GpuFrame f = FrameBuffer(p.frame).frame;
+    gPtAlbedoTables = f.albedoTables;
     vec2 ndc = gl_FragCoord.xy / vec2(f.extent) * 2.0 - 1.0;
     vec4 hNear = f.inverseViewProjection * vec4(ndc, 0.0, 1.0);
     vec3 v = normalize(hNear.xyz / hNear.w - inWorldPosition);  // towards the eye (orthographic views too)
@@ -57,6 +58,6 @@ void main() {
     float roughness = clamp(m.roughnessFactor * mr.g, 0.0, 1.0);
     float occlusion = 1.0 + m.occlusionStrength * (ao - 1.0);
     vec3 radiance = emissive + shadeSurface(f, p.pointShadows, inWorldPosition, n, v, baseColor.rgb, metallic,
-                                            roughness, occlusion);
+                                            roughness, occlusion, materialLayers(m));
     outColor = vec4(radiance, baseColor.a);
 }

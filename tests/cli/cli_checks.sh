@@ -64,6 +64,7 @@ case "$case_name" in
     grep -q '"vrs_overlay"' "$tmp/f.json" || fail "--vrs-debug drew no overlay"
     "$idk" render --size 8x8 --out "$tmp/x.png" --vrs maybe 2>"$tmp/err"; [ $? -eq 2 ] || fail "--vrs maybe should exit 2"
     grep -q -- "--vrs 'maybe'" "$tmp/err" || fail "error does not name --vrs: $(cat "$tmp/err")"
+    ;;
   gi_selection)
     # --gi none (the default) allocates and runs nothing of VXGI; --gi vxgi runs its passes and holds its volumes.
     "$idk" render --size 16x16 --out "$tmp/n.png" --json >"$tmp/none.json" || fail "render --gi none failed"
@@ -76,6 +77,33 @@ case "$case_name" in
     done
     "$idk" render --size 8x8 --out "$tmp/x.png" --voxels 100 2>"$tmp/err"; [ $? -eq 2 ] || fail "--voxels 100 should exit 2"
     grep -q -- "--voxels" "$tmp/err" || fail "error does not name --voxels: $(cat "$tmp/err")"
+    ;;
+  material_variants)
+    # KHR_materials_variants: scenes/material_spheres.gltf with two variants; "velvet" gives the first sphere the
+    # sheen material. --variant velvet changes the image, --variant studio (no mapping) does not, an unknown
+    # name is a usage error (exit 2, one line) that lists the variants.
+    src="$(dirname "$0")/../../scenes/material_spheres.gltf"
+    python3 - "$src" "$tmp/variants.gltf" <<'PY' || fail "could not write the variants scene"
+import json, sys
+d = json.load(open(sys.argv[1]))
+d["extensionsUsed"].append("KHR_materials_variants")
+d["extensions"]["KHR_materials_variants"] = {"variants": [{"name": "studio"}, {"name": "velvet"}]}
+d["meshes"][1]["primitives"][0]["extensions"] = {"KHR_materials_variants": {"mappings": [{"material": 3, "variants": [1]}]}}
+json.dump(d, open(sys.argv[2], "w"))
+PY
+    "$idk" render "$tmp/variants.gltf" --size 48x48 --out "$tmp/plain.png" 2>/dev/null || fail "render failed"
+    "$idk" render "$tmp/variants.gltf" --variant velvet --size 48x48 --out "$tmp/velvet.png" 2>/dev/null \
+      || fail "--variant velvet failed"
+    "$idk" render "$tmp/variants.gltf" --variant studio --size 48x48 --out "$tmp/studio.png" 2>/dev/null \
+      || fail "--variant studio failed"
+    "$idk" compare "$tmp/velvet.png" "$tmp/plain.png" --fail-above 0.001 >/dev/null && fail "velvet looks like the default"
+    "$idk" compare "$tmp/studio.png" "$tmp/plain.png" --fail-above 0 >/dev/null || fail "studio differs from the default"
+    "$idk" render "$tmp/variants.gltf" --variant nope --size 8x8 --out "$tmp/x.png" 2>"$tmp/err"
+    code=$?
+    [ "$code" -eq 2 ] || fail "unknown variant: exit code $code, expected 2"
+    [ "$(wc -l <"$tmp/err")" -eq 1 ] || fail "expected one line on stderr, got: $(cat "$tmp/err")"
+    grep -q "'nope'" "$tmp/err" && grep -q "'studio', 'velvet'" "$tmp/err" || fail "message: $(cat "$tmp/err")"
+    [ -e "$tmp/x.png" ] && fail "an output was written"
     ;;
   info_json)
     "$idk" info --json >"$tmp/info.json" || fail "idk info --json failed"
@@ -489,6 +517,7 @@ PY
     "$idk" render --size 8x8 --out "$tmp/x.png" --culling sometimes 2>"$tmp/err"; [ $? -eq 2 ] \
       || fail "--culling sometimes should exit 2"
     grep -q -- "off|frustum|hiz" "$tmp/err" || fail "error does not list the modes: $(cat "$tmp/err")"
+    ;;
   temporal_flags)
     # Issue 12: --aa taa runs --temporal-frames jittered frames for a still (TAA passes listed), --bloom adds the
     # bloom chain; both are recorded in --json's settings; a bad choice exits 2 naming the flag.

@@ -1,5 +1,5 @@
 // bsdf_test.cpp: the shared BSDF of shared/pt_bsdf.h (C++ compilation): GGX sampling weights of a white metal
-// (F = 1) never exceed 1, sampled pdf = evaluated pdf and weight = f cos / pdf, the pdf integrates to 1 over the
+// (F = 1) stay bounded, sampled pdf = evaluated pdf and weight = f cos / pdf, the pdf integrates to 1 over the
 // sphere (Monte Carlo), reflection is reciprocal, the Lambert lobe of an IOR-1 dielectric is exact.
 #include <gtest/gtest.h>
 
@@ -28,6 +28,8 @@ PtSurface makeSurface(glm::vec3 base, float metallic, float roughness, float tra
     s.attenuationDistance = 0.0f;
     s.shadingNormal = glm::vec3(0.0f, 0.0f, 1.0f);
     s.geometricNormal = glm::vec3(0.0f, 0.0f, 1.0f);
+    s.specular = 1.0f;
+    s.specularColor = glm::vec3(1.0f);
     return s;
 }
 
@@ -41,7 +43,11 @@ glm::vec3 uniformSphere(float u1, float u2) {
     return directionAt(z, 2.0f * 3.14159265f * u2);
 }
 
-TEST(PtBsdf, WhiteMetalSamplingWeightsNeverExceedOne) {
+// Single-scattering GGX sampled by visible normals has weights G2 / G1 <= 1; the multiple-scattering lobe
+// (pt_energy.h) adds energy, so single weights may exceed 1 while their mean is the albedo, 1 (energy_test's white
+// furnace). Sampled by its own density they stay below 2 (with cosine sampling they reached 448 on a 0.05-rough
+// metal at grazing light: fireflies).
+TEST(PtBsdf, WhiteMetalSamplingWeightsStayBounded) {
     std::mt19937 gen(7);
     std::uniform_real_distribution<float> uni(0.0f, 1.0f);
     for (float roughness : {0.0f, 0.02f, 0.05f, 0.1f, 0.2f, 0.3f, 0.5f, 0.7f, 0.9f, 1.0f}) {
@@ -54,7 +60,7 @@ TEST(PtBsdf, WhiteMetalSamplingWeightsNeverExceedOne) {
                 uint lobe;
                 ptSampleBsdf(s, wo, glm::vec3(uni(gen), uni(gen), uni(gen)), wi, weight, pdf, lobe);
                 if (lobe == kPtLobeNone) continue;
-                ASSERT_LE(ptMaxComponent(weight), 1.0f + 1e-4f)
+                ASSERT_LE(ptMaxComponent(weight), 2.0f)
                     << "roughness " << roughness << " cosO " << cosO << " sample " << i;
                 ASSERT_GE(weight.x, 0.0f);
             }

@@ -45,6 +45,12 @@ TEST(PtDegenerate, BsdfStaysFinite) {
                                 s.thickness = thickness;
                                 s.shadingNormal = ns;
                                 s.geometricNormal = ng;
+                                s.specular = 1.0f;
+                                s.specularColor = glm::vec3(1.0f);
+                                s.clearcoat = transmission;  // the extension lobes too
+                                s.clearcoatRoughness = r;
+                                s.sheenColor = glm::vec3(thickness * 0.5f);
+                                s.sheenRoughness = r;
                                 glm::vec3 wi, weight;
                                 float pdf;
                                 uint lobe;

@@ -1,0 +1,41 @@
+// albedo_integrator.hpp: directional albedos of the path tracer's single-scattering lobes (shared/pt_microfacet.h,
+// shared/pt_sheen.h), integrated on the CPU with deterministic stratified quadrature, and the tables the energy
+// compensation reads (shared/pt_albedo_tables.h, written by `idk_albedo_tables`; a unit test recomputes them).
+#pragma once
+#include <string>
+#include <vector>
+
+namespace idk::pathtrace {
+
+// Albedo of GGX reflection with F = 1 at cos theta mu, perceptual roughness r: the mean of G2 / G1 over
+// visible-normal samples (strata x strata cells) whose mirror direction is above the horizon.
+double ggxReflectionAlbedo(float mu, float roughness, int strata);
+
+// Reflection + refraction of a rough dielectric interface (white, energy: no eta^2 radiance factor) for light
+// leaving at mu on the side where the far medium has relative IOR eta (eta = ior outside, 1 / ior inside).
+double ggxDielectricAlbedo(float mu, float roughness, float eta, int strata);
+
+// Albedo of the Charlie sheen lobe (colour 1) at mu and sheen roughness r, midpoint rule over the hemisphere.
+double sheenAlbedo(float mu, float roughness, int strata);
+
+struct AlbedoTables {
+    std::vector<float> metal;       // [r][mu], kPtAlbedoRough x kPtAlbedoMu
+    std::vector<float> metalAvg;    // [r]
+    std::vector<float> dielectric;  // [side][ior][r][mu]
+    std::vector<float> sheen;       // [r][mu]
+    std::vector<float> msBins;      // [r][bin]
+};
+
+// Every table at its nodes (pt_albedo_layout.h). strata: the quadrature of each entry (the committed tables use
+// kAlbedoTableStrata).
+AlbedoTables computeAlbedoTables(int strata);
+inline constexpr int kAlbedoTableStrata = 48;
+
+// The text of shared/pt_albedo_tables.h for these tables (C++ arrays, their offsets in the packed buffer).
+std::string albedoTablesHeader(const AlbedoTables& tables);
+
+// The committed tables packed as the GPU reads them (kPtAlbedoTableFloats floats, each at its k*Offset):
+// albedo_data.cpp. Upload once and give the shaders its address (pt_energy.h's gPtAlbedoTables).
+std::vector<float> albedoTableData();
+
+}  // namespace idk::pathtrace

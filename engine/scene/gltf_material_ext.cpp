@@ -1,0 +1,103 @@
+// gltf_material_ext.cpp: the BSDF material extensions of the loader: KHR_materials_specular, _clearcoat, _sheen.
+// Untrusted input: every factor is checked for type and finiteness and clamped to the range the specification
+// gives (out-of-range values warn, naming the material); a texture the extension names is checked for range like
+// the core ones, then ignored with a warning (the factors alone are used: extension textures are not bound yet).
+#include <algorithm>
+#include <cmath>
+
+#include "scene/gltf_internal.hpp"
+
+namespace idk::scene::gltf {
+
+namespace {
+
+// A number property in [lo, hi]; non-numbers, non-finite values and values outside the range warn and are
+// replaced (clamped when finite).
+float rangedNumber(const Ctx& ctx, const tinygltf::Value& ext, const char* key, float fallback, float lo, float hi,
+                   const std::string& where) {
+    if (!ext.Has(key)) return fallback;
+    const tinygltf::Value& v = ext.Get(key);
+    if (!v.IsNumber()) {
+        ctx.warn(where + ": " + key + " is not a number; using " + std::to_string(fallback));
+        return fallback;
+    }
+    const double d = v.GetNumberAsDouble();
+    if (!std::isfinite(d)) {
+        ctx.warn(where + ": " + key + " is not finite; using " + std::to_string(fallback));
+        return fallback;
+    }
+    const double clamped = std::clamp(d, double(lo), double(hi));
+    if (clamped != d) ctx.warn(where + ": " + key + " " + std::to_string(d) + " out of range; clamped");
+    return float(clamped);
+}
+
+// A colour (3 numbers) with each channel clamped to [lo, hi].
+glm::vec3 rangedColor(const Ctx& ctx, const tinygltf::Value& ext, const char* key, glm::vec3 fallback, float lo,
+                      float hi, const std::string& where) {
+    if (!ext.Has(key)) return fallback;
+    const tinygltf::Value& v = ext.Get(key);
+    if (!v.IsArray() || v.ArrayLen() != 3) {
+        ctx.warn(where + ": " + key + " is not an array of 3 numbers; using the default");
+        return fallback;
+    }
+    glm::vec3 out = fallback;
+    for (int i = 0; i < 3; ++i) {
+        const tinygltf::Value& c = v.Get(i);
+        const double d = c.IsNumber() ? c.GetNumberAsDouble() : std::nan("");
+        if (!std::isfinite(d)) {
+            ctx.warn(where + ": " + key + " has a non-finite or non-number component; using the default");
+            return fallback;
+        }
+        const double clamped = std::clamp(d, double(lo), double(hi));
+        if (clamped != d) ctx.warn(where + ": " + key + " component " + std::to_string(d) + " out of range; clamped");
+        out[i] = float(clamped);
+    }
+    return out;
+}
+
+// Texture references are validated like the core ones (index in range, an object with an index), then reported.
+void ignoredTextures(const Ctx& ctx, const tinygltf::Value& ext, std::initializer_list<const char*> keys,
+                     const std::string& where) {
+    for (const char* key : keys) {
+        if (!ext.Has(key)) continue;
+        const tinygltf::Value& info = ext.Get(key);
+        const auto index = info.IsObject() ? indexOr(ctx, info, "index", where + " " + key) : std::nullopt;
+        if (!index) {
+            ctx.warn(where + ": " + key + " has no texture index; ignored");
+            continue;
+        }
+        if (*index >= ctx.model.textures.size()) {
+            ctx.warn(where + ": " + key + " names texture " + std::to_string(*index) + " but the file has " +
+                     str(ctx.model.textures.size()) + "; ignored");
+            continue;
+        }
+        ctx.warn(where + ": " + key + " is not supported yet (the factor alone is used)");
+    }
+}
+
+}  // namespace
+
+void loadMaterialExtensions(const Ctx& ctx, const tinygltf::Material& src, const std::string& where, Material& mat) {
+    if (const auto* ext = extension(src.extensions, "KHR_materials_specular"); ext && ext->IsObject()) {
+        const std::string w = where + " KHR_materials_specular";
+        mat.specular = rangedNumber(ctx, *ext, "specularFactor", 1.0f, 0.0f, 1.0f, w);
+        // The specification allows colours above 1 (f0 is clamped to 1 after the IOR's f0 scales it); cap at a
+        // value no real IOR needs so that hostile files cannot make the maths overflow.
+        mat.specularColor = rangedColor(ctx, *ext, "specularColorFactor", glm::vec3(1.0f), 0.0f, 1000.0f, w);
+        ignoredTextures(ctx, *ext, {"specularTexture", "specularColorTexture"}, w);
+    }
+    if (const auto* ext = extension(src.extensions, "KHR_materials_clearcoat"); ext && ext->IsObject()) {
+        const std::string w = where + " KHR_materials_clearcoat";
+        mat.clearcoat = rangedNumber(ctx, *ext, "clearcoatFactor", 0.0f, 0.0f, 1.0f, w);
+        mat.clearcoatRoughness = rangedNumber(ctx, *ext, "clearcoatRoughnessFactor", 0.0f, 0.0f, 1.0f, w);
+        ignoredTextures(ctx, *ext, {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"}, w);
+    }
+    if (const auto* ext = extension(src.extensions, "KHR_materials_sheen"); ext && ext->IsObject()) {
+        const std::string w = where + " KHR_materials_sheen";
+        mat.sheenColor = rangedColor(ctx, *ext, "sheenColorFactor", glm::vec3(0.0f), 0.0f, 1.0f, w);
+        mat.sheenRoughness = rangedNumber(ctx, *ext, "sheenRoughnessFactor", 0.0f, 0.0f, 1.0f, w);
+        ignoredTextures(ctx, *ext, {"sheenColorTexture", "sheenRoughnessTexture"}, w);
+    }
+}
+
+}  // namespace idk::scene::gltf

@@ -1,0 +1,222 @@
+// pt_bsdf_frame.h: the path tracers' BSDF prepared for one outgoing direction (C++ and GLSL, see pt_sampling.h):
+// the shading frame, the sanitised inputs, the Fresnel terms, the layer weights of the material extensions and
+// the energy compensation, and the lobe selection probabilities that pt_bsdf.h evaluates and samples with.
+// The layering, outermost first (glTF's extension specifications, their reference formulas):
+//   clearcoat  KHR_materials_clearcoat: GGX lobe of IOR 1.5 (Schlick f0 0.04), weight clearcoat * Fc(v.h); the
+//              layers below are scaled by 1 - clearcoat * Fc(n.v) (Fc at the view, as the Khronos sample viewer)
+//   sheen      KHR_materials_sheen: sheenColor * Charlie D * V (pt_sheen.h); the layers below are scaled by
+//              1 - max(sheenColor) * E_sheen(n.v) (albedo scaling with the tabulated sheen albedo)
+//   base       metal: GGX, Schlick F with f0 = baseColor. dielectric: GGX with KHR_materials_specular's
+//              F = specular * (f0' + (1 - f0') w(v.h)), f0' = min(f0(ior) specularColor, 1), where w is the exact
+//              Fresnel curve of the IOR remapped to [0, 1] (w = (F_exact - f0) / (1 - f0)), so without the
+//              extension F is the exact dielectric Fresnel; beneath it Lambert diffuse / transmission weighted
+//              1 - specular * max(F). Multiple scattering: pt_energy.h.
+#ifndef IDK_PT_BSDF_FRAME_H
+#define IDK_PT_BSDF_FRAME_H
+#include "pt_microfacet.h"
+#include "pt_energy.h"
+#include "pt_sheen.h"
+
+IDK_GPU_BEGIN
+
+struct PtBsdfFrame {
+    vec3 t;
+    vec3 b;
+    vec3 n;             // shading normal on wo's side, with dot(wo, n) > 0
+    vec3 ng;            // geometric normal on wo's side
+    vec3 wo;            // local
+    vec3 baseColor;     // sanitised
+    float metallic;
+    float transmission;
+    float roughness;    // perceptual, sanitised
+    float alpha;        // GGX alpha (>= kPtDeltaAlpha when not delta)
+    bool delta;         // specular and transmission lobes are delta
+    bool transDelta;    // the transmission lobe is delta (delta, or a volume of IOR ~1: refraction does not bend)
+    bool thick;         // transmission refracts (volume); else thin-walled
+    float eta;          // thick: IOR on the far side / IOR on wo's side
+    float etaFresnel;   // the eta of the Fresnel term on wo's side (eta when thick, the IOR when thin)
+    float f0Ior;        // ((etaFresnel - 1) / (etaFresnel + 1))^2
+    float specular;     // KHR_materials_specular weight
+    vec3 specularF0;    // min(f0Ior * specularColor, 1)
+    float dielScale;    // energy compensation of the dielectric reflection: 1 + transmission (transScale - 1)
+    float transScale;   // energy compensation of the transmission lobe (1 / E_dielectric(mu_o))
+    vec3 msColor;       // multiple-scattering lobe: Fms / (pi (1 - Eavg)) * (1 - E(mu_o)); 0 when none
+    float layer;        // (1 - clearcoat Fc(n.v)) (1 - max(sheen) E_sheen(n.v)): weight of the base lobes
+    float coatLayer;    // 1 - clearcoat Fc(n.v): weight of the sheen lobe
+    float clearcoat;
+    float coatAlpha;
+    bool coatDelta;
+    vec3 sheenColor;
+    float sheenAlpha;
+    float sheenRoughness;
+    float pSpec;        // lobe selection probabilities (sum 1)
+    float pDiff;
+    float pTrans;
+    float pMs;
+    float pSheen;
+    float pCoat;
+};
+
+IDK_INLINE float ptCoatFresnel(float c) { return ptFresnelSchlick(vec3(0.04f), c).x; }
+
+// Dielectric reflectance at v.h cosine c (KHR_materials_specular over the exact Fresnel curve).
+IDK_INLINE vec3 ptDielectricFresnel(PtBsdfFrame f, float c) {
+    float exact = ptFresnelDielectric(c, f.etaFresnel);
+    float w = f.f0Ior < 1.0e-6f ? exact : clamp((exact - f.f0Ior) / (1.0f - f.f0Ior), 0.0f, 1.0f);
+    return f.specular * (f.specularF0 + (vec3(1.0f) - f.specularF0) * w);
+}
+
+// What passes beneath the dielectric reflection (into diffuse or transmission).
+IDK_INLINE float ptDielectricPass(PtBsdfFrame f, float c) {
+    return max(1.0f - ptMaxComponent(ptDielectricFresnel(f, c)), 0.0f);
+}
+
+// The reflection lobe's Fresnel (energy compensation of refraction included), before the layer weight.
+IDK_INLINE vec3 ptSpecularFresnel(PtBsdfFrame f, float c) {
+    return mix(ptDielectricFresnel(f, c) * f.dielScale, ptFresnelSchlick(f.baseColor, c), f.metallic);
+}
+
+// Turns the shading frame to wo's side; false when wo or the normals are unusable.
+IDK_INLINE bool ptBsdfOrient(PtSurface s, vec3 wo, IDK_INOUT(PtBsdfFrame) f, IDK_OUT(bool) outside) {
+    outside = true;
+    if (!ptFinite3(wo) || !(dot(wo, wo) > 0.5f)) return false;
+    vec3 ng = s.geometricNormal;
+    vec3 n = s.shadingNormal;
+    bool ngValid = ptFinite3(ng) && dot(ng, ng) > 0.25f;
+    bool nValid = ptFinite3(n) && dot(n, n) > 0.25f;
+    if (!ngValid) ng = nValid ? n : wo;
+    if (!nValid) n = ng;
+    ng = normalize(ng);
+    n = normalize(n);
+    outside = dot(wo, ng) >= 0.0f;
+    if (!outside) {
+        ng = -ng;
+        n = -n;
+    }
+    if (dot(n, ng) <= 0.0f) n = ng;
+    float cosO = dot(wo, n);
+    if (cosO < kPtMinCos) {  // a shading normal facing away from wo: tilt it toward wo just enough
+        vec3 bent = n + wo * (2.0f * kPtMinCos - cosO);
+        n = dot(bent, bent) > 1.0e-12f ? normalize(bent) : ng;
+    }
+    f.n = n;
+    f.ng = ng;
+    ptBasis(n, f.t, f.b);
+    f.wo = ptToLocal(wo, f.t, f.b, n);
+    f.wo.z = max(f.wo.z, kPtMinCos);
+    return true;
+}
+
+// False when nothing can scatter (invalid input or a black surface).
+IDK_INLINE bool ptBsdfSetup(PtSurface s, vec3 wo, IDK_OUT(PtBsdfFrame) f) {
+    f.t = vec3(1.0f, 0.0f, 0.0f);
+    f.b = vec3(0.0f, 1.0f, 0.0f);
+    f.n = vec3(0.0f, 0.0f, 1.0f);
+    f.ng = f.n;
+    f.wo = f.n;
+    f.baseColor = vec3(ptSaturate(s.baseColor.x), ptSaturate(s.baseColor.y), ptSaturate(s.baseColor.z));
+    f.metallic = ptSaturate(s.metallic);
+    f.transmission = ptSaturate(s.transmission);
+    f.roughness = ptSaturate(s.roughness);
+    f.alpha = f.roughness * f.roughness;
+    f.delta = f.alpha < kPtDeltaAlpha;
+    f.transDelta = f.delta;
+    f.alpha = max(f.alpha, kPtDeltaAlpha);
+    f.specular = ptSaturate(s.specular);
+    f.clearcoat = ptSaturate(s.clearcoat);
+    float coatRoughness = ptSaturate(s.clearcoatRoughness);
+    f.coatAlpha = coatRoughness * coatRoughness;
+    f.coatDelta = f.coatAlpha < kPtDeltaAlpha;
+    f.coatAlpha = max(f.coatAlpha, kPtDeltaAlpha);
+    f.sheenColor = vec3(ptSaturate(s.sheenColor.x), ptSaturate(s.sheenColor.y), ptSaturate(s.sheenColor.z));
+    f.sheenRoughness = ptSaturate(s.sheenRoughness);
+    f.sheenAlpha = ptSheenAlpha(f.sheenRoughness);
+    f.pSpec = 0.0f;
+    f.pDiff = 0.0f;
+    f.pTrans = 0.0f;
+    f.pMs = 0.0f;
+    f.pSheen = 0.0f;
+    f.pCoat = 0.0f;
+    f.dielScale = 1.0f;
+    f.transScale = 1.0f;
+    f.msColor = vec3(0.0f);
+    f.layer = 1.0f;
+    f.coatLayer = 1.0f;
+    float ior = ptFinite(s.ior) ? clamp(s.ior, 1.0f, 4.0f) : 1.5f;
+    f.thick = s.thickness > 0.0f;
+    f.eta = 1.0f;
+    f.etaFresnel = ior;
+    bool outside;
+    if (!ptBsdfOrient(s, wo, f, outside)) return false;
+    if (f.thick) {
+        f.eta = outside ? ior : 1.0f / ior;
+        f.etaFresnel = f.eta;
+    }
+    // With eta ~1 rough refraction degenerates (the generalized half vector wo + eta wi vanishes): every facet
+    // passes the ray straight on, a delta lobe.
+    f.transDelta = f.delta || (f.thick && abs(f.eta - 1.0f) < 1.0e-3f);
+    float r0 = (f.etaFresnel - 1.0f) / (f.etaFresnel + 1.0f);
+    f.f0Ior = r0 * r0;
+    vec3 specularColor = vec3(ptFinite(s.specularColor.x) ? max(s.specularColor.x, 0.0f) : 1.0f,
+                              ptFinite(s.specularColor.y) ? max(s.specularColor.y, 0.0f) : 1.0f,
+                              ptFinite(s.specularColor.z) ? max(s.specularColor.z, 0.0f) : 1.0f);
+    f.specularF0 = min(vec3(f.f0Ior) * specularColor, vec3(1.0f));
+    float mu = f.wo.z;
+    float msAlbedo = 0.0f;
+
+    // Energy compensation (pt_energy.h). Refraction: both single-scattering lobes of the transmitted part
+    // scaled by 1 / E_dielectric (thin-walled: reflection + mirrored reflection = the F = 1 GGX albedo).
+    if (!f.delta) {
+        float eMetal = ptAlbedoMetal(mu, f.roughness);
+        float eAvg = ptAlbedoMetalAvg(f.roughness);
+        if (f.transmission > 0.0f && !f.transDelta) {
+            float e = f.thick ? ptAlbedoDielectric(mu, f.roughness, ior, !outside) : eMetal;
+            f.transScale = 1.0f / max(e, 0.05f);
+            f.dielScale = 1.0f + f.transmission * (f.transScale - 1.0f);
+        }
+        // The dielectric's average Fresnel: the exact curve's average remapped like ptDielectricFresnel.
+        float favgExact = ptFresnelDielectricAverage(f.etaFresnel);
+        float wAvg = f.f0Ior < 1.0e-6f ? favgExact : clamp((favgExact - f.f0Ior) / (1.0f - f.f0Ior), 0.0f, 1.0f);
+        vec3 favgDielectric = f.specular * (f.specularF0 + (vec3(1.0f) - f.specularF0) * wAvg);
+        vec3 fms = f.metallic * ptMultiScatterColor(ptSchlickAverage(f.baseColor), eAvg) +
+                   ((1.0f - f.metallic) * (1.0f - f.transmission)) * ptMultiScatterColor(favgDielectric, eAvg);
+        f.msColor = fms * ((1.0f - eMetal) / (kPtPi * max(1.0f - eAvg, 1.0e-4f)));
+        msAlbedo = ptAverage(fms) * (1.0f - eMetal);
+    }
+    float coatF = f.clearcoat * ptCoatFresnel(mu);
+    f.coatLayer = 1.0f - coatF;
+    float sheenMax = ptMaxComponent(f.sheenColor);
+    float sheenAlbedo = sheenMax > 0.0f ? ptAlbedoSheen(mu, f.sheenRoughness) : 0.0f;
+    f.layer = f.coatLayer * max(1.0f - sheenMax * sheenAlbedo, 0.0f);
+
+    // Selection probabilities estimate each lobe's albedo from the Fresnel term at the macro normal. They are
+    // floored wherever the lobe can still scatter (microfacets see other angles: total internal reflection at the
+    // macro normal does not stop refraction through tilted facets, a black metal still has a grazing Schlick
+    // term), so that every direction with f > 0 keeps a pdf > 0 and BSDF sampling stays unbiased.
+    float dielectric = 1.0f - f.metallic;
+    float base = dielectric * max(ptDielectricPass(f, mu), 0.05f) * ptAverage(f.baseColor);
+    float pSpec = ptAverage(ptSpecularFresnel(f, mu));
+    if (f.metallic > 0.0f || (f.etaFresnel != 1.0f && f.specular > 0.0f)) pSpec = max(pSpec, 1.0e-3f);
+    float pDiff = base * (1.0f - f.transmission);
+    float pTrans = base * f.transmission;
+    float pMs = msAlbedo;
+    float pSheen = sheenMax > 0.0f ? max(sheenMax * sheenAlbedo, 1.0e-3f) * f.coatLayer : 0.0f;
+    float pCoat = f.clearcoat > 0.0f ? max(coatF, 1.0e-3f) : 0.0f;
+    pSpec *= f.layer;
+    pDiff *= f.layer;
+    pTrans *= f.layer;
+    pMs *= f.layer;
+    float sum = pSpec + pDiff + pTrans + pMs + pSheen + pCoat;
+    if (!(sum > 0.0f) || !ptFinite(sum)) return false;
+    f.pSpec = pSpec / sum;
+    f.pDiff = pDiff / sum;
+    f.pTrans = pTrans / sum;
+    f.pMs = pMs / sum;
+    f.pSheen = pSheen / sum;
+    f.pCoat = pCoat / sum;
+    return true;
+}
+
+IDK_GPU_END
+
+#endif

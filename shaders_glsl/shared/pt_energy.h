@@ -1,0 +1,150 @@
+// pt_energy.h: lookups into the precomputed directional-albedo tables (pt_albedo_tables.h; grids in
+// pt_albedo_layout.h) and the multiple-scattering energy compensation built on them (C++ and GLSL, see
+// pt_sampling.h). Single-scattering GGX loses the energy of light that bounces more than once between microfacets
+// (up to ~60% for a rough metal at grazing view). The compensation follows Kulla & Conty 2017 ("Revisiting
+// Physically Based Shading at Imageworks"): a reciprocal diffuse-like lobe (sampled by ptMsSample)
+//   f_ms(o, i) = Fms (1 - E(mu_o)) (1 - E(mu_i)) / (pi (1 - Eavg)),  Fms = Favg^2 Eavg / (1 - Favg (1 - Eavg))
+// (exactly 1 - E(mu_o) more albedo for a white metal), and for refraction through a rough dielectric interface
+// the single-scattering lobes are scaled by 1 / E_dielectric(mu_o) (not reciprocal, as refraction is not).
+// The tables are constant arrays: lookups here are bilinear/trilinear by hand so C++ and GLSL agree. On a
+// discrete GPU a divergent index into a large constant array is served from local/constant memory one lane at a
+// time; there a 2D/3D texture with hardware filtering would be the choice (lavapipe gains nothing from it).
+#ifndef IDK_PT_ENERGY_H
+#define IDK_PT_ENERGY_H
+#include "pt_albedo_tables.h"
+#include "pt_common.h"
+
+// Table reads. C++: the constant arrays. GLSL: one storage buffer with every table packed at its k*Offset
+// (render::albedoTableData uploads it), reached through gPtAlbedoTables, which each shader that shades sets from
+// its scene or frame constants at the start of main() (a GLSL constant array indexed at run time would be copied
+// into a local variable at every lookup by glslang: tens of kilobytes each).
+#ifdef __cplusplus
+#define IDK_ALBEDO(table, i) table[i]
+#else
+#extension GL_EXT_buffer_reference : require
+layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer PtAlbedoTablesRef { float v[]; };
+uint64_t gPtAlbedoTables = 0ul;
+#define IDK_ALBEDO(table, i) PtAlbedoTablesRef(gPtAlbedoTables).v[table##Offset + (i)]
+#endif
+
+IDK_GPU_BEGIN
+
+// Cell index and fraction for coordinate t in [0, 1] on n nodes.
+IDK_INLINE uint ptAlbedoCell(float t, uint n, IDK_OUT(float) frac) {
+    float x = clamp(ptFinite(t) ? t : 0.0f, 0.0f, 1.0f) * float(n - 1u);
+    uint i = min(uint(x), n - 2u);
+    frac = x - float(i);
+    return i;
+}
+
+// E(mu, roughness) of GGX reflection with F = 1.
+IDK_INLINE float ptAlbedoMetal(float mu, float roughness) {
+    float fx;
+    float fy;
+    uint i = ptAlbedoCell(mu, kPtAlbedoMu, fx);
+    uint j = ptAlbedoCell(roughness, kPtAlbedoRough, fy);
+    uint k = j * kPtAlbedoMu + i;
+    float a = mix(IDK_ALBEDO(kPtAlbedoMetal, k), IDK_ALBEDO(kPtAlbedoMetal, k + 1u), fx);
+    float b = mix(IDK_ALBEDO(kPtAlbedoMetal, k + kPtAlbedoMu), IDK_ALBEDO(kPtAlbedoMetal, k + kPtAlbedoMu + 1u), fx);
+    return mix(a, b, fy);
+}
+
+IDK_INLINE float ptAlbedoMetalAvg(float roughness) {
+    float fy;
+    uint j = ptAlbedoCell(roughness, kPtAlbedoRough, fy);
+    return mix(IDK_ALBEDO(kPtAlbedoMetalAvg, j), IDK_ALBEDO(kPtAlbedoMetalAvg, j + 1u), fy);
+}
+
+// Directional albedo of the sheen lobe with sheen colour 1.
+IDK_INLINE float ptAlbedoSheen(float mu, float roughness) {
+    float fx;
+    float fy;
+    uint i = ptAlbedoCell(mu, kPtAlbedoMu, fx);
+    uint j = ptAlbedoCell(roughness, kPtAlbedoRough, fy);
+    uint k = j * kPtAlbedoMu + i;
+    float a = mix(IDK_ALBEDO(kPtAlbedoSheen, k), IDK_ALBEDO(kPtAlbedoSheen, k + 1u), fx);
+    float b = mix(IDK_ALBEDO(kPtAlbedoSheen, k + kPtAlbedoMu), IDK_ALBEDO(kPtAlbedoSheen, k + kPtAlbedoMu + 1u), fx);
+    return mix(a, b, fy);
+}
+
+IDK_INLINE float ptAlbedoDielectricAt(uint side, uint k, uint j, uint i) {
+    return IDK_ALBEDO(kPtAlbedoDielectric, ((side * kPtAlbedoDielIor + k) * kPtAlbedoDielRough + j) * kPtAlbedoDielMu + i);
+}
+
+// Reflection + refraction albedo of a rough dielectric interface; inside: light leaves into the denser side's
+// interior (eta = 1 / ior).
+IDK_INLINE float ptAlbedoDielectric(float mu, float roughness, float ior, bool inside) {
+    float fx;
+    float fy;
+    float fz;
+    uint i = ptAlbedoCell(mu, kPtAlbedoDielMu, fx);
+    uint j = ptAlbedoCell(roughness, kPtAlbedoDielRough, fy);
+    uint k = ptAlbedoCell(ptAlbedoIorCoord(ior), kPtAlbedoDielIor, fz);
+    uint side = inside ? 1u : 0u;
+    float e[2];
+    for (uint dk = 0u; dk < 2u; ++dk) {
+        float a = mix(ptAlbedoDielectricAt(side, k + dk, j, i), ptAlbedoDielectricAt(side, k + dk, j, i + 1u), fx);
+        float b = mix(ptAlbedoDielectricAt(side, k + dk, j + 1u, i), ptAlbedoDielectricAt(side, k + dk, j + 1u, i + 1u), fx);
+        e[dk] = mix(a, b, fy);
+    }
+    return mix(e[0], e[1], fz);
+}
+
+// The multiple-scattering lobe's sampling density, ~ (1 - E(mu)) mu like the lobe itself (a cosine density
+// would give weights up to ~(1 - E(0)) / (1 - Eavg): hundreds on smooth metals at grazing light): a mixture of the
+// two roughness rows around `roughness`, each piecewise over kPtAlbedoMsBins bins of mu with density ~ mu inside
+// a bin. Solid-angle pdf of a direction with cos theta mu.
+IDK_INLINE float ptMsPdf(float mu, float roughness) {
+    if (!(mu > 0.0f)) return 0.0f;
+    float fy;
+    uint j = ptAlbedoCell(roughness, kPtAlbedoRough, fy);
+    uint k = min(uint(mu * float(kPtAlbedoMsBins)), kPtAlbedoMsBins - 1u);
+    float a = float(k) / float(kPtAlbedoMsBins);
+    float b = float(k + 1u) / float(kPtAlbedoMsBins);
+    float p = mix(IDK_ALBEDO(kPtAlbedoMsBinTable, j * kPtAlbedoMsBins + k), IDK_ALBEDO(kPtAlbedoMsBinTable, (j + 1u) * kPtAlbedoMsBins + k), fy);
+    return p * mu / (kPtPi * (b * b - a * a));
+}
+
+// Samples the local direction of ptMsPdf from three uniforms (row choice, bin choice reused inside the bin, phi).
+IDK_INLINE vec3 ptMsSample(float roughness, float uRow, float uBin, float uPhi) {
+    float fy;
+    uint j = ptAlbedoCell(roughness, kPtAlbedoRough, fy);
+    uint row = (uRow < fy ? j + 1u : j) * kPtAlbedoMsBins;
+    uint k = kPtAlbedoMsBins - 1u;
+    float acc = 0.0f;
+    float inside = 0.5f;
+    for (uint i = 0u; i < kPtAlbedoMsBins; ++i) {
+        float p = IDK_ALBEDO(kPtAlbedoMsBinTable, row + i);
+        if (uBin < acc + p && p > 0.0f) {
+            k = i;
+            inside = clamp((uBin - acc) / p, 0.0f, 1.0f);
+            break;
+        }
+        acc += p;
+    }
+    float a = float(k) / float(kPtAlbedoMsBins);
+    float b = float(k + 1u) / float(kPtAlbedoMsBins);
+    float mu = sqrt(a * a + inside * (b * b - a * a));
+    float s = sqrt(max(1.0f - mu * mu, 0.0f));
+    float phi = 2.0f * kPtPi * uPhi;
+    return vec3(s * cos(phi), s * sin(phi), max(mu, 1.0e-6f));
+}
+
+// Kulla-Conty's colour of the multiple-scattering lobe for an average Fresnel reflectance favg.
+IDK_INLINE vec3 ptMultiScatterColor(vec3 favg, float eavg) {
+    return favg * favg * eavg / max(vec3(1.0f) - favg * (1.0f - eavg), vec3(1.0e-4f));
+}
+
+// Average (cosine-weighted hemispherical) exact dielectric Fresnel reflectance for relative IOR eta (Kulla &
+// Conty 2017's fit for eta >= 1; eta < 1 takes 1 / eta, the outside's average, an approximation).
+IDK_INLINE float ptFresnelDielectricAverage(float eta) {
+    float e = max(eta, 1.0f / max(eta, 1.0e-3f));
+    return (e - 1.0f) / (4.08567f + 1.00071f * e);
+}
+
+// Average (cosine-weighted hemispherical) Schlick reflectance: f0 + (1 - f0) / 21.
+IDK_INLINE vec3 ptSchlickAverage(vec3 f0) { return f0 + (vec3(1.0f) - f0) * (1.0f / 21.0f); }
+
+IDK_GPU_END
+
+#endif

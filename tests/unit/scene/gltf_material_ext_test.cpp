@@ -1,0 +1,132 @@
+// gltf_material_ext_test.cpp: the loader's BSDF material extensions (scene/gltf_material_ext.cpp): the factors of
+// KHR_materials_specular, _clearcoat, _sheen land in scene::Material; hostile values (out of range, non-finite,
+// wrong types) are clamped or replaced with a warning naming the material; extension textures are reported (not
+// read yet), out-of-range texture indices too; materials without the extensions keep the neutral defaults; the
+// authored scenes/material_spheres.gltf loads with its four extension materials and no warnings;
+// KHR_materials_variants: mappings select materials by variant name, bad mappings warn, unknown names throw
+// listing the variants.
+#include <filesystem>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+#include "scene/gltf_loader.hpp"
+#include "test_files.hpp"
+#include "test_gltf.hpp"
+
+namespace idk::scene {
+namespace {
+
+using test::json;
+using test::TempDir;
+using test::triangle;
+
+bool anyWarningHas(const Scene& s, const std::string& a, const std::string& b) {
+    for (const std::string& w : s.warnings)
+        if (w.find(a) != std::string::npos && w.find(b) != std::string::npos) return true;
+    return false;
+}
+
+TEST(GltfMaterialExt, FactorsAreLoaded) {
+    TempDir dir;
+    auto f = triangle();
+    f.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    f.doc["materials"] = json::parse(R"([{"name": "layered", "extensions": {
+        "KHR_materials_specular": {"specularFactor": 0.25, "specularColorFactor": [2.0, 0.5, 0.0]},
+        "KHR_materials_clearcoat": {"clearcoatFactor": 0.75, "clearcoatRoughnessFactor": 0.125},
+        "KHR_materials_sheen": {"sheenColorFactor": [0.5, 0.25, 1.0], "sheenRoughnessFactor": 0.5}}},
+        {"name": "plain"}])");
+    const Scene s = loadGltf(f.write(dir));
+    const Material& m = s.materials[0];
+    EXPECT_EQ(m.specular, 0.25f);
+    EXPECT_EQ(m.specularColor, glm::vec3(2.0f, 0.5f, 0.0f));  // above 1 is legal for the specular colour
+    EXPECT_EQ(m.clearcoat, 0.75f);
+    EXPECT_EQ(m.clearcoatRoughness, 0.125f);
+    EXPECT_EQ(m.sheenColor, glm::vec3(0.5f, 0.25f, 1.0f));
+    EXPECT_EQ(m.sheenRoughness, 0.5f);
+    EXPECT_TRUE(s.warnings.empty());
+    const Material& plain = s.materials[1];
+    EXPECT_EQ(plain.specular, 1.0f);
+    EXPECT_EQ(plain.specularColor, glm::vec3(1.0f));
+    EXPECT_EQ(plain.clearcoat, 0.0f);
+    EXPECT_EQ(plain.sheenColor, glm::vec3(0.0f));
+}
+
+TEST(GltfMaterialExt, HostileValuesAreClampedWithWarnings) {
+    TempDir dir;
+    auto f = triangle();
+    f.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    f.doc["textures"] = json::parse(R"([{}])");
+    f.doc["materials"] = json::parse(R"([{"name": "hostile", "extensions": {
+        "KHR_materials_specular": {"specularFactor": 7, "specularColorFactor": [1, "red", 1]},
+        "KHR_materials_clearcoat": {"clearcoatFactor": -3, "clearcoatRoughnessFactor": "rough",
+                                    "clearcoatTexture": {"index": 0}, "clearcoatNormalTexture": {"index": 9}},
+        "KHR_materials_sheen": {"sheenColorFactor": [1e30, -1, 0.5, 4], "sheenRoughnessFactor": 1e300}}}])");
+    const Scene s = loadGltf(f.write(dir));
+    const Material& m = s.materials[0];
+    EXPECT_EQ(m.specular, 1.0f);
+    EXPECT_EQ(m.specularColor, glm::vec3(1.0f));  // a non-number component: the default colour
+    EXPECT_EQ(m.clearcoat, 0.0f);
+    EXPECT_EQ(m.clearcoatRoughness, 0.0f);
+    EXPECT_EQ(m.sheenColor, glm::vec3(0.0f));      // 4 components: not a colour
+    EXPECT_EQ(m.sheenRoughness, 1.0f);             // a finite double far out of range: clamped
+    EXPECT_TRUE(anyWarningHas(s, "'hostile'", "specularFactor"));
+    EXPECT_TRUE(anyWarningHas(s, "'hostile'", "specularColorFactor"));
+    EXPECT_TRUE(anyWarningHas(s, "'hostile'", "clearcoatFactor"));
+    EXPECT_TRUE(anyWarningHas(s, "'hostile'", "clearcoatRoughnessFactor"));
+    EXPECT_TRUE(anyWarningHas(s, "'hostile'", "sheenColorFactor"));
+    EXPECT_TRUE(anyWarningHas(s, "clearcoatTexture", "not supported"));
+    EXPECT_TRUE(anyWarningHas(s, "clearcoatNormalTexture", "texture 9"));
+}
+
+TEST(GltfMaterialExt, AuthoredSceneLoadsWithoutWarnings) {
+    const Scene s = loadGltf(std::filesystem::path(IDK_SOURCE_DIR) / "scenes/material_spheres.gltf");
+    ASSERT_EQ(s.materials.size(), 5u);
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+    EXPECT_EQ(s.materials[1].specular, 0.3f);
+    EXPECT_EQ(s.materials[2].clearcoatRoughness, 0.1f);
+    EXPECT_EQ(s.materials[3].sheenRoughness, 0.4f);
+    EXPECT_EQ(s.materials[4].metallic, 1.0f);
+}
+
+}  // namespace
+}  // namespace idk::scene
+
+namespace idk::scene {
+namespace {
+
+TEST(GltfMaterialVariants, MappingsSelectMaterialsByName) {
+    test::TempDir dir;
+    auto f = test::triangle();
+    f.doc["materials"] = test::json::parse(R"([{"name": "default"}, {"name": "blue"}])");
+    f.doc["extensionsUsed"] = test::json::parse(R"(["KHR_materials_variants"])");
+    f.doc["extensions"]["KHR_materials_variants"] = test::json::parse(R"({"variants": [{"name": "red"}, {"name": "blue"}]})");
+    auto& prim = f.doc["meshes"][0]["primitives"][0];
+    prim["material"] = 0;
+    prim["extensions"]["KHR_materials_variants"] = test::json::parse(
+        R"({"mappings": [{"material": 1, "variants": [1]}, {"material": 7, "variants": [0]},
+                         {"material": 0, "variants": [5, 0]}]})");
+    Scene s = loadGltf(f.write(dir));
+    EXPECT_EQ(s.variantNames, (std::vector<std::string>{"red", "blue"}));
+    // The out-of-range material and variant are reported and skipped.
+    EXPECT_EQ(s.warnings.size(), 2u);
+    Primitive& p = s.meshes[0].primitives[0];
+    EXPECT_EQ(p.material, 0u);
+    applyMaterialVariant(s, "blue");
+    EXPECT_EQ(p.material, 1u);
+    applyMaterialVariant(s, "red");
+    EXPECT_EQ(p.material, 0u);
+    try {
+        applyMaterialVariant(s, "green");
+        FAIL() << "an unknown variant must throw";
+    } catch (const std::invalid_argument& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("'green'"), std::string::npos) << what;
+        EXPECT_NE(what.find("'red', 'blue'"), std::string::npos) << what;
+    }
+    Scene none = loadGltf(test::triangle().write(dir));
+    EXPECT_THROW(applyMaterialVariant(none, "red"), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace idk::scene

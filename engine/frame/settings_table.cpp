@@ -32,7 +32,8 @@ std::vector<SettingOption> buildTable() {
                  [](RenderSettings& s, double v) { s.environmentIntensity = float(v); }});
     // Point-light cube shadows.
     t.push_back({"--shadow-lights", "Shadows", "shadow-casting lights",
-                 "point/spot lights that cast cube shadows, the first N in light order (0 = none)",
+                 "lights that cast shadows (point/wide spot: cube; directional: cascades; spot: map), the first N in light "
+                 "order (0 = none)",
                  OptionKind::Integer, 0.0, 16.0, {},
                  [](const RenderSettings& s) { return double(s.pointShadows.maxLights); },
                  [](RenderSettings& s, double v) { s.pointShadows.maxLights = uint32_t(v); }});
@@ -40,6 +41,19 @@ std::vector<SettingOption> buildTable() {
                  OptionKind::Choice, 0.0, 0.0, {"128", "256", "512", "1024", "2048"},
                  [](const RenderSettings& s) { return cubeSizeIndex(s.pointShadows.resolution); },
                  [](RenderSettings& s, double v) { s.pointShadows.resolution = kShadowCubeSizes[size_t(v)]; }});
+    // Directional cascades and spot maps (frame/point_shadow_feature.cpp, render/light_shadow_maps.hpp).
+    t.push_back({"--shadow-cascades", "Shadows", "cascades", "cascaded shadow maps per directional light",
+                 OptionKind::Integer, 1.0, 4.0, {},
+                 [](const RenderSettings& s) { return double(s.lightShadows.cascades); },
+                 [](RenderSettings& s, double v) { s.lightShadows.cascades = uint32_t(v); }});
+    t.push_back({"--shadow-map-size", "Shadows", "cascade/spot map size", "directional cascade and spot map size",
+                 OptionKind::Choice, 0.0, 0.0, {"128", "256", "512", "1024", "2048"},
+                 [](const RenderSettings& s) { return cubeSizeIndex(s.lightShadows.resolution); },
+                 [](RenderSettings& s, double v) { s.lightShadows.resolution = kShadowCubeSizes[size_t(v)]; }});
+    t.push_back({"--shadow-distance", "Shadows", "cascade distance",
+                 "view distance the cascades cover (0 = to the far end of the scene)", OptionKind::Number, 0.0, 1e4,
+                 {}, [](const RenderSettings& s) { return double(s.lightShadows.distance); },
+                 [](RenderSettings& s, double v) { s.lightShadows.distance = float(v); }});
     return t;
 }
 

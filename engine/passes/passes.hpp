@@ -16,6 +16,9 @@
 
 namespace idk::render {
 class PointShadowMaps;
+struct PointShadowFrame;
+class LightShadowMaps;
+struct LightShadowFrame;
 }
 
 namespace idk::passes {
@@ -90,15 +93,22 @@ struct GBufferOutputs {
 GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                               const SceneBuffers& scene, graph::BufferHandle frame, IndirectDrawLog* log);
 
-// point_shadows.cpp: one depth cube per shadow-casting light (render/point_shadow_maps.hpp), one instanced
-// indirect draw per light (native rung) or six (fallback); uploads the per-light GpuPointShadow table.
+// point_shadows.cpp: one depth cube per cube-casting light (render/point_shadow_maps.hpp), one instanced indirect
+// draw per light (native rung) or six (fallback). light_shadow_maps.cpp: every cascade / spot-map layer, and the
+// upload of the frame's shadow table (per-light GpuPointShadow entries, then the GpuShadowMap records).
 struct PointShadowOutputs {
-    graph::BufferHandle table;                // GpuPointShadow[lightCount]; invalid: no shadows this frame
-    std::vector<graph::TextureHandle> cubes;  // the written cubes (readers declare SampledRead on each)
+    graph::BufferHandle table;                // the shadow table; invalid: no shadows this frame
+    std::vector<graph::TextureHandle> cubes;  // every written cube and map (readers declare SampledRead on each)
 };
-PointShadowOutputs addPointShadowPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
-                                      const SceneBuffers& scene, render::PointShadowMaps& maps,
-                                      const std::vector<gpu::GpuLight>& lights, IndirectDrawLog* log);
+std::vector<graph::TextureHandle> addPointShadowPass(graph::RenderGraph& graph, vk::Context& ctx,
+                                                     vk::ShaderLibrary& shaders, const SceneBuffers& scene,
+                                                     const render::PointShadowMaps& maps,
+                                                     const render::PointShadowFrame& frame, IndirectDrawLog* log);
+std::vector<graph::TextureHandle> addLightShadowMapPass(graph::RenderGraph& graph, vk::Context& ctx,
+                                                        vk::ShaderLibrary& shaders, const SceneBuffers& scene,
+                                                        const render::LightShadowMaps& maps,
+                                                        const render::LightShadowFrame& frame, IndirectDrawLog* log);
+graph::BufferHandle addShadowTablePass(graph::RenderGraph& graph, std::vector<uint8_t> bytes);
 
 // deferred_lighting.cpp: shades the G-buffer's geometry pixels into `target` (RGBA16F); returns its new version.
 graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "render/point_shadow_maps.hpp"
+#include "render/light_shadow_maps.hpp"
 
 namespace idk::render {
 
@@ -25,6 +26,7 @@ struct RenderSettings {
     // A file that cannot be read falls back to the constant with a warning.
     std::optional<std::filesystem::path> environment;
     PointShadowSettings pointShadows;  // which lights cast cube shadows, and the cube resolution
+    LightShadowSettings lightShadows;  // directional cascades and spot maps
 };
 
 }  // namespace idk::render

@@ -88,6 +88,8 @@ public:
     GpuScene* gpuScene() noexcept { return gpuScene_.get(); }
     // The point-shadow cubes of the last frame (nullptr when no light cast one): tests read them back.
     const PointShadowMaps* pointShadowMaps() const noexcept { return features_.pointShadows.maps(); }
+    // The directional cascades and spot maps of the last frame (nullptr when no light rendered one).
+    const LightShadowMaps* lightShadowMaps() const noexcept { return features_.pointShadows.lightMaps(); }
     // Runs inside each frame's command buffer before the frame's graph is built (TextureStreamer::pump goes
     // here: textures it makes ready reach this frame's materials through the scene_update pass).
     void setBeforeFrame(std::function<void(VkCommandBuffer)> hook) { beforeFrame_ = std::move(hook); }

@@ -32,6 +32,11 @@ void Features::setScene(vk::Context& ctx, const render::GpuScene& scene, uint32_
     transparency.setScene(ctx, scene, framesInFlight);
 }
 
+void Features::setSourceScene(vk::Context& ctx, const scene::Scene& source, const render::GpuScene& scene,
+                              const render::RenderSettings& settings) {
+    rtShadows.setScene(ctx, source, scene, settings);
+}
+
 graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Features& x) {
     x.environment.addPasses(f);                                       // f.environment
     x.inputs.addPasses(f, scene, x.environment.current(f.settings));  // f.frameConstants, f.scene, f.lights
@@ -39,6 +44,7 @@ graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Fe
     // sampled array (the G-buffer's) as reading the cubes, so their write must not follow such a draw.
     x.pointShadows.addPasses(f, scene);                               // f.pointShadows
     f.gbuffer = passes::addGBufferPass(f.graph, f.ctx, f.shaders, f.scene, f.frameConstants, &f.log);
+    x.rtShadows.addPasses(f, scene);                                  // f.pointShadows (--shadows raytraced)
     f.hdr = passes::addDeferredLightingPass(f.graph, f.ctx, f.shaders, f.gbuffer, f.frameConstants, f.scene.lights,
                                             f.environment, hdrTarget(f), f.pointShadows);
     f.hdr = passes::addSkyPass(f.graph, f.ctx, f.shaders, f.gbuffer.depth, f.frameConstants, f.environment, f.hdr);

@@ -6,6 +6,7 @@
 #include "frame/frame_context.hpp"
 #include "frame/frame_inputs.hpp"
 #include "frame/point_shadow_feature.hpp"
+#include "frame/rt_shadow_feature.hpp"
 #include "frame/transparency_feature.hpp"
 #include "render/gpu_scene.hpp"
 
@@ -14,11 +15,15 @@ namespace idk::frame {
 struct Features {
     explicit Features(vk::Context& ctx) : inputs(ctx), environment(ctx) {}
     void setScene(vk::Context& ctx, const render::GpuScene& scene, uint32_t framesInFlight);
+    // What needs the source scene (ray-traced shadows build its BVH); after setScene above.
+    void setSourceScene(vk::Context& ctx, const scene::Scene& source, const render::GpuScene& scene,
+                        const render::RenderSettings& settings);
 
     FrameInputs inputs;
     EnvironmentFeature environment;
     PointShadowFeature pointShadows;
     TransparencyFeature transparency;
+    RtShadowFeature rtShadows;
 };
 
 // Declares the whole PBR frame into f.graph, ending in f.output (imported by the caller): the tonemapped image

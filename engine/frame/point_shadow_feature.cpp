@@ -7,6 +7,10 @@
 namespace idk::frame {
 
 void PointShadowFeature::addPasses(FrameContext& f, const render::GpuScene& scene) {
+    if (f.settings.lightShadows.rayTraced) {  // frame/rt_shadow_feature.cpp traces them instead
+        reset();
+        return;
+    }
     const std::vector<gpu::GpuLight>& lights = *f.lights;
     const uint32_t maxLights = f.settings.pointShadows.maxLights;
     const bool cubes = render::updatePointShadowMaps(f.ctx, scene, lights, f.settings.pointShadows, maps_);

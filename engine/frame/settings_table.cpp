@@ -54,6 +54,11 @@ std::vector<SettingOption> buildTable() {
                  "view distance the cascades cover (0 = to the far end of the scene)", OptionKind::Number, 0.0, 1e4,
                  {}, [](const RenderSettings& s) { return double(s.lightShadows.distance); },
                  [](RenderSettings& s, double v) { s.lightShadows.distance = float(v); }});
+    t.push_back({"--shadows", "Shadows", "shadow mode",
+                 "maps: cubes, cascades, spot maps; raytraced: one shadow ray per pixel and light (set before loading)",
+                 OptionKind::Choice, 0.0, 0.0, {"maps", "raytraced"},
+                 [](const RenderSettings& s) { return s.lightShadows.rayTraced ? 1.0 : 0.0; },
+                 [](RenderSettings& s, double v) { s.lightShadows.rayTraced = v > 0.5; }});
     return t;
 }
 

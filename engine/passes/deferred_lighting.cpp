@@ -29,6 +29,7 @@ graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Cont
             if (shadows.table.valid()) {
                 b.read(shadows.table, graph::Access::StorageRead, kCs);
                 for (graph::TextureHandle cube : shadows.cubes) b.read(cube, graph::Access::SampledRead, kCs);
+                if (shadows.mask.valid()) b.read(shadows.mask, graph::Access::StorageRead, kCs);
             }
             *written = b.write(target, graph::Access::StorageWrite, kCs);
         },

@@ -99,6 +99,7 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
 struct PointShadowOutputs {
     graph::BufferHandle table;                // the shadow table; invalid: no shadows this frame
     std::vector<graph::TextureHandle> cubes;  // every written cube and map (readers declare SampledRead on each)
+    graph::BufferHandle mask;                 // ray-traced shadows: the visibility mask the table points at
 };
 std::vector<graph::TextureHandle> addPointShadowPass(graph::RenderGraph& graph, vk::Context& ctx,
                                                      vk::ShaderLibrary& shaders, const SceneBuffers& scene,
@@ -109,6 +110,20 @@ std::vector<graph::TextureHandle> addLightShadowMapPass(graph::RenderGraph& grap
                                                         const render::LightShadowMaps& maps,
                                                         const render::LightShadowFrame& frame, IndirectDrawLog* log);
 graph::BufferHandle addShadowTablePass(graph::RenderGraph& graph, std::vector<uint8_t> bytes);
+
+// rt_shadows.cpp: one shadow ray per pixel and light into a visibility mask (ray query or our BVH), and the table
+// pointing the lighting at it.
+struct RtShadowInputs {
+    graph::BufferHandle frame, lights;
+    graph::TextureHandle depth, normal;  // GBufferOutputs
+    VkDeviceAddress sceneDesc = 0;       // GpuPtSceneDesc
+    bool rayQuery = false, hasAlpha = false;
+    uint32_t blasStack = 1, tlasStack = 1;
+    std::vector<uint32_t> casters;       // light indices, at most kRtShadowMaxLights
+    uint32_t lightCount = 0;
+};
+PointShadowOutputs addRtShadowPasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                     const RtShadowInputs& inputs, uint32_t width, uint32_t height);
 
 // deferred_lighting.cpp: shades the G-buffer's geometry pixels into `target` (RGBA16F); returns its new version.
 graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,

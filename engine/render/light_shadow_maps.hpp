@@ -19,6 +19,7 @@ struct LightShadowSettings {
     uint32_t cascades = 4;      // per directional light, 1..4
     uint32_t resolution = 1024; // cascade / spot map size in texels
     float distance = 0.0f;      // view distance the cascades cover (0: up to the far end of the scene)
+    bool rayTraced = false;     // `--shadows raytraced`: every shadow ray traced (frame/rt_shadow_feature.hpp), no maps
 };
 
 // Among the first maxLights shadow casters (render/point_shadow_maps.hpp shadowCasters): directional lights and

@@ -37,6 +37,7 @@ void main() {
     }
 
     vec3 radiance = imageLoad(gImagesRgba16f[p.emissive], pixel).rgb;
+    gShadowPixel = pixel;  // ray-traced shadows read their mask here (include/rt_shadows.glsl)
     radiance += shadeSurface(f, p.pointShadows, position, n, v, baseColor, metallic, roughness, occlusion);
 
     imageStore(gImagesRgba16f[p.target], pixel, vec4(radiance, 1.0));  // alpha 1: geometry

@@ -9,6 +9,7 @@
 #include "environment.glsl"
 #include "shadows.glsl"
 #include "light_shadows.glsl"
+#include "rt_shadows.glsl"
 
 // n: unit shading normal on the viewer's side; v: unit direction to the eye. pointShadows: GpuPointShadow[] per
 // light, or 0 when no light casts a shadow.
@@ -23,6 +24,7 @@ vec3 shadeSurface(GpuFrame f, uint64_t pointShadows, vec3 position, vec3 n, vec3
         if (pointShadows != 0 && any(greaterThan(direct, vec3(0.0)))) {
             GpuPointShadow s = PointShadowBuffer(pointShadows).data[i];
             if (s.mapCount != 0u) direct *= mapShadowVisibility(pointShadows, s, position, n, l);
+            else if (s.cube == kRayTracedShadow) direct *= rtShadowVisibility(pointShadows, s);
             else if (s.cube != kNoShadow) direct *= pointShadowVisibility(s, position, n, l);
         }
         radiance += direct;

@@ -59,6 +59,19 @@ std::vector<SettingOption> buildTable() {
                  OptionKind::Choice, 0.0, 0.0, {"maps", "raytraced"},
                  [](const RenderSettings& s) { return s.lightShadows.rayTraced ? 1.0 : 0.0; },
                  [](RenderSettings& s, double v) { s.lightShadows.rayTraced = v > 0.5; }});
+    // Atmospheric-scattering sky (render/atmosphere.hpp), baked when the sun settings change.
+    t.push_back({"--sky", "Environment", "sky", "hdr: the environment file; atmosphere: Rayleigh + Mie sky of the sun",
+                 OptionKind::Choice, 0.0, 0.0, {"hdr", "atmosphere"},
+                 [](const RenderSettings& s) { return s.atmosphere.enabled ? 1.0 : 0.0; },
+                 [](RenderSettings& s, double v) { s.atmosphere.enabled = v > 0.5; }});
+    t.push_back({"--sun-elevation", "Environment", "sun elevation", "atmosphere: sun degrees above the horizon",
+                 OptionKind::Number, -10.0, 90.0, {},
+                 [](const RenderSettings& s) { return double(s.atmosphere.sunElevation); },
+                 [](RenderSettings& s, double v) { s.atmosphere.sunElevation = float(v); }});
+    t.push_back({"--sun-azimuth", "Environment", "sun azimuth", "atmosphere: degrees from -Z towards +X",
+                 OptionKind::Number, -360.0, 360.0, {},
+                 [](const RenderSettings& s) { return double(s.atmosphere.sunAzimuth); },
+                 [](RenderSettings& s, double v) { s.atmosphere.sunAzimuth = float(v); }});
     return t;
 }
 

@@ -8,6 +8,7 @@
 
 #include "render/point_shadow_maps.hpp"
 #include "render/light_shadow_maps.hpp"
+#include "render/atmosphere.hpp"
 
 namespace idk::render {
 
@@ -27,6 +28,7 @@ struct RenderSettings {
     std::optional<std::filesystem::path> environment;
     PointShadowSettings pointShadows;  // which lights cast cube shadows, and the cube resolution
     LightShadowSettings lightShadows;  // directional cascades and spot maps
+    AtmosphereSettings atmosphere;     // `--sky atmosphere`: the baked single-scattering sky as the environment
 };
 
 }  // namespace idk::render

@@ -49,6 +49,7 @@ graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Fe
                                             f.environment, hdrTarget(f), f.pointShadows);
     f.hdr = passes::addSkyPass(f.graph, f.ctx, f.shaders, f.gbuffer.depth, f.frameConstants, f.environment, f.hdr);
     x.transparency.addPasses(f, scene);                               // blends into f.hdr
+    x.volumetrics.addPasses(f, scene);                                // fogs f.hdr (--volumetrics)
     return finish(f);                                                 // tonemap (Display) into f.output
 }
 

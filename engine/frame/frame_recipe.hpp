@@ -7,6 +7,7 @@
 #include "frame/frame_inputs.hpp"
 #include "frame/point_shadow_feature.hpp"
 #include "frame/rt_shadow_feature.hpp"
+#include "frame/volumetrics_feature.hpp"
 #include "frame/transparency_feature.hpp"
 #include "render/gpu_scene.hpp"
 
@@ -24,6 +25,7 @@ struct Features {
     PointShadowFeature pointShadows;
     TransparencyFeature transparency;
     RtShadowFeature rtShadows;
+    VolumetricsFeature volumetrics;
 };
 
 // Declares the whole PBR frame into f.graph, ending in f.output (imported by the caller): the tonemapped image

@@ -72,6 +72,22 @@ std::vector<SettingOption> buildTable() {
                  OptionKind::Number, -360.0, 360.0, {},
                  [](const RenderSettings& s) { return double(s.atmosphere.sunAzimuth); },
                  [](RenderSettings& s, double v) { s.atmosphere.sunAzimuth = float(v); }});
+    // Volumetric lighting (frame/volumetrics_feature.hpp).
+    t.push_back({"--volumetrics", "Volumetrics", "volumetric lighting",
+                 "in-scattering of every light (with its shadows) in a homogeneous medium", OptionKind::Toggle, 0.0,
+                 1.0, {}, [](const RenderSettings& s) { return s.volumetrics.enabled ? 1.0 : 0.0; },
+                 [](RenderSettings& s, double v) { s.volumetrics.enabled = v != 0.0; }});
+    t.push_back({"--fog-density", "Volumetrics", "density", "scattering coefficient per metre", OptionKind::Number,
+                 0.0, 10.0, {}, [](const RenderSettings& s) { return double(s.volumetrics.density); },
+                 [](RenderSettings& s, double v) { s.volumetrics.density = float(v); }});
+    t.push_back({"--fog-anisotropy", "Volumetrics", "anisotropy", "Henyey-Greenstein g (> 0: forward scattering)",
+                 OptionKind::Number, -0.95, 0.95, {},
+                 [](const RenderSettings& s) { return double(s.volumetrics.anisotropy); },
+                 [](RenderSettings& s, double v) { s.volumetrics.anisotropy = float(v); }});
+    t.push_back({"--volumetrics-scale", "Volumetrics", "resolution divisor", "march at 1/2 or 1/4 resolution",
+                 OptionKind::Choice, 0.0, 0.0, {"2", "4"},
+                 [](const RenderSettings& s) { return s.volumetrics.scale == 4 ? 1.0 : 0.0; },
+                 [](RenderSettings& s, double v) { s.volumetrics.scale = v > 0.5 ? 4u : 2u; }});
     return t;
 }
 

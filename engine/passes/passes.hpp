@@ -11,6 +11,7 @@
 #include "render/lambert_scene.hpp"
 #include "shared/scene_types.h"
 #include "shared/skinning_types.h"
+#include "shared/volumetric_types.h"
 #include "vk/resources.hpp"
 #include "vk/shader_library.hpp"
 
@@ -124,6 +125,18 @@ struct RtShadowInputs {
 };
 PointShadowOutputs addRtShadowPasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                      const RtShadowInputs& inputs, uint32_t width, uint32_t height);
+
+// volumetrics.cpp: in-scattering ray-marched at 1/scale resolution, composited into `hdr` (hdr * T + L) by a
+// depth-aware upsample; returns the HDR image's new version.
+struct VolumetricInputs {
+    graph::BufferHandle frame, lights;
+    graph::TextureHandle depth;  // GBufferOutputs::depth
+    PointShadowOutputs shadows;  // the frame's shadow table and maps (may be empty)
+    uint32_t width = 0, height = 0;
+    gpu::VolumetricPush push{};  // the medium, steps, scale and maxDistance (addresses and indices filled in)
+};
+graph::TextureHandle addVolumetricPasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                         const VolumetricInputs& inputs, graph::TextureHandle hdr);
 
 // deferred_lighting.cpp: shades the G-buffer's geometry pixels into `target` (RGBA16F); returns its new version.
 graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,

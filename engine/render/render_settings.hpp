@@ -9,6 +9,7 @@
 #include "render/point_shadow_maps.hpp"
 #include "render/light_shadow_maps.hpp"
 #include "render/atmosphere.hpp"
+#include "frame/volumetric_settings.hpp"
 
 namespace idk::render {
 
@@ -29,6 +30,7 @@ struct RenderSettings {
     PointShadowSettings pointShadows;  // which lights cast cube shadows, and the cube resolution
     LightShadowSettings lightShadows;  // directional cascades and spot maps
     AtmosphereSettings atmosphere;     // `--sky atmosphere`: the baked single-scattering sky as the environment
+    frame::VolumetricSettings volumetrics;  // `--volumetrics`: in-scattering in a homogeneous medium
 };
 
 }  // namespace idk::render

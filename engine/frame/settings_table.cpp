@@ -88,6 +88,11 @@ std::vector<SettingOption> buildTable() {
                  OptionKind::Choice, 0.0, 0.0, {"2", "4"},
                  [](const RenderSettings& s) { return s.volumetrics.scale == 4 ? 1.0 : 0.0; },
                  [](RenderSettings& s, double v) { s.volumetrics.scale = v > 0.5 ? 4u : 2u; }});
+    // Order-independent transparency (passes/oit_weighted.cpp); sorted is the exact reference.
+    t.push_back({"--oit", "Transparency", "transparency", "sorted: back-to-front over (exact); weighted: weighted blended OIT",
+                 OptionKind::Choice, 0.0, 0.0, {"sorted", "weighted"},
+                 [](const RenderSettings& s) { return s.oit == render::OitMode::Weighted ? 1.0 : 0.0; },
+                 [](RenderSettings& s, double v) { s.oit = v > 0.5 ? render::OitMode::Weighted : render::OitMode::Sorted; }});
     return t;
 }
 

@@ -163,6 +163,11 @@ struct TransparencyInputs {
 graph::TextureHandle addTransparencyPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                          const TransparencyInputs& inputs, graph::TextureHandle target,
                                          IndirectDrawLog* log);
+// oit_weighted.cpp: the weighted blended OIT rung (`--oit weighted`): the same draws in any order into additive
+// targets, composited over `target`; returns its new version.
+graph::TextureHandle addWeightedOitPasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                          const TransparencyInputs& inputs, graph::TextureHandle target,
+                                          IndirectDrawLog* log);
 
 // tonemap.cpp: AgX of exposure * hdr into the RGBA8 `target` (sRGB-encoded values); returns its new version.
 graph::TextureHandle addTonemapPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,

@@ -505,8 +505,8 @@ def issue19_lines(rows, builder):
 
 # ---- Scenes section (bench/scene_bench.cpp) ------------------------------------------------------------------------
 
-PASS_ORDER = ["scene_update", "pose_upload", "skinning", "point_shadows", "gbuffer", "deferred_lighting", "sky",
-              "transparency", "tonemap"]
+PASS_ORDER = ["scene_update", "pose_upload", "skinning", "shadow_table", "point_shadows", "light_shadow_maps", "gbuffer",
+              "deferred_lighting", "sky", "transparency", "tonemap"]
 
 
 def scene_section(results, exe):

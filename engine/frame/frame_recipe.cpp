@@ -34,6 +34,11 @@ void Features::setScene(vk::Context& ctx, const render::GpuScene& scene, uint32_
     vxgi.setScene(scene);
 }
 
+void Features::setSourceScene(vk::Context& ctx, const scene::Scene& source, const render::GpuScene& scene,
+                              const render::RenderSettings& settings) {
+    rtShadows.setScene(ctx, source, scene, settings);
+}
+
 graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Features& x) {
     x.temporal.beginFrame(f);                                         // jitters f.viewProjection (--aa taa)
     x.environment.addPasses(f);                                       // f.environment
@@ -43,6 +48,7 @@ graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Fe
     x.pointShadows.addPasses(f, scene);                               // f.pointShadows
     x.vxgi.addPasses(f);                                              // f.voxelGrid (--gi vxgi)
     f.gbuffer = x.culling.addGBuffer(f, scene);                       // GPU culling; f.depthPyramid
+    x.rtShadows.addPasses(f, scene);                                  // f.pointShadows (--shadows raytraced)
     x.temporal.addMotionVectors(f, scene);                            // f.motionVectors
     x.vrs.beginFrame(f);                                              // f.vrsRates: last frame's shading rates
     x.ssao.addPasses(f);                                              // f.ambientOcclusion
@@ -54,6 +60,7 @@ graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Fe
                                f.vrsRates);
     x.vrs.addReconstructPass(f);                                      // VRS: fills the pixels not shaded
     x.transparency.addPasses(f, scene);                               // blends into f.hdr
+    x.volumetrics.addPasses(f, scene);                                // fogs f.hdr (--volumetrics)
     x.vrs.addClassifyPasses(f);                                       // VRS: rates for the next frame
     x.temporal.addResolve(f);                                         // TAA: f.hdr
     x.bloom.addPasses(f);                                             // blends into f.hdr

@@ -8,8 +8,10 @@
 #include "frame/frame_context.hpp"
 #include "frame/frame_inputs.hpp"
 #include "frame/point_shadow_feature.hpp"
+#include "frame/rt_shadow_feature.hpp"
 #include "frame/ssao_feature.hpp"
 #include "frame/temporal_feature.hpp"
+#include "frame/volumetrics_feature.hpp"
 #include "frame/transparency_feature.hpp"
 #include "frame/vrs_feature.hpp"
 #include "frame/vxgi_feature.hpp"
@@ -21,6 +23,9 @@ struct Features {
     explicit Features(vk::Context& ctx)
         : inputs(ctx), environment(ctx), vrs(ctx), culling(ctx), temporal(ctx), ssao(ctx), vxgi(ctx) {}
     void setScene(vk::Context& ctx, const render::GpuScene& scene, uint32_t framesInFlight);
+    // What needs the source scene (ray-traced shadows build its BVH); after setScene above.
+    void setSourceScene(vk::Context& ctx, const scene::Scene& source, const render::GpuScene& scene,
+                        const render::RenderSettings& settings);
 
     FrameInputs inputs;
     EnvironmentFeature environment;
@@ -32,6 +37,8 @@ struct Features {
     BloomFeature bloom;
     SsaoFeature ssao;
     VxgiFeature vxgi;
+    RtShadowFeature rtShadows;
+    VolumetricsFeature volumetrics;
 };
 
 // Declares the whole PBR frame into f.graph, ending in f.output (imported by the caller): the tonemapped image

@@ -1,23 +1,30 @@
-// point_shadow_feature.hpp: cube shadows of point and spot lights (render/point_shadow_maps.hpp holds the cubes,
-// passes/point_shadows.cpp draws them). The cubes exist only while a light casts a shadow; fills
-// FrameContext::pointShadows.
+// point_shadow_feature.hpp: shadows of every punctual light: cubes of point lights (and of spots too wide for one
+// map; render/point_shadow_maps.hpp, passes/point_shadows.cpp), cascades of directional lights and single maps of
+// spot lights (render/light_shadow_maps.hpp, passes/light_shadow_maps.cpp), and the frame's shadow table. Each
+// kind of map exists only while a light needs it; fills FrameContext::pointShadows.
 #pragma once
 #include <memory>
 
 #include "frame/frame_context.hpp"
 #include "render/gpu_scene.hpp"
+#include "render/light_shadow_maps.hpp"
 #include "render/point_shadow_maps.hpp"
 
 namespace idk::frame {
 
 class PointShadowFeature {
 public:
-    void reset() { maps_.reset(); }  // a new scene
+    void reset() {  // a new scene
+        maps_.reset();
+        lightMaps_.reset();
+    }
     void addPasses(FrameContext& f, const render::GpuScene& scene);
     const render::PointShadowMaps* maps() const noexcept { return maps_.get(); }
+    const render::LightShadowMaps* lightMaps() const noexcept { return lightMaps_.get(); }
 
 private:
     std::unique_ptr<render::PointShadowMaps> maps_;
+    std::unique_ptr<render::LightShadowMaps> lightMaps_;
 };
 
 }  // namespace idk::frame

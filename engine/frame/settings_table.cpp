@@ -41,7 +41,8 @@ std::vector<SettingOption> buildTable() {
                  [](RenderSettings& s, double v) { s.environmentIntensity = float(v); }});
     // Point-light cube shadows.
     t.push_back({"--shadow-lights", "Shadows", "shadow-casting lights",
-                 "point/spot lights that cast cube shadows, the first N in light order (0 = none)",
+                 "lights that cast shadows (point/wide spot: cube; directional: cascades; spot: map), the first N in light "
+                 "order (0 = none)",
                  OptionKind::Integer, 0.0, 16.0, {},
                  [](const RenderSettings& s) { return double(s.pointShadows.maxLights); },
                  [](RenderSettings& s, double v) { s.pointShadows.maxLights = uint32_t(v); }});
@@ -119,6 +120,58 @@ std::vector<SettingOption> buildTable() {
                  OptionKind::Choice, 0.0, 0.0, {"conservative", "centre"},
                  [](const RenderSettings& s) { return double(s.vxgi.raster); },
                  [](RenderSettings& s, double v) { s.vxgi.raster = frame::VoxelRaster(v); }});
+    // Directional cascades and spot maps (frame/point_shadow_feature.cpp, render/light_shadow_maps.hpp).
+    t.push_back({"--shadow-cascades", "Shadows", "cascades", "cascaded shadow maps per directional light",
+                 OptionKind::Integer, 1.0, 4.0, {},
+                 [](const RenderSettings& s) { return double(s.lightShadows.cascades); },
+                 [](RenderSettings& s, double v) { s.lightShadows.cascades = uint32_t(v); }});
+    t.push_back({"--shadow-map-size", "Shadows", "cascade/spot map size", "directional cascade and spot map size",
+                 OptionKind::Choice, 0.0, 0.0, {"128", "256", "512", "1024", "2048"},
+                 [](const RenderSettings& s) { return cubeSizeIndex(s.lightShadows.resolution); },
+                 [](RenderSettings& s, double v) { s.lightShadows.resolution = kShadowCubeSizes[size_t(v)]; }});
+    t.push_back({"--shadow-distance", "Shadows", "cascade distance",
+                 "view distance the cascades cover (0 = to the far end of the scene)", OptionKind::Number, 0.0, 1e4,
+                 {}, [](const RenderSettings& s) { return double(s.lightShadows.distance); },
+                 [](RenderSettings& s, double v) { s.lightShadows.distance = float(v); }});
+    t.push_back({"--shadows", "Shadows", "shadow mode",
+                 "maps: cubes, cascades, spot maps; raytraced: one shadow ray per pixel and light (set before loading)",
+                 OptionKind::Choice, 0.0, 0.0, {"maps", "raytraced"},
+                 [](const RenderSettings& s) { return s.lightShadows.rayTraced ? 1.0 : 0.0; },
+                 [](RenderSettings& s, double v) { s.lightShadows.rayTraced = v > 0.5; }});
+    // Atmospheric-scattering sky (render/atmosphere.hpp), baked when the sun settings change.
+    t.push_back({"--sky", "Environment", "sky", "hdr: the environment file; atmosphere: Rayleigh + Mie sky of the sun",
+                 OptionKind::Choice, 0.0, 0.0, {"hdr", "atmosphere"},
+                 [](const RenderSettings& s) { return s.atmosphere.enabled ? 1.0 : 0.0; },
+                 [](RenderSettings& s, double v) { s.atmosphere.enabled = v > 0.5; }});
+    t.push_back({"--sun-elevation", "Environment", "sun elevation", "atmosphere: sun degrees above the horizon",
+                 OptionKind::Number, -10.0, 90.0, {},
+                 [](const RenderSettings& s) { return double(s.atmosphere.sunElevation); },
+                 [](RenderSettings& s, double v) { s.atmosphere.sunElevation = float(v); }});
+    t.push_back({"--sun-azimuth", "Environment", "sun azimuth", "atmosphere: degrees from -Z towards +X",
+                 OptionKind::Number, -360.0, 360.0, {},
+                 [](const RenderSettings& s) { return double(s.atmosphere.sunAzimuth); },
+                 [](RenderSettings& s, double v) { s.atmosphere.sunAzimuth = float(v); }});
+    // Volumetric lighting (frame/volumetrics_feature.hpp).
+    t.push_back({"--volumetrics", "Volumetrics", "volumetric lighting",
+                 "in-scattering of every light (with its shadows) in a homogeneous medium", OptionKind::Toggle, 0.0,
+                 1.0, {}, [](const RenderSettings& s) { return s.volumetrics.enabled ? 1.0 : 0.0; },
+                 [](RenderSettings& s, double v) { s.volumetrics.enabled = v != 0.0; }});
+    t.push_back({"--fog-density", "Volumetrics", "density", "scattering coefficient per metre", OptionKind::Number,
+                 0.0, 10.0, {}, [](const RenderSettings& s) { return double(s.volumetrics.density); },
+                 [](RenderSettings& s, double v) { s.volumetrics.density = float(v); }});
+    t.push_back({"--fog-anisotropy", "Volumetrics", "anisotropy", "Henyey-Greenstein g (> 0: forward scattering)",
+                 OptionKind::Number, -0.95, 0.95, {},
+                 [](const RenderSettings& s) { return double(s.volumetrics.anisotropy); },
+                 [](RenderSettings& s, double v) { s.volumetrics.anisotropy = float(v); }});
+    t.push_back({"--volumetrics-scale", "Volumetrics", "resolution divisor", "march at 1/2 or 1/4 resolution",
+                 OptionKind::Choice, 0.0, 0.0, {"2", "4"},
+                 [](const RenderSettings& s) { return s.volumetrics.scale == 4 ? 1.0 : 0.0; },
+                 [](RenderSettings& s, double v) { s.volumetrics.scale = v > 0.5 ? 4u : 2u; }});
+    // Order-independent transparency (passes/oit_weighted.cpp); sorted is the exact reference.
+    t.push_back({"--oit", "Transparency", "transparency", "sorted: back-to-front over (exact); weighted: weighted blended OIT",
+                 OptionKind::Choice, 0.0, 0.0, {"sorted", "weighted"},
+                 [](const RenderSettings& s) { return s.oit == render::OitMode::Weighted ? 1.0 : 0.0; },
+                 [](RenderSettings& s, double v) { s.oit = v > 0.5 ? render::OitMode::Weighted : render::OitMode::Sorted; }});
     return t;
 }
 

@@ -18,7 +18,9 @@ void TransparencyFeature::addPasses(FrameContext& f, const render::GpuScene& sce
     passes::TransparencyInputs t{f.scene,    importBuffer(f.graph, "sorted blend draws", sorted),
                                  draws_->count(), f.frameConstants, f.gbuffer.depth, f.environment,
                                  f.pointShadows};
-    f.hdr = passes::addTransparencyPass(f.graph, f.ctx, f.shaders, t, f.hdr, &f.log);
+    f.hdr = f.settings.oit == render::OitMode::Weighted
+                ? passes::addWeightedOitPasses(f.graph, f.ctx, f.shaders, t, f.hdr, &f.log)
+                : passes::addTransparencyPass(f.graph, f.ctx, f.shaders, t, f.hdr, &f.log);
 }
 
 }  // namespace idk::frame

@@ -31,6 +31,7 @@ graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Cont
             if (in.shadows.table.valid()) {
                 b.read(in.shadows.table, graph::Access::StorageRead, kCs);
                 for (graph::TextureHandle cube : in.shadows.cubes) b.read(cube, graph::Access::SampledRead, kCs);
+                if (in.shadows.mask.valid()) b.read(in.shadows.mask, graph::Access::StorageRead, kCs);
             }
             if (in.vrsRates.valid()) b.read(in.vrsRates, graph::Access::StorageRead, kCs);
             if (in.ambientOcclusion.valid()) b.read(in.ambientOcclusion, graph::Access::StorageRead, kCs);

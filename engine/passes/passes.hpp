@@ -11,11 +11,15 @@
 #include "render/lambert_scene.hpp"
 #include "shared/scene_types.h"
 #include "shared/skinning_types.h"
+#include "shared/volumetric_types.h"
 #include "vk/resources.hpp"
 #include "vk/shader_library.hpp"
 
 namespace idk::render {
 class PointShadowMaps;
+struct PointShadowFrame;
+class LightShadowMaps;
+struct LightShadowFrame;
 }
 
 namespace idk::passes {
@@ -95,15 +99,49 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
                               const SceneBuffers& scene, graph::BufferHandle frame, IndirectDrawLog* log,
                               const CulledDraws* culled = nullptr, const GBufferOutputs* drawOver = nullptr);
 
-// point_shadows.cpp: one depth cube per shadow-casting light (render/point_shadow_maps.hpp), one instanced
-// indirect draw per light (native rung) or six (fallback); uploads the per-light GpuPointShadow table.
+// point_shadows.cpp: one depth cube per cube-casting light (render/point_shadow_maps.hpp), one instanced indirect
+// draw per light (native rung) or six (fallback). light_shadow_maps.cpp: every cascade / spot-map layer, and the
+// upload of the frame's shadow table (per-light GpuPointShadow entries, then the GpuShadowMap records).
 struct PointShadowOutputs {
-    graph::BufferHandle table;                // GpuPointShadow[lightCount]; invalid: no shadows this frame
-    std::vector<graph::TextureHandle> cubes;  // the written cubes (readers declare SampledRead on each)
+    graph::BufferHandle table;                // the shadow table; invalid: no shadows this frame
+    std::vector<graph::TextureHandle> cubes;  // every written cube and map (readers declare SampledRead on each)
+    graph::BufferHandle mask;                 // ray-traced shadows: the visibility mask the table points at
 };
-PointShadowOutputs addPointShadowPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
-                                      const SceneBuffers& scene, render::PointShadowMaps& maps,
-                                      const std::vector<gpu::GpuLight>& lights, IndirectDrawLog* log);
+std::vector<graph::TextureHandle> addPointShadowPass(graph::RenderGraph& graph, vk::Context& ctx,
+                                                     vk::ShaderLibrary& shaders, const SceneBuffers& scene,
+                                                     const render::PointShadowMaps& maps,
+                                                     const render::PointShadowFrame& frame, IndirectDrawLog* log);
+std::vector<graph::TextureHandle> addLightShadowMapPass(graph::RenderGraph& graph, vk::Context& ctx,
+                                                        vk::ShaderLibrary& shaders, const SceneBuffers& scene,
+                                                        const render::LightShadowMaps& maps,
+                                                        const render::LightShadowFrame& frame, IndirectDrawLog* log);
+graph::BufferHandle addShadowTablePass(graph::RenderGraph& graph, std::vector<uint8_t> bytes);
+
+// rt_shadows.cpp: one shadow ray per pixel and light into a visibility mask (ray query or our BVH), and the table
+// pointing the lighting at it.
+struct RtShadowInputs {
+    graph::BufferHandle frame, lights;
+    graph::TextureHandle depth, normal;  // GBufferOutputs
+    VkDeviceAddress sceneDesc = 0;       // GpuPtSceneDesc
+    bool rayQuery = false, hasAlpha = false;
+    uint32_t blasStack = 1, tlasStack = 1;
+    std::vector<uint32_t> casters;       // light indices, at most kRtShadowMaxLights
+    uint32_t lightCount = 0;
+};
+PointShadowOutputs addRtShadowPasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                     const RtShadowInputs& inputs, uint32_t width, uint32_t height);
+
+// volumetrics.cpp: in-scattering ray-marched at 1/scale resolution, composited into `hdr` (hdr * T + L) by a
+// depth-aware upsample; returns the HDR image's new version.
+struct VolumetricInputs {
+    graph::BufferHandle frame, lights;
+    graph::TextureHandle depth;  // GBufferOutputs::depth
+    PointShadowOutputs shadows;  // the frame's shadow table and maps (may be empty)
+    uint32_t width = 0, height = 0;
+    gpu::VolumetricPush push{};  // the medium, steps, scale and maxDistance (addresses and indices filled in)
+};
+graph::TextureHandle addVolumetricPasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                         const VolumetricInputs& inputs, graph::TextureHandle hdr);
 
 // Traced indirect light per pixel (VXGI, passes/vxgi_passes.hpp): invalid handles when GI is off.
 struct IndirectLightImages {
@@ -144,6 +182,11 @@ struct TransparencyInputs {
 graph::TextureHandle addTransparencyPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                          const TransparencyInputs& inputs, graph::TextureHandle target,
                                          IndirectDrawLog* log);
+// oit_weighted.cpp: the weighted blended OIT rung (`--oit weighted`): the same draws in any order into additive
+// targets, composited over `target`; returns its new version.
+graph::TextureHandle addWeightedOitPasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                          const TransparencyInputs& inputs, graph::TextureHandle target,
+                                          IndirectDrawLog* log);
 
 // tonemap.cpp: AgX of exposure * hdr into the RGBA8 `target` (sRGB-encoded values); returns its new version.
 graph::TextureHandle addTonemapPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,

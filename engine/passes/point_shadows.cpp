@@ -1,8 +1,9 @@
 // point_shadows.cpp: renders one depth cube per shadow-casting point light from the scene's multi-draw-indirect
 // buffer, along the capability ladder "point-shadow cube faces": native = ONE instanced indirect draw per light
 // (instanceCount * 6, the vertex shader writes gl_Layer = face), fallback = six indirect draws per light into
-// single-face views. Also uploads the per-light shadow table the lighting passes read. Ports IDKEngine's
-// PointShadowManager.RenderShadowMaps (reference 2.12; its CPU face culling and GPU instance culling come later).
+// single-face views (the shadow table the lighting reads is uploaded by passes/light_shadow_maps.cpp). Ports
+// IDKEngine's PointShadowManager.RenderShadowMaps (reference 2.12; its CPU face culling and GPU instance culling
+// come later).
 #include <algorithm>
 #include <memory>
 
@@ -28,14 +29,12 @@ void beginDepthRendering(VkCommandBuffer cmd, VkImageView view, uint32_t size, u
 
 }  // namespace
 
-PointShadowOutputs addPointShadowPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
-                                      const SceneBuffers& scene, render::PointShadowMaps& maps,
-                                      const std::vector<gpu::GpuLight>& lights, IndirectDrawLog* log) {
-    auto frame = std::make_shared<render::PointShadowMaps::Frame>(maps.beginFrame(graph, lights));
-    graph::BufferDesc tableDesc;
-    tableDesc.size = std::max<size_t>(1, frame->table.size()) * sizeof(gpu::GpuPointShadow);
-    auto out = std::make_shared<PointShadowOutputs>();
-    out->table = graph.createBuffer("point shadow table", tableDesc);
+std::vector<graph::TextureHandle> addPointShadowPass(graph::RenderGraph& graph, vk::Context& ctx,
+                                                     vk::ShaderLibrary& shaders, const SceneBuffers& scene,
+                                                     const render::PointShadowMaps& maps,
+                                                     const render::PointShadowFrame& frameIn, IndirectDrawLog* log) {
+    auto frame = std::make_shared<render::PointShadowFrame>(frameIn);
+    auto out = std::make_shared<std::vector<graph::TextureHandle>>();
     const SceneBuffers s = scene;
     const bool layered = maps.layered(), mask = maps.alphaMask();
     const graph::BufferHandle draws = layered ? frame->layeredDraws : s.drawCommands;
@@ -44,9 +43,7 @@ PointShadowOutputs addPointShadowPass(graph::RenderGraph& graph, vk::Context& ct
         [&](graph::PassBuilder& b) {
             constexpr VkPipelineStageFlags2 kVs = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT;
             constexpr VkPipelineStageFlags2 kFs = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
-            out->table = b.write(out->table, graph::Access::TransferDst);
-            for (graph::TextureHandle cube : frame->cubes)
-                out->cubes.push_back(b.write(cube, graph::Access::DepthWrite));
+            for (graph::TextureHandle cube : frame->cubes) out->push_back(b.write(cube, graph::Access::DepthWrite));
             b.read(s.vertices, graph::Access::StorageRead, kVs);
             b.read(s.indices, graph::Access::VertexRead);
             b.read(s.instances, graph::Access::StorageRead, mask ? kVs | kFs : kVs);
@@ -58,14 +55,8 @@ PointShadowOutputs addPointShadowPass(graph::RenderGraph& graph, vk::Context& ct
                 b.read(s.materials, graph::Access::StorageRead, kFs);
             }
         },
-        [&ctx, &shaders, &maps, s, frame, out, draws, layered, mask, log](graph::PassContext& pc) {
+        [&ctx, &shaders, &maps, s, frame, draws, layered, mask, log](graph::PassContext& pc) {
             VkCommandBuffer cmd = pc.commandBuffer();
-            // The table first (transfer, outside rendering): read by deferred_lighting and transparency.
-            const auto* bytes = reinterpret_cast<const uint8_t*>(frame->table.data());
-            VkDeviceSize total = frame->table.size() * sizeof(gpu::GpuPointShadow);
-            for (VkDeviceSize offset = 0; offset < total; offset += 65536)  // vkCmdUpdateBuffer's limit per call
-                vkCmdUpdateBuffer(cmd, pc.vkBuffer(out->table), offset, std::min<VkDeviceSize>(65536, total - offset),
-                                  bytes + offset);
 
             vk::GraphicsPipelineDesc desc;
             desc.vertex = layered ? vk::ShaderId::point_shadows_layered_vert : vk::ShaderId::point_shadows_face_vert;

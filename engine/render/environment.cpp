@@ -113,8 +113,13 @@ GpuEnvironment createEnvironment(vk::Context& ctx, const std::filesystem::path& 
         level0 = {1, 1, {constant.r, constant.g, constant.b, 1.0f}};
     } else {
         level0 = core::readImage(file);
-        for (float& v : level0.pixels) v = std::isfinite(v) ? std::clamp(v, 0.0f, 65504.0f) : 0.0f;  // half range
     }
+    return createEnvironment(ctx, std::move(level0),
+                             file.empty() ? "constant environment" : "environment " + file.filename().string());
+}
+
+GpuEnvironment createEnvironment(vk::Context& ctx, core::ImageRgba32f level0, const std::string& name) {
+    for (float& v : level0.pixels) v = std::isfinite(v) ? std::clamp(v, 0.0f, 65504.0f) : 0.0f;  // half range
     GpuEnvironment env;
     env.irradianceSh = projectIrradianceSh(level0);
     std::vector<core::ImageRgba32f> mips = buildMipChain(std::move(level0));
@@ -127,7 +132,7 @@ GpuEnvironment createEnvironment(vk::Context& ctx, const std::filesystem::path& 
     desc.extent = {mips[0].width, mips[0].height, 1};
     desc.mipLevels = uint32_t(mips.size());
     desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
-    desc.name = file.empty() ? "constant environment" : "environment " + file.filename().string();
+    desc.name = name;
     desc.category = "environment";
     env.image = ctx.createImage(desc);
 

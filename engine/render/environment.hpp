@@ -5,6 +5,7 @@
 #pragma once
 #include <array>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -53,6 +54,8 @@ struct GpuEnvironment {
 // environment of radiance `constant` (a 1x1 texture; E = pi * constant).
 GpuEnvironment createEnvironment(vk::Context& ctx, const std::filesystem::path& file,
                                  glm::vec3 constant = glm::vec3(0.5f));
+// The same from an equirectangular image already in memory (the atmosphere's bake, render/atmosphere.hpp).
+GpuEnvironment createEnvironment(vk::Context& ctx, core::ImageRgba32f level0, const std::string& name);
 void destroyEnvironment(vk::Context& ctx, GpuEnvironment& env);
 
 }  // namespace idk::render

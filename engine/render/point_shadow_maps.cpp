@@ -7,6 +7,7 @@
 #include <string>
 
 #include "render/draw_bounds.hpp"
+#include "render/shadow_cascades.hpp"
 #include "vk/check.hpp"
 #include "vk/context.hpp"
 #include "vk/features.hpp"
@@ -14,13 +15,22 @@
 
 namespace idk::render {
 
+std::vector<uint32_t> shadowCasters(const std::vector<gpu::GpuLight>& lights, uint32_t maxLights) {
+    std::vector<uint32_t> casters;
+    for (uint32_t i = 0; i < lights.size() && casters.size() < maxLights; ++i)
+        if (glm::any(glm::greaterThan(lights[i].intensity, glm::vec3(0.0f)))) casters.push_back(i);
+    return casters;
+}
+
+bool castsIntoCube(const gpu::GpuLight& l) {
+    return l.type == gpu::kLightPoint ||
+           (l.type == gpu::kLightSpot && spotOuterAngle(l.spotScale, l.spotOffset) > kMaxSpotMapHalfAngle);
+}
+
 std::vector<uint32_t> pointShadowCasters(const std::vector<gpu::GpuLight>& lights, uint32_t maxLights) {
     std::vector<uint32_t> casters;
-    for (uint32_t i = 0; i < lights.size() && casters.size() < maxLights; ++i) {
-        const gpu::GpuLight& l = lights[i];
-        bool positional = l.type == gpu::kLightPoint || l.type == gpu::kLightSpot;
-        if (positional && glm::any(glm::greaterThan(l.intensity, glm::vec3(0.0f)))) casters.push_back(i);
-    }
+    for (uint32_t i : shadowCasters(lights, maxLights))
+        if (castsIntoCube(lights[i])) casters.push_back(i);
     return casters;
 }
 

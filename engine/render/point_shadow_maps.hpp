@@ -16,18 +16,28 @@
 namespace idk::render {
 
 struct PointShadowSettings {
-    uint32_t maxLights = 8;     // shadow-casting lights at most (the first ones in light order); 0: no shadows
+    uint32_t maxLights = 8;     // shadow-casting lights of any type at most (the first in light order); 0: none
     uint32_t resolution = 512;  // cube face size in texels
 };
 
-// The castsShadows rule: point and spot lights (a spot reuses the whole cube) with nonzero intensity, in light
-// order, at most maxLights. Directional lights cast none (no cascaded maps yet).
+// The castsShadows rule: every light with nonzero intensity, in light order, at most maxLights.
+std::vector<uint32_t> shadowCasters(const std::vector<gpu::GpuLight>& lights, uint32_t maxLights);
+// Which of them render a cube: point lights, and spot lights too wide for one perspective map (the others render
+// cascades or a spot map, render/light_shadow_maps.hpp).
+bool castsIntoCube(const gpu::GpuLight& light);
 std::vector<uint32_t> pointShadowCasters(const std::vector<gpu::GpuLight>& lights, uint32_t maxLights);
 
 // Near and far planes of a light's cube faces: far = the largest major-axis distance from the light to a corner of
 // the scene box (x 1.01), no farther than the light's range; near = far / 1000 (D32 keeps sub-millimetre depth
 // steps at 1 m). Depth is stored as d = far / (far - near) * (1 - near / ma) of the major-axis distance ma.
 glm::vec2 pointShadowPlanes(const gpu::GpuLight& light, const scene::Aabb& sceneBox);
+
+struct PointShadowFrame {
+    std::vector<graph::TextureHandle> cubes;    // imported, to be written by the point_shadows pass
+    std::vector<gpu::GpuPointShadow> table;     // one per light
+    std::vector<glm::vec2> planes;              // near/far per cube
+    graph::BufferHandle layeredDraws;           // imported native-rung draw commands (invalid for six draws)
+};
 
 class PointShadowMaps {
 public:
@@ -51,12 +61,7 @@ public:
 
     // This frame: imports every cube into the graph (in the state the previous frame left it) and builds the
     // per-light table (kNoShadow for lights without a cube) from the lights' current positions.
-    struct Frame {
-        std::vector<graph::TextureHandle> cubes;    // imported, to be written by the point_shadows pass
-        std::vector<gpu::GpuPointShadow> table;     // one per light
-        std::vector<glm::vec2> planes;              // near/far per cube
-        graph::BufferHandle layeredDraws;           // imported native-rung draw commands (invalid for six draws)
-    };
+    using Frame = PointShadowFrame;
     Frame beginFrame(graph::RenderGraph& graph, const std::vector<gpu::GpuLight>& lights);
 
 private:

@@ -13,10 +13,15 @@
 #include "frame/vxgi_settings.hpp"
 #include "render/point_shadow_maps.hpp"
 #include "frame/culling_settings.hpp"
+#include "render/light_shadow_maps.hpp"
+#include "render/atmosphere.hpp"
+#include "frame/volumetric_settings.hpp"
 
 namespace idk::render {
 
 enum class Shading : uint8_t { Pbr, Lambert };
+// Transparency: Sorted = BLEND draws back to front, "over" (the exact reference); Weighted = weighted blended OIT.
+enum class OitMode : uint8_t { Sorted, Weighted };
 enum class OutputKind : uint8_t {
     Display,  // AgX-tonemapped, sRGB-encoded 8-bit (what a PNG stores)
     Hdr,      // linear radiance before tonemapping (what an EXR stores); no tonemap pass
@@ -37,6 +42,10 @@ struct RenderSettings {
     frame::BloomSettings bloom;        // --bloom, --bloom-strength (frame/bloom_feature.hpp)
     frame::SsaoSettings ssao;          // --ssao, --ssao-radius, --ssao-samples (frame/ssao_feature.hpp)
     frame::VxgiSettings vxgi;          // voxel global illumination (--gi, --voxels)
+    LightShadowSettings lightShadows;  // directional cascades and spot maps
+    AtmosphereSettings atmosphere;     // `--sky atmosphere`: the baked single-scattering sky as the environment
+    frame::VolumetricSettings volumetrics;  // `--volumetrics`: in-scattering in a homogeneous medium
+    OitMode oit = OitMode::Sorted;     // `--oit sorted|weighted`
 };
 
 }  // namespace idk::render

@@ -43,6 +43,7 @@ void Renderer::setScene(const scene::Scene& scene) {
     gpuScene_.reset();
     gpuScene_ = std::make_unique<GpuScene>(ctx_, scene);
     features_.setScene(ctx_, *gpuScene_, frames_.framesInFlight());
+    features_.setSourceScene(ctx_, scene, *gpuScene_, settings_);
 }
 
 void Renderer::setPose(const scene::Scene& scene) {

@@ -102,6 +102,8 @@ public:
     frame::SsaoFeature& ssao() noexcept { return features_.ssao; }  // tests capture its inputs and output
     // The VXGI voxel grid of the last frame and its features (nullptr with --gi none): tests read it back.
     const frame::VxgiFeature& vxgi() const noexcept { return features_.vxgi; }
+    // The directional cascades and spot maps of the last frame (nullptr when no light rendered one).
+    const LightShadowMaps* lightShadowMaps() const noexcept { return features_.pointShadows.lightMaps(); }
     // Runs inside each frame's command buffer before the frame's graph is built (TextureStreamer::pump goes
     // here: textures it makes ready reach this frame's materials through the scene_update pass).
     void setBeforeFrame(std::function<void(VkCommandBuffer)> hook) { beforeFrame_ = std::move(hook); }

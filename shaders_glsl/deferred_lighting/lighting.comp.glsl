@@ -46,6 +46,7 @@ void main() {
     SurfaceLayers layers = layered > 0u && p.materials != 0 ? materialLayers(MaterialBuffer(p.materials).data[layered - 1u])
                                                             : noLayers();
     vec3 radiance = emissive.rgb;
+    gShadowPixel = pixel;  // ray-traced shadows read their mask here (include/rt_shadows.glsl)
     radiance += shadeSurface(f, p.pointShadows, position, n, v, baseColor, metallic, roughness, occlusion, layers);
     radiance += vxgiAmbientDelta(f, p.vxgiDiffuse, p.vxgiSpecular, pixel, n, v, baseColor, metallic, roughness,
                                  occlusion);  // inside the VXGI grid: traced light replaces the SH ambient

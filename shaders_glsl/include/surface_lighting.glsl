@@ -1,6 +1,6 @@
 // surface_lighting.glsl: the radiance a surface point sends towards the eye, shared by the deferred lighting pass
 // and the forward transparency pass so both shade alike: the glTF BRDF for every punctual light (times its
-// point-shadow visibility when it casts one), plus ambient from the environment (SH9 diffuse irradiance and the
+// shadow visibility when it casts one: cube, cascades or spot map), plus ambient from the environment (SH9 diffuse irradiance and the
 // split-sum specular lookup, both times occlusion). Ports IDKEngine's DeferredLighting/fragment.glsl shading core.
 #ifndef IDK_SURFACE_LIGHTING_GLSL
 #define IDK_SURFACE_LIGHTING_GLSL
@@ -8,6 +8,8 @@
 #include "material_layers.glsl"
 #include "environment.glsl"
 #include "shadows.glsl"
+#include "light_shadows.glsl"
+#include "rt_shadows.glsl"
 
 // n: unit shading normal on the viewer's side; v: unit direction to the eye. pointShadows: GpuPointShadow[] per
 // light, or 0 when no light casts a shadow. layers: the material's extensions (noLayers() for none).
@@ -21,7 +23,9 @@ vec3 shadeSurface(GpuFrame f, uint64_t pointShadows, vec3 position, vec3 n, vec3
         vec3 direct = layeredBrdfCosine(layers, baseColor, metallic, roughness, n, v, l) * incident;
         if (pointShadows != 0 && any(greaterThan(direct, vec3(0.0)))) {
             GpuPointShadow s = PointShadowBuffer(pointShadows).data[i];
-            if (s.cube != kNoShadow) direct *= pointShadowVisibility(s, position, n, l);
+            if (s.mapCount != 0u) direct *= mapShadowVisibility(pointShadows, s, position, n, l);
+            else if (s.cube == kRayTracedShadow) direct *= rtShadowVisibility(pointShadows, s);
+            else if (s.cube != kNoShadow) direct *= pointShadowVisibility(s, position, n, l);
         }
         radiance += direct;
     }

@@ -40,7 +40,9 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer WfI
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer WfLightRef { GpuPtLight l[]; };
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer WfAliasRef { GpuPtAliasEntry e[]; };
 
+#ifndef WF_CUSTOM_PUSH  // users of the traversal alone (rt_shadows/) declare their own push block
 layout(push_constant, scalar) uniform Push { GpuPtStagePush pc; };
+#endif
 
 // Appends `item` to a queue (alive-ray compaction: survivors are packed densely in arrival order). The next
 // stage's dispatch size is derived on the GPU by args.comp.glsl, never read back by the CPU.

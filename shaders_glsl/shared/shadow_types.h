@@ -20,8 +20,38 @@ struct GpuPointShadow {
     uint cube;         // bindless textureCube (D32), or kNoShadow
     uint samplerIndex; // bindless comparison sampler (LESS_OR_EQUAL, linear, clamp)
     float texelScale;  // 2 / resolution: one texel's world size at major-axis distance 1
+    uint mapOffset;    // directional and spot lights: byte offset of their GpuShadowMap records from the table's
+    uint mapCount;     // start (cube: the bindless 2D-array image of the maps); 0 records: a cube or no shadow
 };
-IDK_GPU_SIZE(GpuPointShadow, 32);
+IDK_GPU_SIZE(GpuPointShadow, 40);
+
+// Texels between a projected map's border and the centre of a lookup it serves: the 3x3 PCF kernel (1 texel) and
+// its bilinear footprint (1 texel), plus room for the normal offset. Cascades and spot maps are fitted with it.
+IDK_CONST(float, kShadowMapMargin, 3.0f);
+
+// One projected shadow map (a cascade of a directional light, or a spot light's single map), appended after the
+// per-light entries of the table: uv = ndc.xy * 0.5 + 0.5 and depth = ndc.z of viewProjection * world, stored in
+// layer `layer` of the light's 2D-array image (cleared to 1). Built by render/shadow_cascades.cpp.
+struct GpuShadowMap {
+    mat4 viewProjection;  // orthographic (cascade) or perspective (spot), Vulkan clip space
+    float texelScale;     // world size of one texel: times clip.w for a perspective map
+    float invResolution;  // 1 / map size in texels
+    uint layer;
+    uint perspective;     // 1: spot map
+};
+IDK_GPU_SIZE(GpuShadowMap, 80);
+
+// light_shadows/map.vert + mask.frag: one layer of a directional or spot light's maps.
+struct ShadowMapPush {
+    DeviceAddress vertices;   // GpuVertex[]
+    DeviceAddress instances;  // GpuInstance[], indexed by gl_DrawID
+    DeviceAddress meshes;     // GpuMesh[]
+    DeviceAddress materials;  // GpuMaterial[] (alpha MASK only)
+    DeviceAddress colors;     // vec4[] COLOR_0 or 0
+    DeviceAddress uv1;        // vec2[] TEXCOORD_1 or 0
+    mat4 viewProjection;
+};
+IDK_GPU_SIZE(ShadowMapPush, 112);
 
 // point_shadows/{layered,face}.vert + mask.frag: one light, all faces (layered) or one face (face index).
 struct PointShadowPush {

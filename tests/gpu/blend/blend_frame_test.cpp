@@ -64,7 +64,8 @@ TEST_F(PassListTest, BlendSceneWithoutLightsAddsTransparencyButNoShadows) {
 
 TEST_F(PassListTest, LitSceneWithoutBlendAddsShadowsButNoTransparency) {
     nlohmann::json j = renderJson({"--out", out("cornell.png"), "--size", "32x32", "--json"});
-    EXPECT_EQ(passes(j), (std::vector<std::string>{"point_shadows", "gbuffer", "deferred_lighting", "sky", "tonemap"}));
+    EXPECT_EQ(passes(j), (std::vector<std::string>{"shadow_table", "point_shadows", "gbuffer", "deferred_lighting", "sky",
+                                                   "tonemap"}));
     EXPECT_EQ(j["indirectDraws"]["point_shadows"]["indirectCalls"], 1) << "one instanced draw for the one light";
     EXPECT_TRUE(j["memoryBytes"].contains("shadow maps"));
     EXPECT_FALSE(j["memoryBytes"].contains("transparency"));

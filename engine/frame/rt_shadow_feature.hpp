@@ -1,0 +1,36 @@
+// rt_shadow_feature.hpp: ray-traced shadows (`--shadows raytraced`): the path tracer's scene geometry uploaded for
+// the raster frame (render/pt_geometry.hpp: our binary BVH, plus driver acceleration structures when the "ray
+// traversal" ladder takes its native rung, VK_KHR_ray_query), and after the G-buffer one shadow ray per pixel and
+// shadow-casting light (passes/rt_shadows.cpp); fills FrameContext::pointShadows with the mask and its table, in
+// place of cubes and maps (frame/point_shadow_feature.cpp adds none in this mode). The geometry is built by
+// setScene while the mode is on; a scene loaded with the mode off gets no ray-traced shadows (one warning) until it
+// is loaded again. Static geometry: animated meshes keep their bind pose in the BVH. Ports IDKEngine's
+// ShadowMode.RayTraced (reference 2.12).
+#pragma once
+#include <memory>
+
+#include "frame/frame_context.hpp"
+#include "render/gpu_scene.hpp"
+#include "scene/scene.hpp"
+
+namespace idk::frame {
+
+class RtShadowFeature {
+public:
+    RtShadowFeature();
+    ~RtShadowFeature();
+    RtShadowFeature(const RtShadowFeature&) = delete;
+    RtShadowFeature& operator=(const RtShadowFeature&) = delete;
+
+    void setScene(vk::Context& ctx, const scene::Scene& source, const render::GpuScene& scene,
+                  const render::RenderSettings& settings);
+    void addPasses(FrameContext& f, const render::GpuScene& scene);
+    bool rayQuery() const noexcept;  // the rung the geometry was built for (false: our BVH)
+
+private:
+    struct Geometry;
+    std::unique_ptr<Geometry> geometry_;
+    bool warned_ = false;
+};
+
+}  // namespace idk::frame

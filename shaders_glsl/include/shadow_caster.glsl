@@ -1,0 +1,44 @@
+// shadow_caster.glsl: what every shadow-map pass shares (point cubes, cascades, spot maps): the caster's vertex
+// pulling (world position plus the inputs of the alpha test, as in gbuffer.vert) and the alpha-MASK test of the
+// fragment stage. Ports the vertex pulling and alpha test of IDKEngine's Shadows/PointShadow shaders.
+#ifndef IDK_SHADOW_CASTER_GLSL
+#define IDK_SHADOW_CASTER_GLSL
+#include "scene_buffers.glsl"
+#include "bindless.glsl"
+
+#ifdef IDK_SHADOW_CASTER_VERTEX
+layout(location = 0) out vec2 outUv;
+layout(location = 1) out vec2 outUv1;
+layout(location = 2) out float outAlpha;  // COLOR_0 alpha
+layout(location = 3) flat out uint outDraw;
+
+// World position of this vertex; writes the fragment stage's inputs.
+vec3 shadowCasterVertex(uint64_t vertices, uint64_t instances, uint64_t colors, uint64_t uv1) {
+    GpuInstance instance = InstanceBuffer(instances).data[gl_DrawID];
+    GpuVertex v = VertexBuffer(vertices).data[gl_VertexIndex];
+    outUv = v.uv0;
+    outUv1 = uv1 != 0 ? Vec2Buffer(uv1).data[gl_VertexIndex] : vec2(0.0);
+    outAlpha = colors != 0 ? Vec4Buffer(colors).data[gl_VertexIndex].a : 1.0;
+    outDraw = gl_DrawID;
+    return (instance.model * vec4(v.position, 1.0)).xyz;
+}
+#else
+layout(location = 0) in vec2 inUv;
+layout(location = 1) in vec2 inUv1;
+layout(location = 2) in float inAlpha;
+layout(location = 3) flat in uint inDraw;
+
+// Whether an alpha-MASK fragment falls below its material's cutoff (it then casts no shadow).
+bool shadowCasterCutAway(uint64_t instances, uint64_t meshes, uint64_t materials) {
+    GpuInstance instance = InstanceBuffer(instances).data[inDraw];
+    GpuMaterial m = MaterialBuffer(materials).data[MeshBuffer(meshes).data[instance.mesh].material];
+    if (m.alphaMode != kAlphaMask) return false;
+    GpuTextureSlot slot = m.slots[kSlotBaseColor];
+    vec3 h = vec3(slot.texCoord == 1u ? inUv1 : inUv, 1.0);
+    vec2 st = vec2(dot(slot.row0, h), dot(slot.row1, h));
+    float alpha = m.baseColorFactor.a * inAlpha * IDK_SAMPLE_2D(slot.texture, slot.samplerIndex, st).a;
+    return alpha < m.alphaCutoff;
+}
+#endif
+
+#endif

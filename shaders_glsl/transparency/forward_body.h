@@ -1,0 +1,78 @@
+// forward_body.h (GLSL include): body of transparency/forward.frag and oit/weighted.frag: forward shading of BLEND materials over the lit opaque image: the material as the G-buffer
+// samples it, the same lights, point shadows and environment ambient as deferred lighting (surface_lighting.glsl),
+// output (radiance, alpha) for "over" blending. Depth-tested against the G-buffer's depth copy without writing.
+// Ports IDKEngine's RecordTransparent/fragment.glsl, sorted back to front instead of its k-buffer (reference 2.14).
+#extension GL_GOOGLE_include_directive : require
+#include "scene_buffers.glsl"
+#include "bindless.glsl"
+#include "material_eval.glsl"
+#include "surface_lighting.glsl"
+
+layout(push_constant, scalar) uniform Push { TransparencyPush p; };
+
+layout(location = 0) in vec3 inWorldPosition;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec4 inTangent;
+layout(location = 3) in vec2 inUv;
+layout(location = 4) flat in uint inInstance;
+layout(location = 5) in vec4 inColor;
+layout(location = 6) in vec2 inUv1;
+
+#ifdef IDK_OIT_WEIGHTED
+// Weighted blended OIT (oit/weighted.frag): both additive. 0: (radiance a, a) times the depth weight;
+// 1: -ln(1 - a) in r (the product of (1 - a) over the fragments, summed as logarithms).
+layout(location = 0) out vec4 outAccum;
+layout(location = 1) out vec4 outRevealage;
+void writeTransparent(vec4 c) {
+    float a = clamp(c.a, 0.0, 0.999);
+    // McGuire & Bavoil 2013, eq. 9 weight on the fragment's depth (0 near .. 1 far).
+    float z = gl_FragCoord.z;
+    float w = clamp(a * max(1e-2, 3e3 * (1.0 - z) * (1.0 - z) * (1.0 - z)), 1e-2, 3e3);
+    outAccum = vec4(c.rgb * a, a) * w;
+    outRevealage = vec4(-log(1.0 - a), 0.0, 0.0, 0.0);
+}
+#else
+layout(location = 0) out vec4 outColor;  // linear radiance, alpha = coverage ("over": SRC_ALPHA, 1 - SRC_ALPHA)
+void writeTransparent(vec4 c) { outColor = c; }
+#endif
+
+void main() {
+    GpuInstance instance = InstanceBuffer(p.instances).data[inInstance];
+    GpuMaterial m = MaterialBuffer(p.materials).data[nonuniformEXT(MeshBuffer(p.meshes).data[instance.mesh].material)];
+
+    // Every sample happens before any discard so implicit derivatives stay defined for the whole quad.
+    vec4 baseColor = m.baseColorFactor * sampleMaterialSlot(m.slots[kSlotBaseColor], inUv, inUv1) * inColor;
+    vec4 mr = sampleMaterialSlot(m.slots[kSlotMetallicRoughness], inUv, inUv1);
+    vec4 nt = sampleMaterialSlot(m.slots[kSlotNormal], inUv, inUv1);
+    float ao = sampleMaterialSlot(m.slots[kSlotOcclusion], inUv, inUv1).r;
+    vec3 emissive = m.emissiveFactor * sampleMaterialSlot(m.slots[kSlotEmissive], inUv, inUv1).rgb;
+    vec3 n = normalize(inNormal);
+    vec3 t, b;
+    bool haveFrame = materialTangentFrame(n, inTangent, inWorldPosition, inUv, t, b);
+
+    // The opaque surfaces' depth test (LESS against the G-buffer's copy of the kept depth), and facing.
+    float opaqueDepth = imageLoad(gImagesR32f[p.depth], ivec2(gl_FragCoord.xy)).r;
+    bool front = gl_FrontFacing != ((instance.flags & kInstanceMirrored) != 0u);
+    if (gl_FragCoord.z >= opaqueDepth || (!front && (m.flags & kMaterialDoubleSided) == 0u)) discard;
+
+    vec2 xy = nt.xy * 2.0 - 1.0;
+    vec3 tn = vec3(xy * m.normalScale, sqrt(max(1.0 - dot(xy, xy), 0.0)));
+    if (haveFrame) n = normalize(t * tn.x + b * tn.y + n * tn.z);
+    if (!front) n = -n;
+    if ((m.flags & kMaterialUnlit) != 0u) {
+        writeTransparent(vec4(baseColor.rgb, baseColor.a));
+        return;
+    }
+
+    GpuFrame f = FrameBuffer(p.frame).frame;
+    gPtAlbedoTables = f.albedoTables;
+    vec2 ndc = gl_FragCoord.xy / vec2(f.extent) * 2.0 - 1.0;
+    vec4 hNear = f.inverseViewProjection * vec4(ndc, 0.0, 1.0);
+    vec3 v = normalize(hNear.xyz / hNear.w - inWorldPosition);  // towards the eye (orthographic views too)
+    float metallic = clamp(m.metallicFactor * mr.b, 0.0, 1.0);
+    float roughness = clamp(m.roughnessFactor * mr.g, 0.0, 1.0);
+    float occlusion = 1.0 + m.occlusionStrength * (ao - 1.0);
+    vec3 radiance = emissive + shadeSurface(f, p.pointShadows, inWorldPosition, n, v, baseColor.rgb, metallic,
+                                            roughness, occlusion, materialLayers(m));
+    writeTransparent(vec4(radiance, baseColor.a));
+}

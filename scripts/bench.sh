@@ -46,10 +46,11 @@ if [ "${IDK_BENCH_FARM:-1}" != 0 ]; then
     echo "bench.sh: skipping the render-farm benchmark (needs root and slurm-wlm; scripts/setup.sh installs it)" >&2
   fi
 fi
-# Issue 14's VRS sweep: 2 scenes x 13 settings x 12 frames at 1280x720 (about 10 minutes on lavapipe;
-# IDK_BENCH_VRS=0 skips it and keeps the last bench/results/vrs_section.md).
+# Issue 14's VRS sweep: 2 scenes x 13 settings x 4 frames of a camera path at 1280x720 (the committed results'
+# settings; about 25 minutes on a loaded 2-core lavapipe machine; IDK_BENCH_VRS=0 skips it and keeps the last
+# bench/results/vrs_section.md).
 if [ "${IDK_BENCH_VRS:-1}" != 0 ]; then
-  "$build/bin/idk_vrs_bench" bench/results/vrs.json --size 1280x720 --frames 12
+  "$build/bin/idk_vrs_bench" bench/results/vrs.json --size 1280x720 --frames 4
   python3 bench/vrs_report.py bench/results
 fi
 python3 scripts/bench_report.py --compact bench/results/latest.json BENCHMARKS.md

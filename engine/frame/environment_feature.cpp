@@ -36,7 +36,7 @@ const render::GpuEnvironment& EnvironmentFeature::current(const render::RenderSe
 void EnvironmentFeature::addPasses(FrameContext& f) {
     graph::ResourceState sampled;
     sampled.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-    f.environment = f.graph.importTexture("environment", physicalOf(current(f.settings).image), sampled,
+    f.environment = f.graph.importTexture("environment", render::physicalOf(current(f.settings).image), sampled,
                                           graph::FinalUse{graph::Access::SampledRead});
 }
 

@@ -55,7 +55,7 @@ void EnvironmentFeature::addPasses(FrameContext& f) {
     if (f.settings.atmosphere.enabled && f.settings.environmentIntensity != 0.0f) bakeSky(f);
     graph::ResourceState sampled;
     sampled.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-    f.environment = f.graph.importTexture("environment", physicalOf(current(f.settings).image), sampled,
+    f.environment = f.graph.importTexture("environment", render::physicalOf(current(f.settings).image), sampled,
                                           graph::FinalUse{graph::Access::SampledRead});
 }
 

@@ -12,17 +12,6 @@
 
 namespace idk::frame {
 
-graph::PhysicalTexture physicalOf(const vk::Image& image) {
-    graph::PhysicalTexture p;
-    p.image = image.image;
-    p.view = image.view;
-    p.format = image.format;
-    p.extent = image.extent;
-    p.mips = image.mipLevels;
-    p.layers = image.layers;
-    return p;
-}
-
 graph::BufferHandle importBuffer(graph::RenderGraph& graph, const char* name, const vk::Buffer& buffer,
                                  const graph::ResourceState& state) {
     if (!buffer) return {};

@@ -9,6 +9,7 @@
 #include "frame/frame_context.hpp"
 #include "render/environment.hpp"
 #include "render/gpu_scene.hpp"
+#include "render/vk_graph_backend.hpp"
 
 namespace idk::frame {
 
@@ -38,7 +39,5 @@ private:
 // Imports a persistent buffer into the graph (invalid handle for an empty buffer).
 graph::BufferHandle importBuffer(graph::RenderGraph& graph, const char* name, const vk::Buffer& buffer,
                                  const graph::ResourceState& state = {});
-// A vk::Image as the graph's physical texture (for importTexture).
-graph::PhysicalTexture physicalOf(const vk::Image& image);
 
 }  // namespace idk::frame

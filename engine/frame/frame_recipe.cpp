@@ -27,8 +27,8 @@ graph::TextureHandle finish(FrameContext& f) {
 
 }  // namespace
 
+// The point-shadow cubes are released by Renderer::setScene before the old scene they were built from.
 void Features::setScene(vk::Context& ctx, const render::GpuScene& scene, uint32_t framesInFlight) {
-    pointShadows.reset();
     transparency.setScene(ctx, scene, framesInFlight);
     culling.setScene();
     vxgi.setScene(scene);

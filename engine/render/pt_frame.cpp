@@ -2,6 +2,7 @@
 #include "render/pt_frame.hpp"
 
 #include "render/compute_primitives.hpp"
+#include "render/vk_graph_backend.hpp"
 #include "shared/pt_wavefront.h"
 #include "vk/context.hpp"
 
@@ -107,13 +108,7 @@ graph::BufferHandle& PtGraphResources::buffer(const vk::Buffer& b) {
 graph::TextureHandle& PtGraphResources::image(const vk::Image& i, uint32_t storageIndex) {
     auto it = images_.find(&i);
     if (it != images_.end()) return it->second;
-    graph::PhysicalTexture p;
-    p.image = i.image;
-    p.view = i.view;
-    p.format = i.format;
-    p.extent = i.extent;
-    p.mips = i.mipLevels;
-    p.layers = i.layers;
+    graph::PhysicalTexture p = physicalOf(i);
     p.storageIndex = storageIndex;
     auto state = states_.find(&i);
     graph::TextureHandle h = graph_.importTexture(std::string("pt image ") + std::to_string(images_.size()), p,

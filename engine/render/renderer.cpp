@@ -14,8 +14,6 @@
 #include "vk/transfer.hpp"
 
 namespace idk::render {
-using frame::physicalOf;
-
 Renderer::Renderer(vk::Context& ctx, vk::ShaderLibrary& shaders, RenderSettings settings)
     : ctx_(ctx),
       shaders_(shaders),

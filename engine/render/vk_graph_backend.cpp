@@ -7,6 +7,18 @@
 #include "vk/check.hpp"
 
 namespace idk::render {
+
+graph::PhysicalTexture physicalOf(const vk::Image& image) {
+    graph::PhysicalTexture p;
+    p.image = image.image;
+    p.view = image.view;
+    p.format = image.format;
+    p.extent = image.extent;
+    p.mips = image.mipLevels;
+    p.layers = image.layers;
+    return p;
+}
+
 namespace {
 
 vk::ImageDesc imageDesc(const graph::TextureInfo& info) {

@@ -13,6 +13,9 @@
 
 namespace idk::render {
 
+// A vk::Image as the graph's physical texture (for RenderGraph::importTexture; bindless indices left unset).
+graph::PhysicalTexture physicalOf(const vk::Image& image);
+
 class VkGraphBackend final : public graph::GraphBackend {
 public:
     explicit VkGraphBackend(vk::Context& ctx);

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <exception>
 
+#include "vk/check.hpp"
 #include "vk/context.hpp"
 
 namespace idk::conformance {
@@ -102,6 +103,10 @@ Outcome run(const PlannedRun& planned, vk::Context& ctx, vk::ShaderLibrary& shad
     const auto start = std::chrono::steady_clock::now();
     try {
         check.run(env, verdict);
+    } catch (const vk::DeviceLostError&) {
+        throw;  // no later check can run: idk reports the loss (exit 3)
+    } catch (const vk::OutOfDeviceMemoryError&) {
+        throw;
     } catch (const std::exception& e) {
         verdict.expect(false, std::string("threw: ") + e.what());
     }

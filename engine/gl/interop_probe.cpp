@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "gl/shared_memory.hpp"
+#include "vk/check.hpp"
 #include "vk/context.hpp"
 #include "vk/transfer.hpp"
 
@@ -115,6 +116,10 @@ ProbeResult probeGlInterop(vk::Context& ctx) {
             r.note = "the 4x4 image round trip failed: " + error;
             return r;
         }
+    } catch (const vk::DeviceLostError&) {
+        throw;  // the device is gone: the caller reports that, not a missing rung
+    } catch (const vk::OutOfDeviceMemoryError&) {
+        throw;
     } catch (const std::exception& e) {
         r.note = std::string("the 4x4 image round trip failed: ") + e.what();
         return r;

@@ -49,6 +49,16 @@ Buffer makeStaging(Context& ctx, VkDeviceSize size, MemoryUsage usage, const cha
     return ctx.createBuffer(desc);
 }
 
+// The staging buffer of one transfer, destroyed however the transfer ends (a failed submission throws).
+struct Staging {
+    Context& ctx;
+    Buffer buffer;
+    Staging(Context& c, Buffer b) : ctx(c), buffer(b) {}
+    Staging(const Staging&) = delete;
+    Staging& operator=(const Staging&) = delete;
+    ~Staging() { ctx.destroy(buffer); }
+};
+
 // SYNC: transfers here run in their own submission; make their writes visible to any later use.
 void barrierAfterTransfer(VkCommandBuffer cmd) {
     memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
@@ -84,7 +94,8 @@ void uploadBuffer(Context& ctx, const Buffer& dst, const void* data, VkDeviceSiz
         flushIfNeeded(ctx, dst.allocation, offset, size);
         return;
     }
-    Buffer staging = makeStaging(ctx, size, MemoryUsage::Upload, "upload staging");
+    Staging scoped(ctx, makeStaging(ctx, size, MemoryUsage::Upload, "upload staging"));
+    Buffer& staging = scoped.buffer;
     std::memcpy(staging.mapped(), data, size);
     flushIfNeeded(ctx, staging.allocation, 0, size);
     ctx.runImmediate([&](VkCommandBuffer cmd) {
@@ -93,7 +104,6 @@ void uploadBuffer(Context& ctx, const Buffer& dst, const void* data, VkDeviceSiz
         vkCmdCopyBuffer(cmd, staging.buffer, dst.buffer, 1, &copy);
         barrierAfterTransfer(cmd);
     });
-    ctx.destroy(staging);
 }
 
 void downloadBuffer(Context& ctx, const Buffer& src, void* out, VkDeviceSize size, VkDeviceSize offset) {
@@ -105,7 +115,8 @@ void downloadBuffer(Context& ctx, const Buffer& src, void* out, VkDeviceSize siz
         std::memcpy(out, static_cast<const uint8_t*>(src.mapped()) + offset, size);
         return;
     }
-    Buffer staging = makeStaging(ctx, size, MemoryUsage::Readback, "readback staging");
+    Staging scoped(ctx, makeStaging(ctx, size, MemoryUsage::Readback, "readback staging"));
+    Buffer& staging = scoped.buffer;
     ctx.runImmediate([&](VkCommandBuffer cmd) {
         barrierAfterTransfer(cmd);
         VkBufferCopy copy{offset, 0, size};
@@ -114,7 +125,6 @@ void downloadBuffer(Context& ctx, const Buffer& src, void* out, VkDeviceSize siz
     });
     invalidateIfNeeded(ctx, staging.allocation);
     std::memcpy(out, staging.mapped(), size);
-    ctx.destroy(staging);
 }
 
 Buffer createBufferWithData(Context& ctx, const BufferDesc& desc, const void* data, VkDeviceSize size) {
@@ -152,7 +162,8 @@ void uploadImage(Context& ctx, const Image& image, const void* texels, VkDeviceS
         throw std::invalid_argument(core::concat("uploadImage '", image.name, "': ", size, " bytes given, ", expected,
                                                  " expected"));
     }
-    Buffer staging = makeStaging(ctx, size, MemoryUsage::Upload, "image upload staging");
+    Staging scoped(ctx, makeStaging(ctx, size, MemoryUsage::Upload, "image upload staging"));
+    Buffer& staging = scoped.buffer;
     std::memcpy(staging.mapped(), texels, size);
     flushIfNeeded(ctx, staging.allocation, 0, size);
     ctx.runImmediate([&](VkCommandBuffer cmd) {
@@ -163,12 +174,12 @@ void uploadImage(Context& ctx, const Image& image, const void* texels, VkDeviceS
         vkCmdCopyBufferToImage(cmd, staging.buffer, image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
         transitionImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, finalLayout);
     });
-    ctx.destroy(staging);
 }
 
 std::vector<uint8_t> readbackImage(Context& ctx, const Image& image, VkImageLayout currentLayout) {
     VkDeviceSize size = mip0Bytes(image);
-    Buffer staging = makeStaging(ctx, size, MemoryUsage::Readback, "image readback staging");
+    Staging scoped(ctx, makeStaging(ctx, size, MemoryUsage::Readback, "image readback staging"));
+    Buffer& staging = scoped.buffer;
     ctx.runImmediate([&](VkCommandBuffer cmd) {
         transitionImage(cmd, image, currentLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
         VkBufferImageCopy copy{};
@@ -182,7 +193,6 @@ std::vector<uint8_t> readbackImage(Context& ctx, const Image& image, VkImageLayo
     invalidateIfNeeded(ctx, staging.allocation);
     std::vector<uint8_t> out(size);
     std::memcpy(out.data(), staging.mapped(), size);
-    ctx.destroy(staging);
     return out;
 }
 

@@ -190,11 +190,12 @@ TEST(BarrierPlanner, ReadAfterReadCoveredByEarlierBarrierNeedsNoBarrier) {
 }
 
 TEST(BarrierPlanner, ReadInNewStageStillNeedsVisibility) {
-    // SYNC: the write was made visible to FRAGMENT only; a COMPUTE read needs its own visibility operation.
+    // SYNC: the write was made visible to FRAGMENT only; a COMPUTE read needs its own visibility operation, and
+    // repeats the write's availability (the first barrier is not in this one's dependency chain).
     const auto b = run({}, {image(Access::StorageWrite, kCompute, true), image(Access::StorageRead, kFragment),
                             image(Access::StorageRead, kCompute)});
     ASSERT_TRUE(b[2]);
-    EXPECT_EQ(*b[2], expectBarrier(ResourceKind::Image, kCompute, VK_ACCESS_2_NONE, kCompute,
+    EXPECT_EQ(*b[2], expectBarrier(ResourceKind::Image, kCompute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, kCompute,
                                    VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL));
 }
 
@@ -257,7 +258,7 @@ TEST(BarrierPlanner, BufferNewAccessTypeInSameStageNeedsVisibility) {
                             buffer(Access::UniformRead, kCompute)});
     ASSERT_TRUE(b[1]);
     ASSERT_TRUE(b[2]);
-    EXPECT_EQ(*b[2], expectBarrier(ResourceKind::Buffer, kCompute, VK_ACCESS_2_NONE, kCompute,
+    EXPECT_EQ(*b[2], expectBarrier(ResourceKind::Buffer, kCompute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, kCompute,
                                    VK_ACCESS_2_UNIFORM_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_UNDEFINED));
 }
 

@@ -84,12 +84,9 @@ std::vector<SettingOption> buildTable() {
                  1.0, 64.0, {}, [](const RenderSettings& s) { return double(s.temporal.frames); },
                  [](RenderSettings& s, double v) { s.temporal.frames = uint32_t(v); }});
     t.push_back({"--upscale", "Temporal", "upscale scale",
-                 "temporal upscaler: render at S x output size and reconstruct (selects --aa upscale)",
+                 "render scale S of --aa upscale: render at S x output size, reconstruct at output size",
                  OptionKind::Number, 0.5, 1.0, {}, [](const RenderSettings& s) { return double(s.temporal.upscale); },
-                 [](RenderSettings& s, double v) {
-                     s.temporal.upscale = float(v);
-                     s.temporal.aa = AntiAliasing::Upscale;
-                 }});
+                 [](RenderSettings& s, double v) { s.temporal.upscale = float(v); }});
     // Bloom (frame/bloom_feature.hpp).
     t.push_back({"--bloom", "Bloom", "bloom", "energy-conserving bloom (13-tap downsample, tent upsample)",
                  OptionKind::Toggle, 0.0, 1.0, {}, [](const RenderSettings& s) { return s.bloom.enabled ? 1.0 : 0.0; },

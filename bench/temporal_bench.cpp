@@ -3,7 +3,9 @@
 // (the peer, measured in the same run), plus GPU time per pass; and the error of the anti-aliased still against
 // the 16x supersampled truth (the same frame at 4x width and height, box-filtered), measured once per run at
 // 320x180 (the reference is then 1280x720), next to the single-sample frame's: PSNR and FLIP of display-compressed
-// values c / (1 + c).
+// values c / (1 + c). SSAO's error: its visibility at 320x180 against ambient occlusion traced through our BVH from
+// the same G-buffer (frame/ssao_oracle.cpp). Bloom's: the relative drift of the 320x180 image's total radiance
+// (an energy-conserving bloom moves light, it adds or loses none).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -15,6 +17,7 @@
 #include "app/flip.hpp"
 #include "app/image_compare.hpp"
 #include "bench_support.hpp"
+#include "frame/ssao_oracle.hpp"
 #include "render/renderer.hpp"
 
 namespace idk::bench {
@@ -47,15 +50,18 @@ struct Variant {
     const char* settings;
     std::function<void(render::RenderSettings&)> apply;
     bool stillError;  // measure the still's (and the no-AA frame's) error against the supersampled reference
+    bool aoError = false;  // measure SSAO's visibility against ambient occlusion traced through our BVH
+    bool energyError = false;  // measure how far the image's total radiance drifts (bloom must conserve it)
 };
 
 const Variant kVariants[] = {
     {"off", "all temporal/screen-space passes off (peer)", [](render::RenderSettings&) {}, false},
     {"taa", "--aa taa, 16 jitter phases; time: one frame with history; error: the converged still and the no-AA frame",
      [](render::RenderSettings& s) { s.temporal.aa = frame::AntiAliasing::Taa; }, true},
-    {"bloom", "--bloom (strength 0.04)", [](render::RenderSettings& s) { s.bloom.enabled = true; }, false},
-    {"ssao", "--ssao (16 rays x 4 depth tests, radius 0.2)", [](render::RenderSettings& s) { s.ssao.enabled = true; },
-     false},
+    {"bloom", "--bloom (strength 0.04); error: drift of the image's total radiance (energy conservation)",
+     [](render::RenderSettings& s) { s.bloom.enabled = true; }, false, false, true},
+    {"ssao", "--ssao (16 rays x 4 depth tests, radius 0.2); error: visibility vs 64 BVH-traced rays per pixel",
+     [](render::RenderSettings& s) { s.ssao.enabled = true; }, false, true},
     {"all", "--aa taa --bloom --ssao", [](render::RenderSettings& s) {
          s.temporal.aa = frame::AntiAliasing::Taa;
          s.bloom.enabled = true;
@@ -92,6 +98,35 @@ void BM_TemporalFrame(benchmark::State& state, const Variant& v) {
             state.counters["flip"] = app::computeFlip(still, truth).mean;
             state.counters["noaa_psnr_db"] = app::psnr(app::compareImages(single, truth));
             state.counters["noaa_flip"] = app::computeFlip(single, truth).mean;
+        }
+        if (v.energyError) {
+            // Bloom redistributes light: the sum of the 320x180 image with bloom against the same frame without.
+            render::RenderSettings plain;
+            plain.output = render::OutputKind::Hdr;
+            render::Renderer without(*context(), *shaders(), plain);
+            without.setScene(scene);
+            const auto total = [](const core::ImageRgba32f& image) {
+                double sum = 0.0;
+                for (size_t i = 0; i < image.pixels.size(); ++i)
+                    if (i % 4 != 3) sum += image.pixels[i];
+                return sum;
+            };
+            const double with = total(renderer.renderOffscreen(camera, kErrorWidth, kErrorHeight).image);
+            const double reference = total(without.renderOffscreen(camera, kErrorWidth, kErrorHeight).image);
+            state.counters["rel_error"] = reference > 0.0 ? std::abs(with - reference) / reference : 0.0;
+        }
+        if (v.aoError) {
+            // SSAO's visibility at 320x180 against rays traced through our BVH from the same G-buffer's surface
+            // points (frame/ssao_oracle.cpp); rel_error = mean |SSAO - traced| / mean traced visibility.
+            renderer.ssao().capture(true);
+            renderer.renderOffscreen(camera, kErrorWidth, kErrorHeight);
+            const frame::AoComparison c =
+                frame::compareWithTracedAo(scene, camera, kErrorWidth, kErrorHeight, renderer.ssao().captured(),
+                                           settings.ssao.radius, 64, 3);
+            state.counters["ao_mae"] = c.mae;
+            state.counters["ao_mae_constant_guess"] = c.maeConstant;
+            state.counters["ao_correlation"] = c.correlation;
+            state.counters["rel_error"] = c.meanTraced > 0.0 ? c.mae / c.meanTraced : 0.0;
         }
     }
     const auto iterations = double(state.iterations());

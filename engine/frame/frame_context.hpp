@@ -65,6 +65,7 @@ struct FrameContext {
     graph::TextureHandle voxelGrid;                // VXGI: RGBA16F radiance + coverage grid (vxgi_feature.hpp)
     passes::VoxelGridBox voxelBox;                 // its world cube
     passes::IndirectLightImages indirectLight;     // VXGI cone-traced light per pixel (deferred lighting reads it)
+    bool temporalStatic = false;                   // nothing moved or changed since last frame (temporal history)
 };
 
 }  // namespace idk::frame

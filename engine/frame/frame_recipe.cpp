@@ -10,7 +10,8 @@ namespace {
 // Display output lights into a transient HDR image that the tonemap writes into the target; Hdr output lights
 // straight into the target.
 graph::TextureHandle hdrTarget(FrameContext& f) {
-    if (f.settings.output != render::OutputKind::Display) return f.output;
+    // The upscaler lights a render-size image and writes the output itself (upscale_feature.cpp).
+    if (f.settings.output != render::OutputKind::Display && !UpscaleFeature::enabled(f.settings)) return f.output;
     graph::TextureDesc desc;
     desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
     return f.graph.createTexture("hdr radiance", desc);
@@ -40,6 +41,7 @@ void Features::setSourceScene(vk::Context& ctx, const scene::Scene& source, cons
 }
 
 graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Features& x) {
+    x.upscale.beginFrame(f);                                          // --aa upscale: render size until its resolve
     x.temporal.beginFrame(f);                                         // jitters f.viewProjection (--aa taa)
     x.environment.addPasses(f);                                       // f.environment
     x.inputs.addPasses(f, scene, x.environment.current(f.settings));  // f.frameConstants, f.scene, f.lights
@@ -59,10 +61,12 @@ graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Fe
     f.hdr = passes::addSkyPass(f.graph, f.ctx, f.shaders, f.gbuffer.depth, f.frameConstants, f.environment, f.hdr,
                                f.vrsRates);
     x.vrs.addReconstructPass(f);                                      // VRS: fills the pixels not shaded
+    x.upscale.keepOpaque(f, x.transparency.enabled());                // upscaler: the reactive term's reference
     x.transparency.addPasses(f, scene);                               // blends into f.hdr
     x.volumetrics.addPasses(f, scene);                                // fogs f.hdr (--volumetrics)
     x.vrs.addClassifyPasses(f);                                       // VRS: rates for the next frame
     x.temporal.addResolve(f);                                         // TAA: f.hdr
+    x.upscale.addResolve(f);                                          // upscaler: f.hdr at output size
     x.bloom.addPasses(f);                                             // blends into f.hdr
     return finish(f);                                                 // tonemap (Display) into f.output
 }

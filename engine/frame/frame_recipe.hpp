@@ -11,6 +11,7 @@
 #include "frame/rt_shadow_feature.hpp"
 #include "frame/ssao_feature.hpp"
 #include "frame/temporal_feature.hpp"
+#include "frame/upscale_feature.hpp"
 #include "frame/volumetrics_feature.hpp"
 #include "frame/transparency_feature.hpp"
 #include "frame/vrs_feature.hpp"
@@ -39,6 +40,7 @@ struct Features {
     VxgiFeature vxgi;
     RtShadowFeature rtShadows;
     VolumetricsFeature volumetrics;
+    UpscaleFeature upscale;
 };
 
 // Declares the whole PBR frame into f.graph, ending in f.output (imported by the caller): the tonemapped image

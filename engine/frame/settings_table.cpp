@@ -74,14 +74,19 @@ std::vector<SettingOption> buildTable() {
                  0.0, 1.0, {}, [](const RenderSettings& s) { return s.culling.freeze ? 1.0 : 0.0; },
                  [](RenderSettings& s, double v) { s.culling.freeze = v != 0.0; }});
     // Temporal anti-aliasing (frame/temporal_feature.hpp).
-    t.push_back({"--aa", "Temporal", "anti-aliasing", "anti-aliasing: none, or taa (jittered frames + history)",
-                 OptionKind::Choice, 0.0, 0.0, {"none", "taa"},
+    t.push_back({"--aa", "Temporal", "anti-aliasing",
+                 "anti-aliasing: none, taa (jittered frames + history), or upscale (temporal upscaler)",
+                 OptionKind::Choice, 0.0, 0.0, {"none", "taa", "upscale"},
                  [](const RenderSettings& s) { return double(s.temporal.aa); },
                  [](RenderSettings& s, double v) { s.temporal.aa = AntiAliasing(int(v)); }});
     t.push_back({"--temporal-frames", "Temporal", "temporal frames",
                  "jitter phases; a still with --aa taa renders this many frames to converge", OptionKind::Integer,
                  1.0, 64.0, {}, [](const RenderSettings& s) { return double(s.temporal.frames); },
                  [](RenderSettings& s, double v) { s.temporal.frames = uint32_t(v); }});
+    t.push_back({"--upscale", "Temporal", "upscale scale",
+                 "render scale S of --aa upscale: render at S x output size, reconstruct at output size",
+                 OptionKind::Number, 0.5, 1.0, {}, [](const RenderSettings& s) { return double(s.temporal.upscale); },
+                 [](RenderSettings& s, double v) { s.temporal.upscale = float(v); }});
     // Bloom (frame/bloom_feature.hpp).
     t.push_back({"--bloom", "Bloom", "bloom", "energy-conserving bloom (13-tap downsample, tent upsample)",
                  OptionKind::Toggle, 0.0, 1.0, {}, [](const RenderSettings& s) { return s.bloom.enabled ? 1.0 : 0.0; },

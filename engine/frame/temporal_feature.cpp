@@ -6,6 +6,7 @@
 #include <glm/gtc/packing.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -95,11 +96,20 @@ void TemporalFeature::addCapture(FrameContext& f) {
         });
 }
 
-bool TemporalFeature::enabled(const render::RenderSettings& s) { return s.temporal.aa == AntiAliasing::Taa; }
-
-uint32_t TemporalFeature::stillFrames(const render::RenderSettings& s) {
-    return enabled(s) ? std::max(s.temporal.frames, 1u) : 1u;
+bool TemporalFeature::enabled(const render::RenderSettings& s) {
+    return s.temporal.aa == AntiAliasing::Taa || s.temporal.aa == AntiAliasing::Upscale;
 }
+
+uint32_t TemporalFeature::jitterPhases(const render::RenderSettings& s) {
+    const uint32_t frames = std::max(s.temporal.frames, 1u);
+    if (s.temporal.aa != AntiAliasing::Upscale) return frames;
+    // The upscaler: 1 / S^2 times as many phases, so each output pixel gets `frames` samples near its centre
+    // (FSR2 scales its Halton length by the same ratio).
+    const float scale = std::clamp(s.temporal.upscale, 0.5f, 1.0f);
+    return uint32_t(std::ceil(float(frames) / (scale * scale) - 1e-3f));
+}
+
+uint32_t TemporalFeature::stillFrames(const render::RenderSettings& s) { return enabled(s) ? jitterPhases(s) : 1u; }
 
 void TemporalFeature::beginFrame(FrameContext& f) {
     if (!enabled(f.settings)) {
@@ -113,7 +123,7 @@ void TemporalFeature::beginFrame(FrameContext& f) {
         havePrevious_ = false;
     }
     f.unjitteredViewProjection = f.viewProjection;
-    f.jitterPixels = jitterOffset(frameIndex_, f.settings.temporal.frames);
+    f.jitterPixels = jitterOffset(frameIndex_, jitterPhases(f.settings));
     f.viewProjection = jitteredViewProjection(f.viewProjection, f.jitterPixels, f.width, f.height);
 
     if (constants_.empty()) {
@@ -163,6 +173,7 @@ void TemporalFeature::addMotionVectors(FrameContext& f, render::GpuScene& scene)
                                          previousLights_.size() * sizeof(gpu::GpuLight)) == 0);
     frameStatic_ = cameraStill_ && lightsSame && f.scene.vertices.version == 0 && f.scene.instances.version == 0;
     if (f.lights) previousLights_ = *f.lights;
+    f.temporalStatic = frameStatic_;
     passes::MotionVectorInputs in;
     in.scene = f.scene;
     in.temporal = frameConstants_;
@@ -186,7 +197,7 @@ void TemporalFeature::addMotionVectors(FrameContext& f, render::GpuScene& scene)
 }
 
 void TemporalFeature::addResolve(FrameContext& f) {
-    if (!enabled(f.settings)) return;
+    if (f.settings.temporal.aa != AntiAliasing::Taa) return;  // the upscaler resolves in upscale_feature.cpp
     passes::TaaInputs in;
     in.temporal = frameConstants_;
     in.color = f.hdr;

@@ -31,7 +31,9 @@ public:
     TemporalFeature(const TemporalFeature&) = delete;
     TemporalFeature& operator=(const TemporalFeature&) = delete;
 
-    static bool enabled(const render::RenderSettings& s);
+    static bool enabled(const render::RenderSettings& s);  // --aa taa or upscale: jitter and motion vectors
+    // Length of the Halton jitter sequence: --temporal-frames, or for the upscaler that / S^2.
+    static uint32_t jitterPhases(const render::RenderSettings& s);
     // Frames a still needs (the jitter phases with TAA on, else 1).
     static uint32_t stillFrames(const render::RenderSettings& s);
     // The next frame starts a fresh history (a new still, a camera cut) at jitter phase 0.

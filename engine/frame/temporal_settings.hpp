@@ -5,7 +5,8 @@
 
 namespace idk::frame {
 
-enum class AntiAliasing : uint8_t { None, Taa };
+// Upscale: the temporal upscaler (frame/upscale_feature.hpp) renders at `upscale` x output size and reconstructs.
+enum class AntiAliasing : uint8_t { None, Taa, Upscale };
 
 struct TemporalSettings {
     AntiAliasing aa = AntiAliasing::None;
@@ -14,6 +15,7 @@ struct TemporalSettings {
     uint32_t frames = 16;
     float clipGamma = 1.25f;    // variance clipping box: mean +- gamma * sigma (YCoCg)
     bool clampHistory = true;   // off: "naive" TAA (tests show the ghosting it prevents)
+    float upscale = 0.5f;       // --aa upscale: render scale S in [0.5, 1] of each output dimension
 };
 
 }  // namespace idk::frame

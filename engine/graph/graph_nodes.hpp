@@ -36,6 +36,7 @@ struct ResourceNode {
     std::string persistentName;                 // History: the persistent resource it is last frame's copy of
     std::vector<uint32_t> producers{kInvalidId}; // producers[v]: the pass that wrote version v (v >= 1)
     std::vector<uint32_t> outputVersions;       // versions marked as graph outputs
+    VkExtent2D relativeTo{0, 0};                // OutputRelative: the graph's relative extent when declared
 };
 
 struct PassUse {
@@ -52,6 +53,7 @@ struct PassNode {
     std::vector<std::string> after;             // explicit ordering: run after these passes (if they run)
     bool sideEffect = false;
     std::function<void(PassContext&)> exec;
+    VkExtent2D extent{0, 0};                    // the graph's relative extent when the pass was added
 };
 
 enum class EdgeKind : uint8_t { Data, WriteAfterRead, Order };

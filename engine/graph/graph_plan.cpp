@@ -76,7 +76,7 @@ void RenderGraph::resolveResources(std::vector<std::string>& errors) {
             const auto scaled = [](uint32_t size, float scale) {
                 return std::max<uint32_t>(1, static_cast<uint32_t>(std::lround(static_cast<double>(size) * scale)));
             };
-            info.extent = {scaled(outputExtent_.width, d.scaleX), scaled(outputExtent_.height, d.scaleY), 1};
+            info.extent = {scaled(node.relativeTo.width, d.scaleX), scaled(node.relativeTo.height, d.scaleY), 1};
         } else {
             info.extent = d.extent;
         }

@@ -28,6 +28,7 @@ TextureHandle PassBuilder::create(std::string_view name, const TextureDesc& desc
     node.kind = ResourceKind::Image;
     node.origin = desc.persistent ? Origin::Persistent : Origin::Transient;
     node.textureDesc = desc;
+    node.relativeTo = graph_.relativeExtent_;
     return {graph_.addResource(std::move(node), pass_), 0};
 }
 
@@ -69,7 +70,7 @@ void PassBuilder::after(std::string_view passName) { graph_.passes_[pass_].after
 // PassContext
 
 std::string_view PassContext::passName() const noexcept { return graph_.passes_[pass_].name; }
-VkExtent2D PassContext::outputExtent() const noexcept { return graph_.outputExtent_; }
+VkExtent2D PassContext::outputExtent() const noexcept { return graph_.passes_[pass_].extent; }
 
 uint32_t PassContext::checkDeclared(uint32_t resource, ResourceKind kind) const {
     for (const PassUse& use : graph_.passes_[pass_].uses) {
@@ -100,7 +101,10 @@ bool PassContext::historyValid(BufferHandle handle) const {
 // ---------------------------------------------------------------------------------------------------------
 // Declaration
 
-RenderGraph::RenderGraph(ResourcePool& pool, VkExtent2D outputExtent) : pool_(pool), outputExtent_(outputExtent) {}
+RenderGraph::RenderGraph(ResourcePool& pool, VkExtent2D outputExtent)
+    : pool_(pool), outputExtent_(outputExtent), relativeExtent_(outputExtent) {}
+
+void RenderGraph::setRelativeExtent(VkExtent2D extent) { relativeExtent_ = extent; }
 
 void RenderGraph::error(std::string message) { errors_.push_back(std::move(message)); }
 
@@ -115,6 +119,7 @@ void RenderGraph::addPass(std::string_view name, const std::function<void(PassBu
     PassNode node;
     node.name = std::string(name);
     node.exec = std::move(exec);
+    node.extent = relativeExtent_;
     passes_.push_back(std::move(node));
     PassBuilder builder(*this, index);
     if (setup) setup(builder);
@@ -139,6 +144,7 @@ TextureHandle RenderGraph::createTexture(std::string_view name, const TextureDes
     node.kind = ResourceKind::Image;
     node.origin = desc.persistent ? Origin::Persistent : Origin::Transient;
     node.textureDesc = desc;
+    node.relativeTo = relativeExtent_;
     return {addResource(std::move(node), kInvalidId), 0};
 }
 

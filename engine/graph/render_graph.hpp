@@ -121,6 +121,11 @@ public:
     bool historyValid(uint32_t resource) const;
     std::string_view resourceName(uint32_t resource) const;
     VkExtent2D outputExtent() const noexcept { return outputExtent_; }
+    // OutputRelative textures created, and passes added, after this call are sized relative to `extent` instead of
+    // the output extent (PassContext::outputExtent() returns it): a temporal upscaler renders the frame up to its
+    // resolve at a lower resolution, then sets the output extent back. Defaults to the output extent.
+    void setRelativeExtent(VkExtent2D extent);
+    VkExtent2D relativeExtent() const noexcept { return relativeExtent_; }
     std::string toText() const;       // passes in order, culled passes, barriers, resources, memory plan
     std::string toGraphviz() const;   // dot: passes (culled ones grey), resource versions, edges
 
@@ -158,6 +163,7 @@ private:
 
     ResourcePool& pool_;
     VkExtent2D outputExtent_;
+    VkExtent2D relativeExtent_;
     std::vector<detail::ResourceNode> resources_;
     std::vector<detail::PassNode> passes_;
     std::vector<std::string> errors_;

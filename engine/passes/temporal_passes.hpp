@@ -36,3 +36,21 @@ graph::TextureHandle addTaaPasses(graph::RenderGraph& graph, vk::Context& ctx, v
                                   const TaaInputs& in);
 
 }  // namespace idk::passes
+
+namespace idk::passes {
+
+// upscale.cpp: the temporal upscaler's reconstruction of the render-size lit image `color` at the output size
+// (persistent "upscale color", weight in alpha), then its copy into `target` (output size; the frame's output in
+// Hdr mode, else a transient the tonemap reads); returns target's new version. `opaque`: the lit image before
+// transparency (invalid: the scene has none), from which the resolve derives its reactive term.
+struct UpscaleInputs {
+    graph::BufferHandle temporal;  // GpuTemporalFrame (render size, jitter)
+    graph::TextureHandle color, depth, motion, opaque, target;
+    VkExtent2D outputExtent{};
+    bool reset = false, frameStatic = false;
+    float maxWeight = 16.0f, clipGamma = 1.25f, sigma = 0.5f;
+};
+graph::TextureHandle addUpscalePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                      const UpscaleInputs& in);
+
+}  // namespace idk::passes

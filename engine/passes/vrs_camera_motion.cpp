@@ -14,7 +14,7 @@ graph::BufferHandle addVrsCameraMotionPass(graph::RenderGraph& graph, vk::Contex
         [&](graph::PassBuilder& b) {
             constexpr VkPipelineStageFlags2 kCs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
             b.read(depth, graph::Access::StorageRead, kCs);
-            const VkExtent2D size = graph.outputExtent();
+            const VkExtent2D size = graph.relativeExtent();
             graph::BufferDesc desc;
             desc.size = VkDeviceSize(size.width) * size.height * sizeof(glm::vec2);
             *written = b.write(graph.createBuffer("vrs velocity", desc), graph::Access::StorageWrite, kCs);

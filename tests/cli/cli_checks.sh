@@ -531,6 +531,23 @@ PY
     "$idk" render --size 8x8 --out "$tmp/x.png" --aa fxaa 2>"$tmp/err"; [ $? -eq 2 ] || fail "--aa fxaa should exit 2"
     grep -q -- "--aa 'fxaa'" "$tmp/err" || fail "error does not name --aa: $(cat "$tmp/err")"
     ;;
+  upscale_flags)
+    # Issue 12: --aa upscale --upscale S runs the temporal upscaler: lighting shades S^2 of the output's pixels
+    # (16x16 at S = 0.5: 8x8 = 64), the upscaler's resolve runs instead of TAA's, the settings record aa and the
+    # scale; a scale outside [0.5, 1] exits 2 naming the flag.
+    "$idk" render --size 16x16 --out "$tmp/u.png" --aa upscale --upscale 0.5 --temporal-frames 2 --stats --json \
+      >"$tmp/u.json" \
+      || fail "render with --upscale 0.5 failed"
+    for key in '"aa": "upscale"' '"upscale": 0.5' '"upscale_resolve"' '"shadingInvocations": 64'; do
+      grep -q "$key" "$tmp/u.json" || fail "--json lacks $key: $(cat "$tmp/u.json")"
+    done
+    ! grep -q '"taa_resolve"' "$tmp/u.json" || fail "TAA's resolve ran with the upscaler"
+    "$idk" render --size 16x16 --out "$tmp/v.png" --upscale 0.5 --json >"$tmp/v.json" || fail "--upscale alone failed"
+    ! grep -q '"upscale_resolve"' "$tmp/v.json" || fail "the upscaler ran without --aa upscale"
+    "$idk" render --size 8x8 --out "$tmp/x.png" --upscale 0.3 2>"$tmp/err"; [ $? -eq 2 ] \
+      || fail "--upscale 0.3 should exit 2"
+    grep -q -- "--upscale" "$tmp/err" || fail "error does not name --upscale: $(cat "$tmp/err")"
+    ;;
   *) fail "unknown case" ;;
 esac
 echo "ok ($case_name)"

@@ -3,6 +3,7 @@
 // values).
 #pragma once
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -26,6 +27,33 @@ inline core::ImageRgba32f boxDownsample(const core::ImageRgba32f& big, uint32_t 
                         sum += big.pixels[(size_t(y * k + j) * big.width + (x * k + i)) * 4 + c];
                 out.pixels[(size_t(y) * out.width + x) * 4 + c] = float(sum / double(k * k));
             }
+    return out;
+}
+
+// Bilinear resampling of `small` to width x height (pixel centres aligned, edges clamped): the plain upscaling
+// the temporal upscaler is compared with.
+inline core::ImageRgba32f bilinearUpscale(const core::ImageRgba32f& small, uint32_t width, uint32_t height) {
+    core::ImageRgba32f out;
+    out.width = width;
+    out.height = height;
+    out.pixels.assign(size_t(width) * height * 4, 0.0f);
+    const auto at = [&](int x, int y, uint32_t c) {
+        x = std::clamp(x, 0, int(small.width) - 1);
+        y = std::clamp(y, 0, int(small.height) - 1);
+        return small.pixels[(size_t(y) * small.width + x) * 4 + c];
+    };
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) {
+            const float sx = (float(x) + 0.5f) * float(small.width) / float(width) - 0.5f;
+            const float sy = (float(y) + 0.5f) * float(small.height) / float(height) - 0.5f;
+            const int x0 = int(std::floor(sx)), y0 = int(std::floor(sy));
+            const float fx = sx - float(x0), fy = sy - float(y0);
+            for (uint32_t c = 0; c < 4; ++c) {
+                const float top = at(x0, y0, c) * (1.0f - fx) + at(x0 + 1, y0, c) * fx;
+                const float bottom = at(x0, y0 + 1, c) * (1.0f - fx) + at(x0 + 1, y0 + 1, c) * fx;
+                out.pixels[(size_t(y) * width + x) * 4 + c] = top * (1.0f - fy) + bottom * fy;
+            }
+        }
     return out;
 }
 

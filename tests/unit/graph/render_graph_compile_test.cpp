@@ -220,6 +220,47 @@ TEST_F(GraphCompile, ResolvesRelativeExtentsMipsAndDerivedUsage) {
     EXPECT_EQ(z.usage, VkImageUsageFlags{VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT});
 }
 
+// The temporal upscaler's use: textures declared (and passes added) after setRelativeExtent scale the render size;
+// after setting it back, the output size; absolute textures ignore it.
+TEST_F(GraphCompile, RelativeExtentAppliesToLaterDeclarations) {
+    TextureHandle before, small, halfSmall, fixed, after;
+    TextureDesc halfDesc = colorDesc(VK_FORMAT_R16G16B16A16_SFLOAT);
+    halfDesc.scaleX = halfDesc.scaleY = 0.5f;
+    VkExtent2D smallPassExtent{}, afterPassExtent{};
+    graph.addPass("before", [&](PassBuilder& p) { before = p.write(p.create("before", colorDesc()), Access::ColorWrite); }, {});
+    graph.setRelativeExtent({32, 16});
+    EXPECT_EQ(graph.relativeExtent().width, 32u);
+    EXPECT_EQ(graph.outputExtent().width, 64u);
+    graph.addPass("small", [&](PassBuilder& p) {
+        p.read(before, Access::SampledRead);
+        small = p.write(p.create("small", colorDesc()), Access::ColorWrite);
+        halfSmall = p.write(p.create("half small", halfDesc), Access::ColorWrite);
+        fixed = p.write(p.create("fixed", absoluteDesc(64, 32, VK_FORMAT_R16G16B16A16_SFLOAT)), Access::ColorWrite);
+    }, [&](PassContext& pc) { smallPassExtent = pc.outputExtent(); });
+    graph.setRelativeExtent(graph.outputExtent());
+    graph.addPass("after", [&](PassBuilder& p) {
+        for (TextureHandle t : {small, halfSmall, fixed}) p.read(t, Access::SampledRead);
+        after = p.write(p.create("after", colorDesc()), Access::ColorWrite);
+        p.sideEffect();
+    }, [&](PassContext& pc) { afterPassExtent = pc.outputExtent(); });
+    graph.compile();
+    const auto extentOf = [&](TextureHandle t) { return graph.textureInfo(t).extent; };
+    EXPECT_EQ(extentOf(before).width, 64u);
+    EXPECT_EQ(extentOf(small).width, 32u);
+    EXPECT_EQ(extentOf(small).height, 16u);
+    EXPECT_EQ(extentOf(halfSmall).width, 16u);
+    EXPECT_EQ(extentOf(halfSmall).height, 8u);
+    EXPECT_EQ(extentOf(fixed).width, 64u);
+    EXPECT_EQ(extentOf(after).width, 64u);
+    EXPECT_EQ(extentOf(after).height, 32u);
+    const testing::FakeVulkanCommands fakes;  // execute() records barriers into the fake command buffer
+    graph.execute(testing::fakeCmd());
+    EXPECT_EQ(smallPassExtent.width, 32u);
+    EXPECT_EQ(smallPassExtent.height, 16u);
+    EXPECT_EQ(afterPassExtent.width, 64u);
+    EXPECT_EQ(afterPassExtent.height, 32u);
+}
+
 TEST_F(GraphCompile, HostReadBufferIsHostVisible) {
     BufferHandle counts;
     graph.addPass("count", [&](PassBuilder& p) { counts = p.write(p.create("counts", BufferDesc{64}), Access::StorageWrite, kCompute); }, {});

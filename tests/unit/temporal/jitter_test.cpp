@@ -6,6 +6,7 @@
 #include <glm/glm.hpp>
 
 #include "frame/temporal_feature.hpp"
+#include "frame/upscale_feature.hpp"
 #include "scene/camera.hpp"
 
 namespace idk::frame {
@@ -60,6 +61,30 @@ TEST(Jitter, JitteredMatrixMovesProjectedPointsByMinusTheOffset) {
         const glm::vec4 a = vp * glm::vec4(p, 1.0f), b = jittered * glm::vec4(p, 1.0f);
         EXPECT_FLOAT_EQ(a.z / a.w, b.z / b.w);
     }
+}
+
+// The upscaler lengthens the Halton sequence by 1 / S^2 (each output pixel sees as many samples near its centre
+// as with TAA) and renders at round(S x size) per dimension.
+TEST(Jitter, UpscalerPhasesAndRenderExtent) {
+    render::RenderSettings s;
+    s.temporal.frames = 16;
+    s.temporal.aa = AntiAliasing::Taa;
+    EXPECT_EQ(TemporalFeature::jitterPhases(s), 16u);
+    s.temporal.aa = AntiAliasing::Upscale;
+    s.temporal.upscale = 0.5f;
+    EXPECT_EQ(TemporalFeature::jitterPhases(s), 64u);
+    EXPECT_EQ(TemporalFeature::stillFrames(s), 64u);
+    s.temporal.upscale = 1.0f;
+    EXPECT_EQ(TemporalFeature::jitterPhases(s), 16u);
+    s.temporal.upscale = 0.67f;
+    EXPECT_EQ(TemporalFeature::jitterPhases(s), 36u);  // 16 / 0.4489 = 35.6
+    const VkExtent2D e = UpscaleFeature::renderExtent(s, 1280, 720);
+    EXPECT_EQ(e.width, 858u);   // 857.6
+    EXPECT_EQ(e.height, 482u);  // 482.4
+    s.temporal.upscale = 0.5f;
+    EXPECT_EQ(UpscaleFeature::renderExtent(s, 1, 1).width, 1u);
+    s.temporal.aa = AntiAliasing::None;
+    EXPECT_EQ(TemporalFeature::stillFrames(s), 1u);
 }
 
 }  // namespace

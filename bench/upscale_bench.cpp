@@ -1,0 +1,172 @@
+// upscale_bench.cpp: the temporal upscaler (--aa upscale, issue 12) at S = 0.5, 0.67, 0.77 and 1, TAA, and the
+// plain full-resolution frame (the peer, measured in the same run) on the embedded Cornell box. Time: a warm
+// 1280x720 output frame with history (renderOffscreen, readback included), plus GPU time per pass. Error: over a
+// replayed sideways camera path of 16 frames from a cold history at 320x180 output, the mean PSNR and FLIP (of
+// display-compressed values c / (1 + c)) of frames 4..15 against each frame's 16x supersampled truth (the
+// full-resolution no-AA frame rendered at 4x width and height, box-filtered); "bilinear_*" counters: the same
+// path's S x 320x180 no-AA frames upscaled bilinearly (what the upscaler must beat).
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "app/default_scene.hpp"
+#include "app/flip.hpp"
+#include "app/image_compare.hpp"
+#include "bench_support.hpp"
+#include "frame/upscale_feature.hpp"
+#include "render/renderer.hpp"
+
+namespace idk::bench {
+namespace {
+
+constexpr uint32_t kWidth = 1280, kHeight = 720;
+constexpr uint32_t kErrorWidth = 320, kErrorHeight = 180, kSuper = 4;
+constexpr int kPathFrames = 16, kWarmup = 4;
+
+core::ImageRgba32f compressed(core::ImageRgba32f image) {
+    for (size_t i = 0; i < image.pixels.size(); ++i)
+        if (i % 4 != 3) image.pixels[i] = std::max(image.pixels[i], 0.0f) / (1.0f + std::max(image.pixels[i], 0.0f));
+    return image;
+}
+
+core::ImageRgba32f boxDownsample(const core::ImageRgba32f& big, uint32_t k) {
+    core::ImageRgba32f out;
+    out.width = big.width / k;
+    out.height = big.height / k;
+    out.pixels.assign(size_t(out.width) * out.height * 4, 0.0f);
+    for (uint32_t y = 0; y < out.height * k; ++y)
+        for (uint32_t x = 0; x < out.width * k; ++x)
+            for (uint32_t c = 0; c < 4; ++c)
+                out.pixels[(size_t(y / k) * out.width + x / k) * 4 + c] +=
+                    big.pixels[(size_t(y) * big.width + x) * 4 + c] / float(k * k);
+    return out;
+}
+
+core::ImageRgba32f bilinear(const core::ImageRgba32f& small, uint32_t width, uint32_t height) {
+    core::ImageRgba32f out;
+    out.width = width;
+    out.height = height;
+    out.pixels.assign(size_t(width) * height * 4, 0.0f);
+    const auto at = [&](int x, int y, uint32_t c) {
+        return small.pixels[(size_t(std::clamp(y, 0, int(small.height) - 1)) * small.width +
+                             size_t(std::clamp(x, 0, int(small.width) - 1))) * 4 + c];
+    };
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) {
+            const float sx = (float(x) + 0.5f) * float(small.width) / float(width) - 0.5f;
+            const float sy = (float(y) + 0.5f) * float(small.height) / float(height) - 0.5f;
+            const int x0 = int(std::floor(sx)), y0 = int(std::floor(sy));
+            const float fx = sx - float(x0), fy = sy - float(y0);
+            for (uint32_t c = 0; c < 4; ++c)
+                out.pixels[(size_t(y) * width + x) * 4 + c] =
+                    (at(x0, y0, c) * (1 - fx) + at(x0 + 1, y0, c) * fx) * (1 - fy) +
+                    (at(x0, y0 + 1, c) * (1 - fx) + at(x0 + 1, y0 + 1, c) * fx) * fy;
+        }
+    return out;
+}
+
+scene::CameraView pathCamera(const scene::Scene& scene, int i) {
+    scene::CameraView c = scene::defaultCamera(scene);
+    const glm::vec3 right = glm::normalize(glm::cross(c.forward, c.up));
+    c.position += right * (0.006f * float(i)) + c.up * (0.003f * float(i));
+    return c;
+}
+
+render::RenderSettings hdr() {
+    render::RenderSettings s;
+    s.output = render::OutputKind::Hdr;
+    return s;
+}
+
+// The path's supersampled truths (compressed), computed once per run.
+const std::vector<core::ImageRgba32f>& truths(const scene::Scene& scene) {
+    static std::vector<core::ImageRgba32f> t;
+    if (!t.empty()) return t;
+    render::Renderer reference(*context(), *shaders(), hdr());
+    reference.setScene(scene);
+    for (int i = 0; i < kPathFrames; ++i)
+        t.push_back(compressed(boxDownsample(
+            reference.renderOffscreen(pathCamera(scene, i), kErrorWidth * kSuper, kErrorHeight * kSuper).image,
+            kSuper)));
+    return t;
+}
+
+struct Variant {
+    const char* name;
+    frame::AntiAliasing aa;
+    float scale;
+};
+const Variant kVariants[] = {{"full", frame::AntiAliasing::None, 1.0f},    {"taa", frame::AntiAliasing::Taa, 1.0f},
+                             {"s0.50", frame::AntiAliasing::Upscale, 0.5f}, {"s0.67", frame::AntiAliasing::Upscale, 0.67f},
+                             {"s0.77", frame::AntiAliasing::Upscale, 0.77f}, {"s1.00", frame::AntiAliasing::Upscale, 1.0f}};
+
+void BM_Upscale(benchmark::State& state, const Variant& v) {
+    if (!requireDevice(state)) return;
+    const scene::Scene scene = app::loadDefaultScene();
+    render::RenderSettings settings = hdr();
+    settings.temporal.aa = v.aa;
+    settings.temporal.upscale = v.scale;
+    std::map<std::string, double> passMs;
+    {
+        render::Renderer renderer(*context(), *shaders(), settings);
+        renderer.setScene(scene);
+        const scene::CameraView camera = scene::defaultCamera(scene);
+        renderer.renderOffscreen(camera, kWidth, kHeight);  // warm-up: pipelines, graph resources, history
+        for (auto _ : state) {
+            render::FrameResult frame = renderer.renderOffscreen(camera, kWidth, kHeight);
+            for (const vk::ScopeTiming& t : frame.passTimes) passMs[t.name] += t.milliseconds;
+            benchmark::DoNotOptimize(frame.image.pixels.data());
+        }
+    }
+    // Error over the replayed path, from a cold history (a fresh renderer).
+    const std::vector<core::ImageRgba32f>& truth = truths(scene);
+    render::Renderer path(*context(), *shaders(), settings);
+    render::Renderer low(*context(), *shaders(), hdr());
+    path.setScene(scene);
+    low.setScene(scene);
+    const VkExtent2D lowSize = frame::UpscaleFeature::renderExtent(settings, kErrorWidth, kErrorHeight);
+    double psnr = 0, flip = 0, bilinearPsnr = 0, bilinearFlip = 0;
+    for (int i = 0; i < kPathFrames; ++i) {
+        const scene::CameraView camera = pathCamera(scene, i);
+        const core::ImageRgba32f image = compressed(path.renderOffscreen(camera, kErrorWidth, kErrorHeight).image);
+        if (i < kWarmup) continue;
+        psnr += app::psnr(app::compareImages(image, truth[size_t(i)]));
+        flip += app::computeFlip(image, truth[size_t(i)]).mean;
+        if (v.aa != frame::AntiAliasing::Upscale) continue;
+        const core::ImageRgba32f up = compressed(
+            bilinear(low.renderOffscreen(camera, lowSize.width, lowSize.height).image, kErrorWidth, kErrorHeight));
+        bilinearPsnr += app::psnr(app::compareImages(up, truth[size_t(i)]));
+        bilinearFlip += app::computeFlip(up, truth[size_t(i)]).mean;
+    }
+    const double n = kPathFrames - kWarmup;
+    state.counters["psnr_db"] = psnr / n;
+    state.counters["flip"] = flip / n;
+    if (v.aa == frame::AntiAliasing::Upscale) {
+        state.counters["bilinear_psnr_db"] = bilinearPsnr / n;
+        state.counters["bilinear_flip"] = bilinearFlip / n;
+    }
+    const auto iterations = double(state.iterations());
+    for (const auto& [name, ms] : passMs) state.counters["pass_ms." + name] = ms / iterations;
+    const std::string settingsText =
+        v.aa == frame::AntiAliasing::None ? std::string("--aa none (full-resolution render, peer)")
+        : v.aa == frame::AntiAliasing::Taa ? std::string("--aa taa (16 phases)")
+                                           : "--upscale " + std::string(v.name + 1);
+    const bool peer = v.aa == frame::AntiAliasing::None;
+    // The full-resolution row is the others' peer and a row of its own (its error is the no-AA baseline).
+    setRow(state, {"upscale", "embedded Cornell box, 1280x720 output (error: 16-frame path at 320x180 vs 16x SSAA)",
+                   settingsText, "-", peer ? "" : "BM_Upscale/full", "ours", "real"});
+}
+
+[[maybe_unused]] const bool kRegistered = [] {
+    for (const Variant& v : kVariants)
+        benchmark::RegisterBenchmark((std::string("BM_Upscale/") + v.name).c_str(), BM_Upscale, v)
+            ->UseRealTime()->Iterations(3)->Repetitions(3)->Unit(benchmark::kMillisecond);
+    return true;
+}();
+
+}  // namespace
+}  // namespace idk::bench

@@ -65,6 +65,7 @@ struct FrameContext {
     graph::TextureHandle voxelGrid;                // VXGI: RGBA16F radiance + coverage grid (vxgi_feature.hpp)
     passes::VoxelGridBox voxelBox;                 // its world cube
     passes::IndirectLightImages indirectLight;     // VXGI cone-traced light per pixel (deferred lighting reads it)
+    graph::TextureHandle reflections;              // SSR: RGBA16F reflected radiance + hit weight (ssr_feature.hpp)
 };
 
 }  // namespace idk::frame

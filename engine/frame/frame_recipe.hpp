@@ -15,6 +15,7 @@
 #include "frame/transparency_feature.hpp"
 #include "frame/vrs_feature.hpp"
 #include "frame/vxgi_feature.hpp"
+#include "frame/ssr_feature.hpp"
 #include "render/gpu_scene.hpp"
 
 namespace idk::frame {
@@ -39,6 +40,7 @@ struct Features {
     VxgiFeature vxgi;
     RtShadowFeature rtShadows;
     VolumetricsFeature volumetrics;
+    SsrFeature ssr;
 };
 
 // Declares the whole PBR frame into f.graph, ending in f.output (imported by the caller): the tonemapped image

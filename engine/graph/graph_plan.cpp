@@ -208,6 +208,8 @@ void RenderGraph::planBarriers() {
         plan.initial = states[r];
     }
 
+    // Shader stages of every earlier pass's descriptor accesses (see the SYNC (validation, bindless) rule below).
+    VkPipelineStageFlags2 earlierShaderStages = VK_PIPELINE_STAGE_2_NONE;
     for (uint32_t pos = 0; pos < c.order.size(); ++pos) {
         for (const PassUse& use : passes_[c.order[pos]].uses) {
             const uint32_t r = use.resource;
@@ -247,9 +249,24 @@ void RenderGraph::planBarriers() {
             Transition t = applyUse(states[r], Use{node.kind, use.access, use.stages, discard});
             if (t.barrier) {
                 t.barrier->resource = r;
+                // SYNC (validation, bindless): a layout transition also waits on every earlier shader pass of the
+                // frame. Nothing requires it (those passes did not touch this image), but the synchronization
+                // validation layer (1.3.239) counts every dispatch or draw that binds the bindless arrays as
+                // reading every image in them, and reports WRITE_AFTER_READ against the transition otherwise.
+                // An execution dependency only; the graph runs those passes before this one anyway.
+                if (node.kind == ResourceKind::Image && t.barrier->oldLayout != t.barrier->newLayout)
+                    t.barrier->srcStages |= earlierShaderStages;
                 c.passes[pos].barriers.push_back(*t.barrier);
             }
             states[r] = t.after;
+        }
+        for (const PassUse& use : passes_[c.order[pos]].uses) {
+            if (use.access != Access::SampledRead && use.access != Access::StorageRead &&
+                use.access != Access::StorageWrite && use.access != Access::StorageReadWrite)
+                continue;
+            earlierShaderStages |= use.stages != VK_PIPELINE_STAGE_2_NONE
+                                       ? use.stages
+                                       : accessInfo(use.access, resources_[use.resource].kind).defaultStages;
         }
     }
 

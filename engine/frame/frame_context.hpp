@@ -66,6 +66,7 @@ struct FrameContext {
     passes::VoxelGridBox voxelBox;                 // its world cube
     passes::IndirectLightImages indirectLight;     // VXGI cone-traced light per pixel (deferred lighting reads it)
     bool temporalStatic = false;                   // nothing moved or changed since last frame (temporal history)
+    graph::TextureHandle reflections;              // SSR: RGBA16F reflected radiance + hit weight (ssr_feature.hpp)
 };
 
 }  // namespace idk::frame

@@ -55,9 +55,11 @@ graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Fe
     x.vrs.beginFrame(f);                                              // f.vrsRates: last frame's shading rates
     x.ssao.addPasses(f);                                              // f.ambientOcclusion
     x.vxgi.addConeTracing(f);                                         // f.indirectLight (--gi vxgi)
+    x.ssr.addPasses(f);                                               // f.reflections (--ssr)
     f.hdr = passes::addDeferredLightingPass(
         f.graph, f.ctx, f.shaders, f.gbuffer, f.frameConstants, f.scene.lights, f.environment, hdrTarget(f),
-        {f.pointShadows, f.scene.materials, f.vrsRates, f.ambientOcclusion, f.indirectLight});
+        {f.pointShadows, f.scene.materials, f.vrsRates, f.ambientOcclusion, f.indirectLight,
+         f.reflections});
     f.hdr = passes::addSkyPass(f.graph, f.ctx, f.shaders, f.gbuffer.depth, f.frameConstants, f.environment, f.hdr,
                                f.vrsRates);
     x.vrs.addReconstructPass(f);                                      // VRS: fills the pixels not shaded
@@ -65,6 +67,7 @@ graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Fe
     x.transparency.addPasses(f, scene);                               // blends into f.hdr
     x.volumetrics.addPasses(f, scene);                                // fogs f.hdr (--volumetrics)
     x.vrs.addClassifyPasses(f);                                       // VRS: rates for the next frame
+    x.ssr.keepLitImage(f);                                            // next frame's SSR hits (--ssr)
     x.temporal.addResolve(f);                                         // TAA: f.hdr
     x.upscale.addResolve(f);                                          // upscaler: f.hdr at output size
     x.bloom.addPasses(f);                                             // blends into f.hdr

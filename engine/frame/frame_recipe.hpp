@@ -16,6 +16,7 @@
 #include "frame/transparency_feature.hpp"
 #include "frame/vrs_feature.hpp"
 #include "frame/vxgi_feature.hpp"
+#include "frame/ssr_feature.hpp"
 #include "render/gpu_scene.hpp"
 
 namespace idk::frame {
@@ -41,6 +42,7 @@ struct Features {
     RtShadowFeature rtShadows;
     VolumetricsFeature volumetrics;
     UpscaleFeature upscale;
+    SsrFeature ssr;
 };
 
 // Declares the whole PBR frame into f.graph, ending in f.output (imported by the caller): the tonemapped image

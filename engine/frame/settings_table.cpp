@@ -177,6 +177,17 @@ std::vector<SettingOption> buildTable() {
                  OptionKind::Choice, 0.0, 0.0, {"sorted", "weighted"},
                  [](const RenderSettings& s) { return s.oit == render::OitMode::Weighted ? 1.0 : 0.0; },
                  [](RenderSettings& s, double v) { s.oit = v > 0.5 ? render::OitMode::Weighted : render::OitMode::Sorted; }});
+    // Screen-space reflections (frame/ssr_feature.hpp).
+    t.push_back({"--ssr", "SSR", "screen-space reflections",
+                 "Hi-Z screen-space reflections as the specular ambient of smooth surfaces", OptionKind::Toggle, 0.0,
+                 1.0, {}, [](const RenderSettings& s) { return s.ssr.enabled ? 1.0 : 0.0; },
+                 [](RenderSettings& s, double v) { s.ssr.enabled = v != 0.0; }});
+    t.push_back({"--ssr-steps", "SSR", "max steps", "Hi-Z march iterations per reflection ray", OptionKind::Integer,
+                 1.0, 1024.0, {}, [](const RenderSettings& s) { return double(s.ssr.maxSteps); },
+                 [](RenderSettings& s, double v) { s.ssr.maxSteps = uint32_t(v); }});
+    t.push_back({"--ssr-thickness", "SSR", "thickness", "world units a surface extends behind its depth",
+                 OptionKind::Number, 0.001, 100.0, {}, [](const RenderSettings& s) { return double(s.ssr.thickness); },
+                 [](RenderSettings& s, double v) { s.ssr.thickness = float(v); }, true});
     return t;
 }
 

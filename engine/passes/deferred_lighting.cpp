@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "shared/deferred_types.h"
+#include "shared/ssr_types.h"
 #include "shared/vxgi_types.h"
 
 namespace idk::passes {
@@ -39,6 +40,7 @@ graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Cont
                 b.read(in.indirect.diffuse, graph::Access::StorageRead, kCs);
                 b.read(in.indirect.specular, graph::Access::StorageRead, kCs);
             }
+            if (in.reflections.valid()) b.read(in.reflections, graph::Access::StorageRead, kCs);
             *written = b.write(target, graph::Access::StorageWrite, kCs);
         },
         [&ctx, &shaders, g, frame, written, in](graph::PassContext& pc) {
@@ -65,6 +67,7 @@ graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Cont
             push.vxgiDiffuse = in.indirect.diffuse.valid() ? pc.texture(in.indirect.diffuse).storageIndex : gpu::kNoVxgi;
             push.vxgiSpecular =
                 in.indirect.specular.valid() ? pc.texture(in.indirect.specular).storageIndex : gpu::kNoVxgi;
+            push.ssr = in.reflections.valid() ? pc.texture(in.reflections).storageIndex : gpu::kSsrNoImage;
             vk::pushConstants(cmd, ctx, push);
             VkExtent3D extent = pc.texture(*written).extent;
             vkCmdDispatch(cmd, vk::groupCount(extent.width, gpu::kLightingGroupSize),

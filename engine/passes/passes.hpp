@@ -155,6 +155,7 @@ struct LightingInputs {
     graph::BufferHandle vrsRates;           // software VRS: shade cell anchors only (vrs_passes.hpp)
     graph::TextureHandle ambientOcclusion;  // SSAO visibility of the ambient light (ssao.hpp)
     IndirectLightImages indirect;           // VXGI cone-traced light (vxgi_passes.hpp)
+    graph::TextureHandle reflections;       // SSR reflected radiance + hit weight (ssr.hpp)
 };
 
 // deferred_lighting.cpp: shades the G-buffer's geometry pixels into `target` (RGBA16F); returns its new version.

@@ -9,6 +9,7 @@
 #include "frame/vrs_settings.hpp"
 #include "frame/bloom_settings.hpp"
 #include "frame/ssao_settings.hpp"
+#include "frame/ssr_settings.hpp"
 #include "frame/temporal_settings.hpp"
 #include "frame/vxgi_settings.hpp"
 #include "render/point_shadow_maps.hpp"
@@ -46,6 +47,7 @@ struct RenderSettings {
     AtmosphereSettings atmosphere;     // `--sky atmosphere`: the baked single-scattering sky as the environment
     frame::VolumetricSettings volumetrics;  // `--volumetrics`: in-scattering in a homogeneous medium
     OitMode oit = OitMode::Sorted;     // `--oit sorted|weighted`
+    frame::SsrSettings ssr;            // --ssr, --ssr-steps, --ssr-thickness (frame/ssr_feature.hpp)
 };
 
 }  // namespace idk::render

@@ -145,6 +145,8 @@ FrameResult Renderer::renderStill(const scene::CameraView& camera, uint32_t widt
     uint32_t frames = settings_.shading == Shading::Pbr ? frame::TemporalFeature::stillFrames(settings_) : 1;
     // VRS shades at the rates the previous frame classified: a first frame classifies, as the viewer's would.
     if (settings_.shading == Shading::Pbr && settings_.vrs.enabled) frames = std::max(frames, 2u);
+    // SSR reflects the previous frame's lit image (frame/ssr_feature.hpp): a first frame lights the scene.
+    if (settings_.shading == Shading::Pbr && settings_.ssr.enabled) frames = std::max(frames, 2u);
     if (frames > 1) features_.temporal.resetHistory();
     for (uint32_t i = 1; i < frames; ++i) renderOffscreen(camera, width, height);
     return renderOffscreen(camera, width, height);

@@ -12,6 +12,7 @@
 #include "surface_lighting.glsl"
 #include "vrs_rates.glsl"
 #include "vxgi_ambient.glsl"
+#include "ssr_specular.glsl"
 
 layout(local_size_x = kLightingGroupSize, local_size_y = kLightingGroupSize) in;
 layout(push_constant, scalar) uniform Push { LightingPush p; };
@@ -50,6 +51,8 @@ void main() {
     radiance += shadeSurface(f, p.pointShadows, position, n, v, baseColor, metallic, roughness, occlusion, layers);
     radiance += vxgiAmbientDelta(f, p.vxgiDiffuse, p.vxgiSpecular, pixel, n, v, baseColor, metallic, roughness,
                                  occlusion);  // inside the VXGI grid: traced light replaces the SH ambient
+    radiance += ssrSpecularDelta(f, p.ssr, p.vxgiDiffuse, p.vxgiSpecular, pixel, n, v, baseColor, metallic, roughness,
+                                 occlusion, layers);  // --ssr: on-screen reflections replace the specular ambient
 
     imageStore(gImagesRgba16f[p.target], pixel, vec4(radiance, 1.0));  // alpha 1: geometry
 }

@@ -64,7 +64,7 @@ struct LightingPush {
     uint ambientOcclusion;       // R32F storage: SSAO visibility of the ambient light; kLightingNoAo: none
     uint vxgiDiffuse;            // RGBA16F VXGI irradiance (include/vxgi_ambient.glsl), kNoVxgi: GI off
     uint vxgiSpecular;           // RGBA16F VXGI reflection radiance
-    uint pad;
+    uint ssr;                    // RGBA16F screen-space reflections (shared/ssr_types.h), kSsrNoImage: off
 };
 IDK_GPU_SIZE(LightingPush, 72);
 IDK_CONST(uint, kLightingNoAo, 0xFFFFFFFFu);

@@ -548,6 +548,20 @@ PY
       || fail "--upscale 0.3 should exit 2"
     grep -q -- "--upscale" "$tmp/err" || fail "error does not name --upscale: $(cat "$tmp/err")"
     ;;
+  ssr_flags)
+    # Issue 12: --ssr adds the closest-depth pyramid, the Hi-Z march and the lit-image copy (a still renders two
+    # frames: hits read the previous frame's lit image); its options are recorded in --json's settings; off: none
+    # of its passes runs; an out-of-range step count exits 2 naming the flag.
+    "$idk" render --size 16x16 --out "$tmp/s.png" --ssr --ssr-steps 32 --ssr-thickness 0.25 --json >"$tmp/s.json" \
+      || fail "render with --ssr failed"
+    for key in '"ssr": true' '"ssr-steps": 32' '"ssr-thickness": 0.25' '"ssr_hiz"' '"ssr_trace"' '"ssr_keep"'; do
+      grep -q "$key" "$tmp/s.json" || fail "--json lacks $key: $(cat "$tmp/s.json")"
+    done
+    "$idk" render --size 16x16 --out "$tmp/n.png" --json >"$tmp/n.json" || fail "plain render failed"
+    ! grep -q '"ssr_hiz"\|"ssr_trace"\|"ssr_keep"' "$tmp/n.json" || fail "SSR ran while off"
+    "$idk" render --size 8x8 --out "$tmp/x.png" --ssr-steps 0 2>"$tmp/err"; [ $? -eq 2 ] || fail "--ssr-steps 0 should exit 2"
+    grep -q -- "--ssr-steps" "$tmp/err" || fail "error does not name --ssr-steps: $(cat "$tmp/err")"
+    ;;
   *) fail "unknown case" ;;
 esac
 echo "ok ($case_name)"

@@ -168,10 +168,11 @@ std::vector<SettingOption> buildTable() {
                  [](const RenderSettings& s) { return s.volumetrics.scale == 4 ? 1.0 : 0.0; },
                  [](RenderSettings& s, double v) { s.volumetrics.scale = v > 0.5 ? 4u : 2u; }});
     // Order-independent transparency (passes/oit_weighted.cpp); sorted is the exact reference.
-    t.push_back({"--oit", "Transparency", "transparency", "sorted: back-to-front over (exact); weighted: weighted blended OIT",
-                 OptionKind::Choice, 0.0, 0.0, {"sorted", "weighted"},
-                 [](const RenderSettings& s) { return s.oit == render::OitMode::Weighted ? 1.0 : 0.0; },
-                 [](RenderSettings& s, double v) { s.oit = v > 0.5 ? render::OitMode::Weighted : render::OitMode::Sorted; }});
+    t.push_back({"--oit", "Transparency", "transparency",
+                 "sorted: back-to-front over (exact); weighted: weighted blended OIT; layers: 10 nearest per pixel",
+                 OptionKind::Choice, 0.0, 0.0, {"sorted", "weighted", "layers"},
+                 [](const RenderSettings& s) { return double(static_cast<uint8_t>(s.oit)); },
+                 [](RenderSettings& s, double v) { s.oit = static_cast<render::OitMode>(std::lround(v)); }});
     return t;
 }
 

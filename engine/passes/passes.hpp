@@ -187,6 +187,11 @@ graph::TextureHandle addTransparencyPass(graph::RenderGraph& graph, vk::Context&
 graph::TextureHandle addWeightedOitPasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                           const TransparencyInputs& inputs, graph::TextureHandle target,
                                           IndirectDrawLog* log);
+// oit_layers.cpp: the fixed-layer OIT rung (`--oit layers`): the 10 nearest fragments per pixel (atomic insertion),
+// composited in order over `target`; returns its new version.
+graph::TextureHandle addLayeredOitPasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                         const TransparencyInputs& inputs, graph::TextureHandle target,
+                                         IndirectDrawLog* log);
 
 // tonemap.cpp: AgX of exposure * hdr into the RGBA8 `target` (sRGB-encoded values); returns its new version.
 graph::TextureHandle addTonemapPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,

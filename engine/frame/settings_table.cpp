@@ -173,6 +173,15 @@ std::vector<SettingOption> buildTable() {
                  OptionKind::Choice, 0.0, 0.0, {"sorted", "weighted", "layers"},
                  [](const RenderSettings& s) { return double(static_cast<uint8_t>(s.oit)); },
                  [](RenderSettings& s, double v) { s.oit = static_cast<render::OitMode>(std::lround(v)); }});
+    // Soft ray-traced shadows (rt_shadows/mask_body.h): sphere lights sampled stochastically.
+    t.push_back({"--light-radius", "Shadows", "light radius",
+                 "raytraced: point and spot lights as spheres of this radius in metres (0: hard shadows)",
+                 OptionKind::Number, 0.0, 100.0, {}, [](const RenderSettings& s) { return double(s.lightShadows.lightRadius); },
+                 [](RenderSettings& s, double v) { s.lightShadows.lightRadius = float(v); }});
+    t.push_back({"--soft-shadow-rays", "Shadows", "soft shadow rays", "raytraced with a light radius: rays per pixel and light",
+                 OptionKind::Integer, 1.0, 256.0, {},
+                 [](const RenderSettings& s) { return double(s.lightShadows.softShadowRays); },
+                 [](RenderSettings& s, double v) { s.lightShadows.softShadowRays = uint32_t(v); }});
     return t;
 }
 

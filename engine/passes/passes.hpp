@@ -127,6 +127,8 @@ struct RtShadowInputs {
     uint32_t blasStack = 1, tlasStack = 1;
     std::vector<uint32_t> casters;       // light indices, at most kRtShadowMaxLights
     uint32_t lightCount = 0;
+    float lightRadius = 0.0f;            // > 0: soft shadows of sphere lights, softRays rays per pixel and light
+    uint32_t softRays = 1;
 };
 PointShadowOutputs addRtShadowPasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                      const RtShadowInputs& inputs, uint32_t width, uint32_t height);

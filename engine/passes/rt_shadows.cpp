@@ -53,6 +53,8 @@ PointShadowOutputs addRtShadowPasses(graph::RenderGraph& graph, vk::Context& ctx
             push.normal = pc.texture(s.normal).storageIndex;
             push.casterCount = slots;
             for (uint32_t i = 0; i < slots; ++i) push.casters[i] = s.casters[i];
+            push.lightRadius = s.lightRadius;
+            push.softRays = s.softRays;
             vk::pushConstants(cmd, ctx, push);
             vkCmdDispatch(cmd, vk::groupCount(width, gpu::kRtShadowGroupSize),
                           vk::groupCount(height, gpu::kRtShadowGroupSize), slots);

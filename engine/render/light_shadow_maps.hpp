@@ -20,6 +20,8 @@ struct LightShadowSettings {
     uint32_t resolution = 1024; // cascade / spot map size in texels
     float distance = 0.0f;      // view distance the cascades cover (0: up to the far end of the scene)
     bool rayTraced = false;     // `--shadows raytraced`: every shadow ray traced (frame/rt_shadow_feature.hpp), no maps
+    float lightRadius = 0.0f;   // raytraced: point and spot lights are spheres of this radius (m), soft shadows
+    uint32_t softShadowRays = 16;  // raytraced with a radius: rays per pixel and light, sampled over the sphere
 };
 
 // Among the first maxLights shadow casters (render/point_shadow_maps.hpp shadowCasters): directional lights and

@@ -31,9 +31,11 @@ struct RtShadowPush {
     uint normal;          // R32UI storage image (G-buffer octahedral normal)
     uint casterCount;
     uint casters[kRtShadowMaxLights];  // light index per slot
+    float lightRadius;    // > 0: point and spot lights are spheres of this radius (soft shadows, softRays rays)
+    uint softRays;        // rays per pixel and light with a radius, uniform over the sphere's solid angle
     uint pad;
 };
-IDK_GPU_SIZE(RtShadowPush, 104);
+IDK_GPU_SIZE(RtShadowPush, 112);
 
 IDK_GPU_END
 #endif

@@ -25,8 +25,8 @@ const float kRtShadowOffset = 1e-4;
 // origin that is unoccluded, estimated with p.softRays directions uniform in its cone (cos theta uniform in
 // [cos thetaMax, 1]), stratified in cos theta and rotated per pixel (Cranley-Patterson) so neighbouring pixels
 // decorrelate; each ray ends on the sphere's near surface. Directions below the surface's horizon count as
-// blocked. No denoiser or temporal accumulation: the estimate's noise falls as 1 / sqrt(softRays) (on a real GPU
-// a few rays plus a spatio-temporal filter would be cheaper; lavapipe pays every ray on the CPU).
+// blocked. rt_shadows/denoise.comp then filters the estimate along the surfaces (spatially; no temporal
+// accumulation: on a real GPU a few rays plus history reprojection would be cheaper still).
 float sphereLightVisibility(GpuPtSceneDesc s, vec3 origin, vec3 n, vec3 centre, uint salt) {
     vec3 toCentre = centre - origin;
     float d = length(toCentre);

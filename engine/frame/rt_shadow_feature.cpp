@@ -2,6 +2,8 @@
 // description) and the per-frame mask passes. See rt_shadow_feature.hpp.
 #include "frame/rt_shadow_feature.hpp"
 
+#include <algorithm>
+
 #include "core/log.hpp"
 #include "pathtrace/pt_scene.hpp"
 #include "render/light_shadow_maps.hpp"
@@ -92,6 +94,8 @@ void RtShadowFeature::addPasses(FrameContext& f, const render::GpuScene&) {
     in.tlasStack = geometry_->geometry.tlasStackSize;
     in.casters = std::move(casters);
     in.lightCount = uint32_t(f.lights->size());
+    in.lightRadius = f.settings.lightShadows.lightRadius;
+    in.softRays = std::max(f.settings.lightShadows.softShadowRays, 1u);
     f.pointShadows = passes::addRtShadowPasses(f.graph, f.ctx, f.shaders, in, f.width, f.height);
 }
 

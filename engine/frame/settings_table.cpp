@@ -173,10 +173,20 @@ std::vector<SettingOption> buildTable() {
                  [](const RenderSettings& s) { return s.volumetrics.scale == 4 ? 1.0 : 0.0; },
                  [](RenderSettings& s, double v) { s.volumetrics.scale = v > 0.5 ? 4u : 2u; }});
     // Order-independent transparency (passes/oit_weighted.cpp); sorted is the exact reference.
-    t.push_back({"--oit", "Transparency", "transparency", "sorted: back-to-front over (exact); weighted: weighted blended OIT",
-                 OptionKind::Choice, 0.0, 0.0, {"sorted", "weighted"},
-                 [](const RenderSettings& s) { return s.oit == render::OitMode::Weighted ? 1.0 : 0.0; },
-                 [](RenderSettings& s, double v) { s.oit = v > 0.5 ? render::OitMode::Weighted : render::OitMode::Sorted; }});
+    t.push_back({"--oit", "Transparency", "transparency",
+                 "sorted: back-to-front over (exact); weighted: weighted blended OIT; layers: 10 nearest per pixel",
+                 OptionKind::Choice, 0.0, 0.0, {"sorted", "weighted", "layers"},
+                 [](const RenderSettings& s) { return double(static_cast<uint8_t>(s.oit)); },
+                 [](RenderSettings& s, double v) { s.oit = static_cast<render::OitMode>(std::lround(v)); }});
+    // Soft ray-traced shadows (rt_shadows/mask_body.h): sphere lights sampled stochastically.
+    t.push_back({"--light-radius", "Shadows", "light radius",
+                 "raytraced: point and spot lights as spheres of this radius in metres (0: hard shadows)",
+                 OptionKind::Number, 0.0, 100.0, {}, [](const RenderSettings& s) { return double(s.lightShadows.lightRadius); },
+                 [](RenderSettings& s, double v) { s.lightShadows.lightRadius = float(v); }});
+    t.push_back({"--soft-shadow-rays", "Shadows", "soft shadow rays", "raytraced with a light radius: rays per pixel and light",
+                 OptionKind::Integer, 1.0, 256.0, {},
+                 [](const RenderSettings& s) { return double(s.lightShadows.softShadowRays); },
+                 [](RenderSettings& s, double v) { s.lightShadows.softShadowRays = uint32_t(v); }});
     // Screen-space reflections (frame/ssr_feature.hpp).
     t.push_back({"--ssr", "SSR", "screen-space reflections",
                  "Hi-Z screen-space reflections as the specular ambient of smooth surfaces", OptionKind::Toggle, 0.0,

@@ -18,9 +18,17 @@ void TransparencyFeature::addPasses(FrameContext& f, const render::GpuScene& sce
     passes::TransparencyInputs t{f.scene,    importBuffer(f.graph, "sorted blend draws", sorted),
                                  draws_->count(), f.frameConstants, f.gbuffer.depth, f.environment,
                                  f.pointShadows};
-    f.hdr = f.settings.oit == render::OitMode::Weighted
-                ? passes::addWeightedOitPasses(f.graph, f.ctx, f.shaders, t, f.hdr, &f.log)
-                : passes::addTransparencyPass(f.graph, f.ctx, f.shaders, t, f.hdr, &f.log);
+    switch (f.settings.oit) {
+        case render::OitMode::Weighted:
+            f.hdr = passes::addWeightedOitPasses(f.graph, f.ctx, f.shaders, t, f.hdr, &f.log);
+            break;
+        case render::OitMode::Layers:
+            f.hdr = passes::addLayeredOitPasses(f.graph, f.ctx, f.shaders, t, f.hdr, &f.log);
+            break;
+        case render::OitMode::Sorted:
+            f.hdr = passes::addTransparencyPass(f.graph, f.ctx, f.shaders, t, f.hdr, &f.log);
+            break;
+    }
 }
 
 }  // namespace idk::frame

@@ -36,6 +36,8 @@ std::vector<graph::TextureHandle> addLightShadowMapPass(graph::RenderGraph& grap
     auto out = std::make_shared<std::vector<graph::TextureHandle>>();
     const SceneBuffers s = scene;
     const bool mask = maps.alphaMask();
+    // The maps' own commands when BLEND draws cast (render/shadow_caster_draws.hpp), else the scene's.
+    const graph::BufferHandle draws = frame.casterDraws.valid() ? frame.casterDraws : s.drawCommands;
     auto projections = std::make_shared<std::vector<std::vector<render::ShadowProjection>>>(frame.projections);
     graph.addPass(
         "light_shadow_maps",
@@ -46,7 +48,7 @@ std::vector<graph::TextureHandle> addLightShadowMapPass(graph::RenderGraph& grap
             b.read(s.vertices, graph::Access::StorageRead, kVs);
             b.read(s.indices, graph::Access::VertexRead);
             b.read(s.instances, graph::Access::StorageRead, mask ? kVs | kFs : kVs);
-            b.read(s.drawCommands, graph::Access::IndirectRead);
+            b.read(draws, graph::Access::IndirectRead);
             if (s.colors.valid()) b.read(s.colors, graph::Access::StorageRead, kVs);
             if (s.uv1.valid()) b.read(s.uv1, graph::Access::StorageRead, kVs);
             if (mask) {
@@ -54,11 +56,11 @@ std::vector<graph::TextureHandle> addLightShadowMapPass(graph::RenderGraph& grap
                 b.read(s.materials, graph::Access::StorageRead, kFs);
             }
         },
-        [&ctx, &shaders, &maps, s, projections, mask, log](graph::PassContext& pc) {
+        [&ctx, &shaders, &maps, s, draws, projections, mask, log](graph::PassContext& pc) {
             VkCommandBuffer cmd = pc.commandBuffer();
             vk::GraphicsPipelineDesc desc;
             desc.vertex = vk::ShaderId::light_shadows_map_vert;
-            if (mask) desc.fragment = vk::ShaderId::light_shadows_mask_frag;  // depth-only without MASK materials
+            if (mask) desc.fragment = vk::ShaderId::light_shadows_mask_frag;  // depth-only without MASK / BLEND
             desc.depthFormat = VK_FORMAT_D32_SFLOAT;
             desc.depthCompare = VK_COMPARE_OP_LESS;
             desc.cull = VK_CULL_MODE_NONE;  // both sides cast (open meshes, single-sided walls)
@@ -75,7 +77,7 @@ std::vector<graph::TextureHandle> addLightShadowMapPass(graph::RenderGraph& grap
             vk::bindPipeline(cmd, pipeline);
             ctx.bindless().bind(cmd);
             vkCmdBindIndexBuffer(cmd, pc.vkBuffer(s.indices), 0, VK_INDEX_TYPE_UINT32);
-            VkBuffer indirect = pc.vkBuffer(s.drawCommands);
+            VkBuffer indirect = pc.vkBuffer(draws);
             const uint32_t size = maps.resolution();
             for (uint32_t c = 0; c < maps.casters().size(); ++c) {
                 for (uint32_t l = 0; l < maps.layers(c); ++l) {

@@ -127,6 +127,8 @@ struct RtShadowInputs {
     uint32_t blasStack = 1, tlasStack = 1;
     std::vector<uint32_t> casters;       // light indices, at most kRtShadowMaxLights
     uint32_t lightCount = 0;
+    float lightRadius = 0.0f;            // > 0: soft shadows of sphere lights, softRays rays per pixel and light
+    uint32_t softRays = 1;
 };
 PointShadowOutputs addRtShadowPasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                      const RtShadowInputs& inputs, uint32_t width, uint32_t height);
@@ -188,6 +190,11 @@ graph::TextureHandle addTransparencyPass(graph::RenderGraph& graph, vk::Context&
 graph::TextureHandle addWeightedOitPasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                           const TransparencyInputs& inputs, graph::TextureHandle target,
                                           IndirectDrawLog* log);
+// oit_layers.cpp: the fixed-layer OIT rung (`--oit layers`): the 10 nearest fragments per pixel (atomic insertion),
+// composited in order over `target`; returns its new version.
+graph::TextureHandle addLayeredOitPasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                         const TransparencyInputs& inputs, graph::TextureHandle target,
+                                         IndirectDrawLog* log);
 
 // tonemap.cpp: AgX of exposure * hdr into the RGBA8 `target` (sRGB-encoded values); returns its new version.
 graph::TextureHandle addTonemapPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,

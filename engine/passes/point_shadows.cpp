@@ -37,7 +37,8 @@ std::vector<graph::TextureHandle> addPointShadowPass(graph::RenderGraph& graph, 
     auto out = std::make_shared<std::vector<graph::TextureHandle>>();
     const SceneBuffers s = scene;
     const bool layered = maps.layered(), mask = maps.alphaMask();
-    const graph::BufferHandle draws = layered ? frame->layeredDraws : s.drawCommands;
+    // The maps' own commands (x6 on the native rung, BLEND casters) or the scene's.
+    const graph::BufferHandle draws = frame->casterDraws.valid() ? frame->casterDraws : s.drawCommands;
     graph.addPass(
         "point_shadows",
         [&](graph::PassBuilder& b) {
@@ -60,7 +61,7 @@ std::vector<graph::TextureHandle> addPointShadowPass(graph::RenderGraph& graph, 
 
             vk::GraphicsPipelineDesc desc;
             desc.vertex = layered ? vk::ShaderId::point_shadows_layered_vert : vk::ShaderId::point_shadows_face_vert;
-            if (mask) desc.fragment = vk::ShaderId::point_shadows_mask_frag;  // depth-only without MASK materials
+            if (mask) desc.fragment = vk::ShaderId::point_shadows_mask_frag;  // depth-only without MASK / BLEND
             desc.depthFormat = kShadowFormat;
             desc.depthCompare = VK_COMPARE_OP_LESS;
             desc.cull = VK_CULL_MODE_NONE;  // both sides cast (open meshes, single-sided walls)

@@ -4,8 +4,10 @@
 
 #include <string>
 
+#include "render/blend_draws.hpp"
 #include "render/draw_bounds.hpp"
 #include "render/point_shadow_maps.hpp"
+#include "render/shadow_caster_draws.hpp"
 #include "vk/check.hpp"
 #include "vk/context.hpp"
 
@@ -21,7 +23,7 @@ std::vector<uint32_t> shadowMapCasters(const std::vector<gpu::GpuLight>& lights,
 LightShadowMaps::LightShadowMaps(vk::Context& ctx, const GpuSceneData& scene, std::vector<uint32_t> casters,
                                  std::vector<uint32_t> layers, uint32_t resolution)
     : ctx_(ctx), casters_(std::move(casters)), layers_(std::move(layers)), resolution_(resolution),
-      alphaMask_(scene.features.hasMask) {
+      alphaMask_(scene.features.hasMask || blendDrawCount(scene) > 0) {
     sceneBox_ = sceneBounds(scene, meshBounds(scene));
     vk::SamplerDesc sampler;
     sampler.filter = VK_FILTER_LINEAR;  // 2x2 comparison filtering
@@ -32,6 +34,9 @@ LightShadowMaps::LightShadowMaps(vk::Context& ctx, const GpuSceneData& scene, st
     sampler_ = ctx.bindless().addSampler(sampler);
     try {
         createMaps(ctx);
+        // BLEND draws have no instance in the scene's buffer (the G-buffer skips them); these commands give them one.
+        if (!scene.draws.empty() && blendDrawCount(scene) > 0)
+            casterDraws_ = createShadowCasterDraws(ctx, scene, 1, "light shadow draw commands");
     } catch (...) {  // no destructor runs for a throwing constructor
         release();
         throw;
@@ -81,6 +86,7 @@ void LightShadowMaps::release() {
         });
         ctx_.destroyDeferred(m.image);
     }
+    if (casterDraws_) ctx_.destroyDeferred(casterDraws_);
 }
 
 bool LightShadowMaps::matches(const std::vector<uint32_t>& casters, const std::vector<uint32_t>& layers,
@@ -94,6 +100,13 @@ LightShadowMaps::Frame LightShadowMaps::beginFrame(graph::RenderGraph& graph, co
                                                    std::vector<gpu::GpuPointShadow>& table,
                                                    std::vector<gpu::GpuShadowMap>& records) {
     Frame frame;
+    if (casterDraws_) {
+        graph::PhysicalBuffer b;
+        b.buffer = casterDraws_.buffer;
+        b.size = casterDraws_.size;
+        b.address = casterDraws_.address;
+        frame.casterDraws = graph.importBuffer("light shadow draw commands", b, graph::ResourceState{});
+    }
     constexpr VkPipelineStageFlags2 kReaders =
         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
     const graph::FinalUse finalUse{graph::Access::SampledRead, kReaders};

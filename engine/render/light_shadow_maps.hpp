@@ -20,6 +20,8 @@ struct LightShadowSettings {
     uint32_t resolution = 1024; // cascade / spot map size in texels
     float distance = 0.0f;      // view distance the cascades cover (0: up to the far end of the scene)
     bool rayTraced = false;     // `--shadows raytraced`: every shadow ray traced (frame/rt_shadow_feature.hpp), no maps
+    float lightRadius = 0.0f;   // raytraced: point and spot lights are spheres of this radius (m), soft shadows
+    uint32_t softShadowRays = 16;  // raytraced with a radius: rays per pixel and light, sampled over the sphere
 };
 
 // Among the first maxLights shadow casters (render/point_shadow_maps.hpp shadowCasters): directional lights and
@@ -29,6 +31,7 @@ std::vector<uint32_t> shadowMapCasters(const std::vector<gpu::GpuLight>& lights,
 struct LightShadowFrame {
     std::vector<graph::TextureHandle> images;                // to be written by the light_shadow_maps pass
     std::vector<std::vector<ShadowProjection>> projections;  // per image, per layer
+    graph::BufferHandle casterDraws;  // imported draw commands with BLEND casters (invalid: the scene's buffer)
 };
 
 class LightShadowMaps {
@@ -46,7 +49,7 @@ public:
     uint32_t layers(uint32_t i) const { return maps_.at(i).layers; }
     const vk::Image& image(uint32_t i) const { return maps_.at(i).image; }
     VkImageView layerView(uint32_t i, uint32_t layer) const { return maps_.at(i).layerViews.at(layer); }
-    bool alphaMask() const noexcept { return alphaMask_; }
+    bool alphaMask() const noexcept { return alphaMask_; }  // MASK or BLEND: the pass needs its fragment shader
     const scene::Aabb& sceneBox() const noexcept { return sceneBox_; }
 
     // This frame: imports the images (in the state the previous frame left them), fits every layer's projection,
@@ -74,6 +77,7 @@ private:
     scene::Aabb sceneBox_;
     std::vector<Map> maps_;
     vk::SamplerIndex sampler_;
+    vk::Buffer casterDraws_;  // render/shadow_caster_draws.hpp, only for scenes with BLEND draws
 };
 
 // Keeps `maps` in step with the frame's lights and settings (created, re-created on a change of casters, cascade

@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <string>
 
+#include "render/blend_draws.hpp"
 #include "render/draw_bounds.hpp"
 #include "render/shadow_cascades.hpp"
+#include "render/shadow_caster_draws.hpp"
 #include "vk/check.hpp"
 #include "vk/context.hpp"
 #include "vk/features.hpp"
@@ -48,7 +50,7 @@ glm::vec2 pointShadowPlanes(const gpu::GpuLight& light, const scene::Aabb& box) 
 PointShadowMaps::PointShadowMaps(vk::Context& ctx, const GpuSceneData& scene, std::vector<uint32_t> casters,
                                  uint32_t resolution, bool layered)
     : ctx_(ctx), casters_(std::move(casters)), resolution_(resolution), layered_(layered),
-      alphaMask_(scene.features.hasMask) {
+      alphaMask_(scene.features.hasMask || blendDrawCount(scene) > 0) {
     sceneBox_ = sceneBounds(scene, meshBounds(scene));
     vk::SamplerDesc sampler;
     sampler.filter = VK_FILTER_LINEAR;  // 2x2 comparison filtering
@@ -95,17 +97,10 @@ void PointShadowMaps::createCubes(vk::Context& ctx, const GpuSceneData& scene) {
         }
     }
 
-    if (layered_ && !scene.draws.empty()) {
-        // The scene's own draws (BLEND ones have instanceCount 0 there) with six instances each: instance = face.
-        std::vector<VkDrawIndexedIndirectCommand> draws = scene.draws;
-        for (VkDrawIndexedIndirectCommand& d : draws) d.instanceCount *= 6;
-        vk::BufferDesc desc;
-        desc.size = draws.size() * sizeof(VkDrawIndexedIndirectCommand);
-        desc.usage = VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
-        desc.name = "point shadow draw commands";
-        desc.category = "shadow maps";
-        layeredDraws_ = vk::createBufferWithData(ctx, desc, draws.data(), desc.size);
-    }
+    // Own draw commands where the scene's buffer will not do: six instances per draw on the native rung
+    // (instance = face), and BLEND draws, which the scene's buffer leaves without an instance, so they cast.
+    if (!scene.draws.empty() && (layered_ || blendDrawCount(scene) > 0))
+        casterDraws_ = createShadowCasterDraws(ctx, scene, layered_ ? 6u : 1u, "point shadow draw commands");
 }
 
 PointShadowMaps::~PointShadowMaps() { release(); }
@@ -123,7 +118,7 @@ void PointShadowMaps::release() {
         });
         ctx_.destroyDeferred(c.image);
     }
-    if (layeredDraws_) ctx_.destroyDeferred(layeredDraws_);
+    if (casterDraws_) ctx_.destroyDeferred(casterDraws_);
 }
 
 bool PointShadowMaps::matches(const std::vector<uint32_t>& casters, uint32_t resolution, bool layered) const {
@@ -167,12 +162,12 @@ PointShadowMaps::Frame PointShadowMaps::beginFrame(graph::RenderGraph& graph,
         s.samplerIndex = sampler_.value;
         s.texelScale = 2.0f / float(resolution_);
     }
-    if (layeredDraws_) {
+    if (casterDraws_) {
         graph::PhysicalBuffer b;
-        b.buffer = layeredDraws_.buffer;
-        b.size = layeredDraws_.size;
-        b.address = layeredDraws_.address;
-        frame.layeredDraws = graph.importBuffer("point shadow draw commands", b, graph::ResourceState{});
+        b.buffer = casterDraws_.buffer;
+        b.size = casterDraws_.size;
+        b.address = casterDraws_.address;
+        frame.casterDraws = graph.importBuffer("point shadow draw commands", b, graph::ResourceState{});
     }
     return frame;
 }

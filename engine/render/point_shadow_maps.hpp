@@ -36,7 +36,8 @@ struct PointShadowFrame {
     std::vector<graph::TextureHandle> cubes;    // imported, to be written by the point_shadows pass
     std::vector<gpu::GpuPointShadow> table;     // one per light
     std::vector<glm::vec2> planes;              // near/far per cube
-    graph::BufferHandle layeredDraws;           // imported native-rung draw commands (invalid for six draws)
+    graph::BufferHandle casterDraws;            // imported own draw commands (native rung or BLEND casters;
+                                                // invalid: the scene's draw buffer)
 };
 
 class PointShadowMaps {
@@ -56,8 +57,7 @@ public:
     const vk::Image& cube(uint32_t i) const { return cubes_.at(i).image; }
     VkImageView layeredView(uint32_t i) const { return cubes_.at(i).layeredView; }  // 2D array of the 6 faces
     VkImageView faceView(uint32_t i, uint32_t face) const { return cubes_.at(i).faceViews.at(face); }
-    const vk::Buffer& layeredDrawCommands() const noexcept { return layeredDraws_; }  // native rung only
-    bool alphaMask() const noexcept { return alphaMask_; }  // MASK materials: the pass needs its fragment shader
+    bool alphaMask() const noexcept { return alphaMask_; }  // MASK or BLEND: the pass needs its fragment shader
 
     // This frame: imports every cube into the graph (in the state the previous frame left it) and builds the
     // per-light table (kNoShadow for lights without a cube) from the lights' current positions.
@@ -82,7 +82,7 @@ private:
     scene::Aabb sceneBox_;
     std::vector<Cube> cubes_;
     vk::SamplerIndex sampler_;
-    vk::Buffer layeredDraws_;
+    vk::Buffer casterDraws_;  // render/shadow_caster_draws.hpp: x6 for the native rung; only these or BLEND
 };
 
 // Keeps `maps` in step with the frame's lights (the scene's plus any extra ones) and the settings: creates it,

@@ -21,8 +21,9 @@
 namespace idk::render {
 
 enum class Shading : uint8_t { Pbr, Lambert };
-// Transparency: Sorted = BLEND draws back to front, "over" (the exact reference); Weighted = weighted blended OIT.
-enum class OitMode : uint8_t { Sorted, Weighted };
+// Transparency: Sorted = BLEND draws back to front, "over" (the exact reference); Weighted = weighted blended OIT;
+// Layers = the 10 nearest fragments per pixel, composited in order (passes/oit_layers.cpp).
+enum class OitMode : uint8_t { Sorted, Weighted, Layers };
 enum class OutputKind : uint8_t {
     Display,  // AgX-tonemapped, sRGB-encoded 8-bit (what a PNG stores)
     Hdr,      // linear radiance before tonemapping (what an EXR stores); no tonemap pass
@@ -46,7 +47,7 @@ struct RenderSettings {
     LightShadowSettings lightShadows;  // directional cascades and spot maps
     AtmosphereSettings atmosphere;     // `--sky atmosphere`: the baked single-scattering sky as the environment
     frame::VolumetricSettings volumetrics;  // `--volumetrics`: in-scattering in a homogeneous medium
-    OitMode oit = OitMode::Sorted;     // `--oit sorted|weighted`
+    OitMode oit = OitMode::Sorted;     // `--oit sorted|weighted|layers`
     frame::SsrSettings ssr;            // --ssr, --ssr-steps, --ssr-thickness (frame/ssr_feature.hpp)
 };
 

@@ -31,9 +31,23 @@ struct RtShadowPush {
     uint normal;          // R32UI storage image (G-buffer octahedral normal)
     uint casterCount;
     uint casters[kRtShadowMaxLights];  // light index per slot
+    float lightRadius;    // > 0: point and spot lights are spheres of this radius (soft shadows, softRays rays)
+    uint softRays;        // rays per pixel and light with a radius, uniform over the sphere's solid angle
     uint pad;
 };
-IDK_GPU_SIZE(RtShadowPush, 104);
+IDK_GPU_SIZE(RtShadowPush, 112);
+
+// rt_shadows/denoise.comp: the edge-aware spatial filter of soft (light radius > 0) masks, noisy -> filtered.
+struct RtShadowDenoisePush {
+    DeviceAddress frame;     // GpuFrame
+    DeviceAddress noisy;     // float[slots * width * height], as RtShadowPush::mask
+    DeviceAddress filtered;  // same layout; what the shadow table points the lighting at
+    uint depth;              // R32F storage image (G-buffer depth)
+    uint normal;             // R32UI storage image (G-buffer octahedral normal)
+    uint slots;
+    uint rays;               // the mask's rays per pixel: the filter narrows as the estimate's noise falls
+};
+IDK_GPU_SIZE(RtShadowDenoisePush, 40);
 
 IDK_GPU_END
 #endif

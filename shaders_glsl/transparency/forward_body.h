@@ -8,7 +8,13 @@
 #include "material_eval.glsl"
 #include "surface_lighting.glsl"
 
+#if defined(IDK_OIT_LAYER_DEPTHS) || defined(IDK_OIT_LAYERS)
+// The fixed-layer rung (oit/layers_depth.frag, oit/layers_shade.frag): its arrays follow the forward push block.
+#include "oit_layers.glsl"
+layout(push_constant, scalar) uniform Push { TransparencyPush p; OitLayerBuffers oitLayers; };
+#else
 layout(push_constant, scalar) uniform Push { TransparencyPush p; };
+#endif
 
 layout(location = 0) in vec3 inWorldPosition;
 layout(location = 1) in vec3 inNormal;
@@ -31,6 +37,14 @@ void writeTransparent(vec4 c) {
     outAccum = vec4(c.rgb * a, a) * w;
     outRevealage = vec4(-log(1.0 - a), 0.0, 0.0, 0.0);
 }
+#elif defined(IDK_OIT_LAYERS)
+// Fixed-layer OIT (oit/layers_shade.frag): no attachment; (radiance, alpha) into the slot of this depth.
+void writeTransparent(vec4 c) {
+    int slot = oitClaimSlot(oitLayers, ivec2(gl_FragCoord.xy), gl_FragCoord.z);
+    if (slot >= 0) oitStoreColor(oitLayers, ivec2(gl_FragCoord.xy), slot, c);
+}
+#elif defined(IDK_OIT_LAYER_DEPTHS)
+void writeTransparent(vec4) {}  // unused: the depth pass returns before shading
 #else
 layout(location = 0) out vec4 outColor;  // linear radiance, alpha = coverage ("over": SRC_ALPHA, 1 - SRC_ALPHA)
 void writeTransparent(vec4 c) { outColor = c; }
@@ -54,6 +68,10 @@ void main() {
     float opaqueDepth = imageLoad(gImagesR32f[p.depth], ivec2(gl_FragCoord.xy)).r;
     bool front = gl_FrontFacing != ((instance.flags & kInstanceMirrored) != 0u);
     if (gl_FragCoord.z >= opaqueDepth || (!front && (m.flags & kMaterialDoubleSided) == 0u)) discard;
+#ifdef IDK_OIT_LAYER_DEPTHS
+    oitInsertDepth(oitLayers, ivec2(gl_FragCoord.xy), gl_FragCoord.z);  // fixed-layer rung, first pass: depth only
+    return;
+#endif
 
     vec2 xy = nt.xy * 2.0 - 1.0;
     vec3 tn = vec3(xy * m.normalScale, sqrt(max(1.0 - dot(xy, xy), 0.0)));

@@ -1,0 +1,26 @@
+// shadow_caster_draws.cpp: the shadow passes' draw commands, BLEND draws included (see shadow_caster_draws.hpp).
+#include "render/shadow_caster_draws.hpp"
+
+#include "vk/context.hpp"
+#include "vk/transfer.hpp"
+
+namespace idk::render {
+
+std::vector<VkDrawIndexedIndirectCommand> shadowCasterDraws(const GpuSceneData& scene, uint32_t instancesPerDraw) {
+    std::vector<VkDrawIndexedIndirectCommand> draws = scene.draws;
+    for (VkDrawIndexedIndirectCommand& d : draws) d.instanceCount = d.indexCount > 0 ? instancesPerDraw : 0u;
+    return draws;
+}
+
+vk::Buffer createShadowCasterDraws(vk::Context& ctx, const GpuSceneData& scene, uint32_t instancesPerDraw,
+                                   const char* name) {
+    std::vector<VkDrawIndexedIndirectCommand> draws = shadowCasterDraws(scene, instancesPerDraw);
+    vk::BufferDesc desc;
+    desc.size = draws.size() * sizeof(VkDrawIndexedIndirectCommand);
+    desc.usage = VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
+    desc.name = name;
+    desc.category = "shadow maps";
+    return vk::createBufferWithData(ctx, desc, draws.data(), desc.size);
+}
+
+}  // namespace idk::render

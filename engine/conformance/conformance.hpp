@@ -108,5 +108,6 @@ std::vector<Check> computeChecks();
 std::vector<Check> splatChecks();
 std::vector<Check> ptMathChecks();
 std::vector<Check> subgroupChecks();
+std::vector<Check> bvhChecks();
 
 }  // namespace idk::conformance

@@ -109,5 +109,6 @@ std::vector<Check> splatChecks();
 std::vector<Check> ptMathChecks();
 std::vector<Check> subgroupChecks();
 std::vector<Check> bvhChecks();
+std::vector<Check> ptWavefrontChecks();
 
 }  // namespace idk::conformance

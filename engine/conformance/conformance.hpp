@@ -110,5 +110,6 @@ std::vector<Check> ptMathChecks();
 std::vector<Check> subgroupChecks();
 std::vector<Check> bvhChecks();
 std::vector<Check> ptWavefrontChecks();
+std::vector<Check> denoiseChecks();
 
 }  // namespace idk::conformance

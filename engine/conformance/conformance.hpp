@@ -111,5 +111,6 @@ std::vector<Check> subgroupChecks();
 std::vector<Check> bvhChecks();
 std::vector<Check> ptWavefrontChecks();
 std::vector<Check> denoiseChecks();
+std::vector<Check> textureChecks();
 
 }  // namespace idk::conformance

@@ -16,7 +16,7 @@ const std::vector<Check>& allChecks() {
     static const std::vector<Check> checks = [] {
         std::vector<Check> all;
         for (std::vector<Check> (*area)() : {computeChecks, subgroupChecks, splatChecks, ptMathChecks, bvhChecks,
-                                                ptWavefrontChecks, denoiseChecks}) {
+                                                ptWavefrontChecks, denoiseChecks, textureChecks}) {
             std::vector<Check> list = area();
             all.insert(all.end(), list.begin(), list.end());
         }

@@ -112,5 +112,6 @@ std::vector<Check> bvhChecks();
 std::vector<Check> ptWavefrontChecks();
 std::vector<Check> denoiseChecks();
 std::vector<Check> textureChecks();
+std::vector<Check> vrsChecks();
 
 }  // namespace idk::conformance

@@ -16,7 +16,8 @@ const std::vector<Check>& allChecks() {
     static const std::vector<Check> checks = [] {
         std::vector<Check> all;
         for (std::vector<Check> (*area)() : {computeChecks, subgroupChecks, splatChecks, ptMathChecks, bvhChecks,
-                                                ptWavefrontChecks, denoiseChecks, textureChecks}) {
+                                                ptWavefrontChecks, denoiseChecks, textureChecks,
+                                                vrsChecks}) {
             std::vector<Check> list = area();
             all.insert(all.end(), list.begin(), list.end());
         }

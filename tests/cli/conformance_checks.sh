@@ -27,10 +27,12 @@ rungs = {c["rung"] for c in checks if c["kernel"] == "float-atomics/splat"}
 assert rungs == {"native", "gl-interop", "fallback"}, rungs
 # every kernel family is in the registry, with per-rung results where the kernel has a ladder
 families = {c["kernel"].split("/")[0] for c in checks}
-want = {"sum", "scan", "sort", "subgroups", "float-atomics", "gl-interop", "pathtrace", "bvh", "denoise", "textures"}
+want = {"sum", "scan", "sort", "subgroups", "float-atomics", "gl-interop", "pathtrace", "bvh", "denoise", "textures", "vrs"}
 assert want <= families, want - families
 rungs = {c["rung"] for c in checks if c["kernel"] == "pathtrace/traversal"}
 assert rungs == {"native", "fallback"}, rungs  # lavapipe has VK_KHR_ray_query: both traversal rungs run
+rungs = {c["rung"] for c in checks if c["kernel"] == "vrs/classify"}
+assert rungs == {"native", "fallback"}, rungs  # subgroup and shared-memory reductions
 for k in ("bvh/blas binary", "bvh/blas 8-wide", "bvh/tlas binary", "bvh/tlas 8-wide", "pathtrace/compaction"):
     assert [c["rung"] for c in checks if c["kernel"] == k] == ["-"], k
 PY

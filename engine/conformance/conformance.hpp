@@ -113,5 +113,6 @@ std::vector<Check> ptWavefrontChecks();
 std::vector<Check> denoiseChecks();
 std::vector<Check> textureChecks();
 std::vector<Check> vrsChecks();
+std::vector<Check> cullingChecks();
 
 }  // namespace idk::conformance

@@ -17,7 +17,7 @@ const std::vector<Check>& allChecks() {
         std::vector<Check> all;
         for (std::vector<Check> (*area)() : {computeChecks, subgroupChecks, splatChecks, ptMathChecks, bvhChecks,
                                                 ptWavefrontChecks, denoiseChecks, textureChecks,
-                                                vrsChecks}) {
+                                                vrsChecks, cullingChecks}) {
             std::vector<Check> list = area();
             all.insert(all.end(), list.begin(), list.end());
         }

@@ -27,7 +27,7 @@ rungs = {c["rung"] for c in checks if c["kernel"] == "float-atomics/splat"}
 assert rungs == {"native", "gl-interop", "fallback"}, rungs
 # every kernel family is in the registry, with per-rung results where the kernel has a ladder
 families = {c["kernel"].split("/")[0] for c in checks}
-want = {"sum", "scan", "sort", "subgroups", "float-atomics", "gl-interop", "pathtrace", "bvh", "denoise", "textures", "vrs"}
+want = {"sum", "scan", "sort", "subgroups", "float-atomics", "gl-interop", "pathtrace", "bvh", "denoise", "textures", "vrs", "culling"}
 assert want <= families, want - families
 rungs = {c["rung"] for c in checks if c["kernel"] == "pathtrace/traversal"}
 assert rungs == {"native", "fallback"}, rungs  # lavapipe has VK_KHR_ray_query: both traversal rungs run

@@ -108,5 +108,11 @@ std::vector<Check> computeChecks();
 std::vector<Check> splatChecks();
 std::vector<Check> ptMathChecks();
 std::vector<Check> subgroupChecks();
+std::vector<Check> bvhChecks();
+std::vector<Check> ptWavefrontChecks();
+std::vector<Check> denoiseChecks();
+std::vector<Check> textureChecks();
+std::vector<Check> vrsChecks();
+std::vector<Check> cullingChecks();
 
 }  // namespace idk::conformance

@@ -16,7 +16,9 @@ namespace idk::conformance {
 const std::vector<Check>& allChecks() {
     static const std::vector<Check> checks = [] {
         std::vector<Check> all;
-        for (std::vector<Check> (*area)() : {computeChecks, subgroupChecks, splatChecks, ptMathChecks}) {
+        for (std::vector<Check> (*area)() : {computeChecks, subgroupChecks, splatChecks, ptMathChecks, bvhChecks,
+                                                ptWavefrontChecks, denoiseChecks, textureChecks,
+                                                vrsChecks, cullingChecks}) {
             std::vector<Check> list = area();
             all.insert(all.end(), list.begin(), list.end());
         }

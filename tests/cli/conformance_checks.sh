@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # conformance_checks.sh IDK CASE: `idk conformance` and the GL-interop rung end to end (issue 15): every check
-# passes on this device with --json/--junit written; a planted broken kernel fails naming kernel and rung; with EGL
+# passes on this device with --json/--junit written (every kernel family listed); a planted broken kernel (the
+# native splat, the 8-wide BVH walk) fails naming kernel and rung, and the intact peer passes; with EGL
 # disabled the GL rung is reported absent with the reason and everything else still runs; a forced GL rung runs.
 set -u
 idk="$1"
@@ -24,6 +25,16 @@ bad = [c for c in checks if c["result"] != "pass"]
 assert not bad, bad  # on lavapipe + llvmpipe every rung exists: nothing may be skipped
 rungs = {c["rung"] for c in checks if c["kernel"] == "float-atomics/splat"}
 assert rungs == {"native", "gl-interop", "fallback"}, rungs
+# every kernel family is in the registry, with per-rung results where the kernel has a ladder
+families = {c["kernel"].split("/")[0] for c in checks}
+want = {"sum", "scan", "sort", "subgroups", "float-atomics", "gl-interop", "pathtrace", "bvh", "denoise", "textures", "vrs", "culling"}
+assert want <= families, want - families
+rungs = {c["rung"] for c in checks if c["kernel"] == "pathtrace/traversal"}
+assert rungs == {"native", "fallback"}, rungs  # lavapipe has VK_KHR_ray_query: both traversal rungs run
+rungs = {c["rung"] for c in checks if c["kernel"] == "vrs/classify"}
+assert rungs == {"native", "fallback"}, rungs  # subgroup and shared-memory reductions
+for k in ("bvh/blas binary", "bvh/blas 8-wide", "bvh/tlas binary", "bvh/tlas 8-wide", "pathtrace/compaction"):
+    assert [c["rung"] for c in checks if c["kernel"] == k] == ["-"], k
 PY
     grep -q 'tests="[0-9]*" failures="0"' "$tmp/c.xml" || fail "JUnit: $(head -3 "$tmp/c.xml")"
     [ "$(grep -c '<testcase' "$tmp/c.xml")" -ge 17 ] || fail "JUnit lists too few test cases"
@@ -40,6 +51,15 @@ PY
     mkdir -p "$tmp/dir/nosuch" && cp "$tmp/x.comp.glsl" "$tmp/dir/nosuch/x.comp.glsl"
     "$idk" conformance --shader-dir "$tmp/dir" 2>"$tmp/err"; [ $? -eq 1 ] || fail "an unknown shader file must be an error"
     grep -q "nosuch/x.comp.glsl" "$tmp/err" || fail "error does not name the file: $(cat "$tmp/err")"
+    ;;
+  broken_bvh_walk)
+    "$idk" conformance --shader-dir "$here/broken_kernels" --filter "bvh/blas" >"$tmp/out" 2>"$tmp/err"
+    code=$?
+    [ "$code" -eq 1 ] || fail "exit code $code, expected 1 for a broken 8-wide walk"
+    grep -q "bvh/blas 8-wide \[-\]" "$tmp/err" || fail "stderr does not name the 8-wide walk: $(cat "$tmp/err")"
+    grep -q "closest-hit mismatches" "$tmp/err" || fail "stderr does not say what differs: $(cat "$tmp/err")"
+    grep -q "bvh/blas binary \[-\]" "$tmp/err" && fail "the binary walk was not broken: $(cat "$tmp/err")"
+    grep -Eq "bvh/blas binary +- +pass" "$tmp/out" || fail "the intact walk did not pass: $(cat "$tmp/out")"
     ;;
   no_egl)
     IDK_GL_INTEROP=off "$idk" info >"$tmp/info" || fail "idk info failed without EGL"

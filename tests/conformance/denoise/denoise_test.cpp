@@ -1,35 +1,21 @@
-// denoise_test.cpp: the path tracer's denoiser (engine/passes/denoise.cpp) on the Vulkan device against its CPU
-// oracle (denoise_oracle.hpp, same math from shaders_glsl/shared/denoise_filter.h), and its quality on a synthetic
-// scene with known clean image: noise falls, edges stay, sky/black/huge/NaN inputs give finite output.
+// denoise_test.cpp: the path tracer's denoiser (engine/passes/denoise.cpp) on the Vulkan device: its quality on a
+// synthetic scene with known clean image (noise falls, edges stay, fireflies clamped, no leak from dark albedo, the
+// variance input never makes it worse) and its robustness (sky/black/huge/NaN inputs give finite output that still
+// matches the CPU oracle). The plain GPU-vs-oracle comparisons are registered checks (engine/conformance/
+// denoise_checks.cpp: `idk conformance`, and ctest through tests/conformance/registry/).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-#include "denoise_harness.hpp"
+#include "conformance/denoise_harness.hpp"
 #include "support/gpu_fixture.hpp"
 
 namespace idk::test {
 namespace {
 
-// GPU vs CPU: per channel |gpu - cpu| <= kAbs + kRel * |cpu|. The two differ by exp/pow rounding and FMA
-// contraction only; 5 iterations of weighted means keep that near 1e-6 relative, 1e-4 leaves room.
-constexpr float kRel = 1e-4f, kAbs = 1e-5f;
-
-struct Diff {
-    float worst = 0.0f;  // largest |gpu - cpu| / (kAbs + kRel |cpu|)
-    size_t nonFinite = 0;
-};
-Diff compare(const std::vector<glm::vec4>& gpu, const std::vector<glm::vec4>& cpu) {
-    Diff d;
-    for (size_t i = 0; i < gpu.size(); ++i)
-        for (int c = 0; c < 4; ++c) {
-            if (!std::isfinite(gpu[i][c])) ++d.nonFinite;
-            d.worst = std::max(d.worst, std::fabs(gpu[i][c] - cpu[i][c]) / (kAbs + kRel * std::fabs(cpu[i][c])));
-        }
-    return d;
-}
+using namespace idk::conformance;  // the harness, the oracle and the comparison are shared with the registry
 
 // RMSE over RGB of the pixels whose edge distance is in [minEdge, maxEdge] and that are not sky.
 double rmse(const SyntheticScene& s, const std::vector<glm::vec4>& image, int minEdge, int maxEdge) {
@@ -51,27 +37,6 @@ size_t countNonFinite(const std::vector<glm::vec4>& image) {
 }
 
 class Denoise : public GpuTest {};
-
-TEST_F(Denoise, GpuMatchesCpuOracle) {
-    SyntheticScene s = makeSyntheticScene(72, 56, 0.6f, 7);
-    passes::DenoiseSettings settings;
-    Diff d = compare(denoiseOnGpu(ctx(), shaders(), s.noisy, settings), DenoiseOracle(s.noisy).run(settings));
-    std::printf("denoise GPU vs CPU: worst difference %.3g of the tolerance\n", d.worst);
-    EXPECT_EQ(d.nonFinite, 0u);
-    EXPECT_LE(d.worst, 1.0f) << "worst difference in units of the tolerance";
-}
-
-TEST_F(Denoise, GpuMatchesCpuOracleWithHalfGuidesAndOtherSettings) {
-    SyntheticScene s = makeSyntheticScene(64, 64, 0.3f, 11);
-    passes::DenoiseSettings settings{3, 2.0f, 32.0f, 2.0f, 0.0f};  // no firefly clamp
-    std::vector<glm::vec4> gpu = denoiseOnGpu(ctx(), shaders(), s.noisy, settings, /*halfGuides=*/true);
-    DenoiseImages halved = s.noisy;
-    halved.albedo = roundToHalf(halved.albedo);
-    halved.normal = roundToHalf(halved.normal);
-    Diff d = compare(gpu, DenoiseOracle(halved).run(settings));
-    EXPECT_EQ(d.nonFinite, 0u);
-    EXPECT_LE(d.worst, 1.0f);
-}
 
 TEST_F(Denoise, ZeroIterationsIsTheIdentityOnGeometry) {
     SyntheticScene s = makeSyntheticScene(48, 48, 0.5f, 3);
@@ -170,7 +135,7 @@ TEST_F(Denoise, DegenerateInputsStayFinite) {
         size_t k = y * 64 + 41;  // depth 0: passes through
         ASSERT_EQ(out[k], in.color[k]);
     }
-    Diff d = compare(out, DenoiseOracle(in).run(settings));
+    DenoiseDiff d = compareDenoised(out, DenoiseOracle(in).run(settings));
     EXPECT_LE(d.worst, 1.0f) << "the oracle sanitizes the same way";
 }
 
@@ -184,7 +149,7 @@ TEST_F(Denoise, LargeValuesDoNotOverflow) {
     }
     std::vector<glm::vec4> out = denoiseOnGpu(ctx(), shaders(), in, passes::DenoiseSettings{});
     EXPECT_EQ(countNonFinite(out), 0u);
-    Diff d = compare(out, DenoiseOracle(in).run(passes::DenoiseSettings{}));
+    DenoiseDiff d = compareDenoised(out, DenoiseOracle(in).run(passes::DenoiseSettings{}));
     EXPECT_LE(d.worst, 1.0f);
 
     DenoiseImages flat = in;  // a constant 1e6 image is a fixed point of the filter
@@ -200,29 +165,6 @@ TEST_F(Denoise, LargeValuesDoNotOverflow) {
 
 namespace idk::test {
 namespace {
-
-// The synthetic scene's per-pixel variance input: the luminance variance of its multiplicative noise (relative
-// `noise` per channel, independent channels), as the tracer's second moments estimate it; with
-// `someUnknown`, unknown (-1) in the first column so that both branches run.
-void addVariance(SyntheticScene& s, float noise, bool someUnknown) {
-    s.noisy.variance.assign(s.clean.size(), 0.0f);
-    for (size_t k = 0; k < s.clean.size(); ++k) {
-        const glm::vec3 c(s.clean[k]);
-        const glm::vec3 w(0.2126f, 0.7152f, 0.0722f);
-        const glm::vec3 sd = noise * c * w;
-        s.noisy.variance[k] = someUnknown && k % s.noisy.width == 0 ? -1.0f : glm::dot(sd, sd);
-    }
-}
-
-TEST_F(Denoise, GpuMatchesCpuOracleWithVariance) {
-    SyntheticScene s = makeSyntheticScene(72, 56, 0.3f, 5);
-    addVariance(s, 0.3f, true);
-    passes::DenoiseSettings settings;
-    Diff d = compare(denoiseOnGpu(ctx(), shaders(), s.noisy, settings), DenoiseOracle(s.noisy).run(settings));
-    std::printf("denoise GPU vs CPU with variance: worst difference %.3g of the tolerance\n", d.worst);
-    EXPECT_EQ(d.nonFinite, 0u);
-    EXPECT_LE(d.worst, 1.0f);
-}
 
 // Never worse than the input: with the per-pixel variance, at every noise level from heavy (0.6) to almost none
 // (0.001: a high sample count), the denoised RMSE against the clean image is at most the noisy one's. Without the

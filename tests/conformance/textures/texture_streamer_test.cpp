@@ -2,7 +2,9 @@
 // while empty frames are pumped and compares every mip read back with the CPU decode, byte for byte; likewise
 // through the staging ring only, with a tiny budget (several frames; a frame recorded before all arrived uses
 // valid placeholder indices), with forced staging, synchronously, with hostile images and torn down mid-stream.
-// Validation must stay clean.
+// Validation must stay clean. The read-back, the frame pump and the oracle of a finished stream are shared with the
+// registered check "textures/streaming" (engine/conformance/texture_stream_support.hpp), which streams a scene made
+// in memory so that `idk conformance` needs no asset.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -12,6 +14,7 @@
 #include <random>
 #include <thread>
 
+#include "conformance/texture_stream_support.hpp"
 #include "core/log.hpp"
 #include "render/texture_streamer.hpp"
 #include "scene/gltf_loader.hpp"
@@ -27,6 +30,8 @@ namespace {
 using render::TextureStreamer;
 using render::TextureStreamerOptions;
 
+using namespace idk::conformance;  // ReadyLog, readMips and the stream oracle, shared with the registry check
+
 const scene::Scene& sharedSceneFile(const std::string& relative) {
     static std::map<std::string, std::unique_ptr<scene::Scene>> cache;
     auto& s = cache[relative];
@@ -36,146 +41,32 @@ const scene::Scene& sharedSceneFile(const std::string& relative) {
 const scene::Scene& helmet() { return sharedSceneFile("DamagedHelmet/glTF-Binary/DamagedHelmet.glb"); }
 const scene::Scene& box() { return sharedSceneFile("BoxTextured/glTF-Binary/BoxTextured.glb"); }
 
-// The CPU decode a streamed texture must equal (cached: decoding DamagedHelmet takes a while).
+// The CPU decodes of a shared scene, kept for the whole run (decoding DamagedHelmet takes a while).
+ReferenceDecodes& decodesOf(const scene::Scene& scene) {
+    static std::map<const scene::Scene*, std::unique_ptr<ReferenceDecodes>> decodes;
+    auto& d = decodes[&scene];
+    if (!d) d = std::make_unique<ReferenceDecodes>(scene);
+    return *d;
+}
 const scene::DecodedTexture& reference(const scene::Scene& scene, uint32_t texture, bool srgb) {
-    static std::map<std::tuple<const scene::Scene*, uint32_t, bool>, scene::DecodedTexture> cache;
-    auto key = std::make_tuple(&scene, texture, srgb);
-    auto it = cache.find(key);
-    if (it != cache.end()) return it->second;
-    const auto& image = scene.textures[texture].image;
-    scene::DecodedTexture t = image ? scene::decodeImage(scene.images[*image], srgb, scene::imageLabel(scene, *image))
-                                    : scene::decodeImage(scene::Image{}, srgb, "no source");
-    return cache.emplace(key, std::move(t)).first->second;
+    return decodesOf(scene).get(texture, srgb);
 }
 
-// Every mip of an image in SHADER_READ_ONLY_OPTIMAL, tightly packed level after level.
-std::vector<uint8_t> readMips(vk::Context& ctx, const vk::Image& image) {
-    std::vector<VkBufferImageCopy> regions;
-    VkDeviceSize size = 0;
-    for (uint32_t level = 0; level < image.mipLevels; ++level) {
-        VkBufferImageCopy r{};
-        r.bufferOffset = size;
-        r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, 1};
-        r.imageExtent = {std::max(1u, image.extent.width >> level), std::max(1u, image.extent.height >> level), 1};
-        regions.push_back(r);
-        size += VkDeviceSize(r.imageExtent.width) * r.imageExtent.height * 4;
-    }
-    vk::BufferDesc desc;
-    desc.size = size;
-    desc.usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-    desc.memory = vk::MemoryUsage::Readback;
-    desc.name = "texture mips readback";
-    vk::Buffer buffer = ctx.createBuffer(desc);
-    ctx.runImmediate([&](VkCommandBuffer cmd) {
-        vk::transitionImage(cmd, image, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-        vkCmdCopyImageToBuffer(cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer.buffer,
-                               uint32_t(regions.size()), regions.data());
-        vk::transitionImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-        VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-        b.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-        b.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-        b.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-        b.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dep.memoryBarrierCount = 1;
-        dep.pMemoryBarriers = &b;
-        vkCmdPipelineBarrier2(cmd, &dep);
-    });
-    if (!buffer.allocation.hostCoherent) {
-        VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE};
-        range.memory = buffer.allocation.memory;
-        range.size = VK_WHOLE_SIZE;
-        vkInvalidateMappedMemoryRanges(ctx.device(), 1, &range);
-    }
-    std::vector<uint8_t> out(size);
-    std::memcpy(out.data(), buffer.mapped(), size);
-    ctx.destroy(buffer);
-    return out;
+// The registry's oracle of a finished stream (texture_stream_support.hpp) as a gtest expectation.
+void expectExact(vk::Context& ctx, const scene::Scene& scene, ReferenceDecodes& decodes, const TextureStreamer& streamer,
+                 const ReadyLog& log) {
+    Verdict v;
+    expectStreamedExactly(v, ctx, scene, decodes, streamer, log);
+    EXPECT_TRUE(v.passed()) << v.messages() << " (" << v.failures() << " failures)";
+}
+void expectExact(vk::Context& ctx, const scene::Scene& scene, const TextureStreamer& streamer, const ReadyLog& log) {
+    expectExact(ctx, scene, decodesOf(scene), streamer, log);
 }
 
-// What the renderer does with onReady, recorded: calls per texture and the indices handed over.
-struct ReadyLog {
-    std::vector<uint32_t> calls;
-    std::vector<vk::SampledIndex> sampled;
-    std::vector<vk::SamplerIndex> samplers;
-    std::vector<uint64_t> frameOfCall;
-    uint64_t frame = 0;
-    explicit ReadyLog(size_t n) : calls(n, 0), sampled(n), samplers(n), frameOfCall(n, 0) {}
-    TextureStreamer::ReadyCallback callback() {
-        return [this](uint32_t t, vk::SampledIndex s, vk::SamplerIndex smp) {
-            ASSERT_LT(t, calls.size());
-            ++calls[t];
-            sampled[t] = s;
-            samplers[t] = smp;
-            frameOfCall[t] = frame;
-        };
-    }
-};
-
-// Checks a finished stream: onReady once per used texture, indices valid, every mip equal to the CPU decode.
-void expectStreamedExactly(vk::Context& ctx, const scene::Scene& scene, const TextureStreamer& streamer,
-                           const ReadyLog& log) {
-    ASSERT_TRUE(streamer.allReady());
-    const auto spaces = streamer.colorSpaces();
-    const uint32_t sampledCapacity = ctx.bindless().capacity(0);
-    for (uint32_t t = 0; t < scene.textures.size(); ++t) {
-        SCOPED_TRACE("texture " + std::to_string(t));
-        if (spaces[t] == scene::TextureColorSpace::Unused) {
-            EXPECT_EQ(log.calls[t], 0u);
-            EXPECT_EQ(streamer.image(t), nullptr);
-            continue;
-        }
-        EXPECT_EQ(log.calls[t], 1u);
-        EXPECT_NE(log.sampled[t].value, UINT32_MAX);
-        EXPECT_LT(log.sampled[t].value, sampledCapacity);
-        EXPECT_NE(log.samplers[t].value, UINT32_MAX);
-        const bool srgb = spaces[t] != scene::TextureColorSpace::Linear;
-        const vk::Image* image = streamer.image(t);
-        ASSERT_NE(image, nullptr);
-        EXPECT_EQ(image->format, srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM);
-        const scene::DecodedTexture& ref = reference(scene, t, srgb);
-        ASSERT_EQ(image->extent.width, ref.width);
-        ASSERT_EQ(image->extent.height, ref.height);
-        ASSERT_EQ(image->mipLevels, ref.mips.size());
-        const std::vector<uint8_t> gpu = readMips(ctx, *image);
-        ASSERT_EQ(gpu.size(), ref.texels.size());
-        for (size_t level = 0; level < ref.mips.size(); ++level) {
-            const scene::MipLevel& m = ref.mips[level];
-            EXPECT_EQ(0, std::memcmp(gpu.data() + m.offset, ref.texels.data() + m.offset, m.size)) << "mip " << level;
-        }
-    }
-}
-
-struct StreamResult {
-    uint64_t frames = 0;             // frames pumped until every streamer was ready
-    uint64_t firstUploadFrame = 0;   // frame of the first onReady
-};
-
-// Pumps empty frames (a FrameRing of two) until every streamer is ready; `perFrame` runs after the pumps,
-// inside the frame's command buffer. Fails after 120 s.
-template <class PerFrame>
-StreamResult pumpUntilReady(vk::Context& ctx, std::vector<TextureStreamer*> streamers, std::vector<ReadyLog*> logs,
-                            PerFrame&& perFrame) {
-    vk::FrameRing frames(ctx, 2);
-    StreamResult result;
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-    for (;;) {
-        bool all = true;
-        for (TextureStreamer* s : streamers) all = all && s->allReady();
-        if (all) break;
-        if (std::chrono::steady_clock::now() > deadline) {
-            ADD_FAILURE() << "textures not ready after 120 s";
-            break;
-        }
-        VkCommandBuffer cmd = frames.begin();
-        for (ReadyLog* l : logs) l->frame = result.frames;
-        for (TextureStreamer* s : streamers) s->pump(cmd);
-        perFrame(cmd, result.frames);
-        frames.end();
-        ++result.frames;
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));  // a frame's worth of other work
-    }
-    return result;
+StreamResult pumpFrames(vk::Context& ctx, const std::vector<TextureStreamer*>& streamers, const std::vector<ReadyLog*>& logs) {
+    const StreamResult r = pumpUntilReady(ctx, streamers, logs);
+    EXPECT_FALSE(r.timedOut) << "textures not ready after 120 s";
+    return r;
 }
 
 class TextureStreamerTest : public GpuTest {};
@@ -185,11 +76,10 @@ TEST_F(TextureStreamerTest, StreamsDamagedHelmetAndBoxTexturedExactly) {
     TextureStreamer helmetStream(ctx(), helmet(), helmetLog.callback());
     TextureStreamer boxStream(ctx(), box(), boxLog.callback());
     EXPECT_FALSE(helmetStream.allReady());
-    const StreamResult r = pumpUntilReady(ctx(), {&helmetStream, &boxStream}, {&helmetLog, &boxLog},
-                                          [](VkCommandBuffer, uint64_t) {});
+    const StreamResult r = pumpFrames(ctx(), {&helmetStream, &boxStream}, {&helmetLog, &boxLog});
     EXPECT_GT(r.frames, 1u);
-    expectStreamedExactly(ctx(), helmet(), helmetStream, helmetLog);
-    expectStreamedExactly(ctx(), box(), boxStream, boxLog);
+    expectExact(ctx(), helmet(), helmetStream, helmetLog);
+    expectExact(ctx(), box(), boxStream, boxLog);
     // DamagedHelmet: five 2048^2 textures (above the 16 MiB budget: dedicated staging); one shared glTF sampler.
     const render::TextureStreamerStats s = helmetStream.stats();
     EXPECT_EQ(s.textures, 5u);
@@ -211,8 +101,8 @@ TEST_F(TextureStreamerTest, SameResultThroughTheStagingRingOnly) {
     options.frameBudget = 32ull << 20;  // every DamagedHelmet texture (22.4 MiB with mips) fits one frame's slice
     ReadyLog log(helmet().textures.size());
     TextureStreamer stream(ctx(), helmet(), log.callback(), options);
-    pumpUntilReady(ctx(), {&stream}, {&log}, [](VkCommandBuffer, uint64_t) {});
-    expectStreamedExactly(ctx(), helmet(), stream, log);
+    pumpFrames(ctx(), {&stream}, {&log});
+    expectExact(ctx(), helmet(), stream, log);
     EXPECT_EQ(stream.stats().dedicatedStagings, 0u);
     EXPECT_EQ(stream.stats().uploadFrames, 5u);  // 2 x 22.4 MiB exceeds the 32 MiB budget: one per frame
 }
@@ -284,7 +174,7 @@ TEST_F(TextureStreamerTest, TinyBudgetArrivesOverSeveralFramesWithValidPlacehold
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
     ASSERT_TRUE(stream.allReady());
-    expectStreamedExactly(ctx(), scene, stream, log);
+    expectExact(ctx(), scene, stream, log);
 
     // Every texture is above the 64 KiB budget: one per frame, each through its own staging buffer.
     const render::TextureStreamerStats s = stream.stats();
@@ -317,9 +207,9 @@ TEST_F(TextureStreamerTest, SameResultOnAContextWithForcedStaging) {
         ReadyLog helmetLog(helmet().textures.size()), boxLog(box().textures.size());
         TextureStreamer helmetStream(forced, helmet(), helmetLog.callback());
         TextureStreamer boxStream(forced, box(), boxLog.callback());
-        pumpUntilReady(forced, {&helmetStream, &boxStream}, {&helmetLog, &boxLog}, [](VkCommandBuffer, uint64_t) {});
-        expectStreamedExactly(forced, helmet(), helmetStream, helmetLog);
-        expectStreamedExactly(forced, box(), boxStream, boxLog);
+        pumpFrames(forced, {&helmetStream, &boxStream}, {&helmetLog, &boxLog});
+        expectExact(forced, helmet(), helmetStream, helmetLog);
+        expectExact(forced, box(), boxStream, boxLog);
     }
     forced.waitIdle();
     EXPECT_EQ(forced.validationErrors(), 0u);
@@ -335,7 +225,7 @@ TEST_F(TextureStreamerTest, FinishSynchronouslyUploadsTheRest) {
         frames.end();
     }
     stream.finishSynchronously();
-    expectStreamedExactly(ctx(), helmet(), stream, log);
+    expectExact(ctx(), helmet(), stream, log);
 }
 
 // Hostile images: each becomes the placeholder, onReady still comes once per texture, and exactly one warning
@@ -373,9 +263,10 @@ TEST_F(TextureStreamerTest, HostileImagesBecomePlaceholdersWithOneWarningEach) {
     ReadyLog log(scene.textures.size());
     {
         TextureStreamer stream(ctx(), scene, log.callback());
-        pumpUntilReady(ctx(), {&stream}, {&log}, [](VkCommandBuffer, uint64_t) {});
+        pumpFrames(ctx(), {&stream}, {&log});
         core::setLogSink({});
-        expectStreamedExactly(ctx(), scene, stream, log);
+        ReferenceDecodes decodes(scene);  // a local scene: not the shared cache
+        expectExact(ctx(), scene, decodes, stream, log);
         const render::TextureStreamerStats s = stream.stats();
         EXPECT_EQ(s.textures, 6u);
         EXPECT_EQ(s.images, 6u);  // the good image twice (sRGB and linear)

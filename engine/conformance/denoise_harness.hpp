@@ -1,24 +1,25 @@
-// denoise_harness.hpp: test support for the denoiser: runs addDenoisePass on the Vulkan device over CPU-made input
-// images (imported into a render graph, result copied back by a readback pass), and builds the synthetic scene
-// the quality tests use: a clean image with albedo, normal and depth edges, a sky band, and seeded noise.
-// Header-only: tests/CMakeLists.txt compiles only *_test.cpp files.
+// denoise_harness.hpp: what the denoiser checks (denoise_checks.cpp) and tests (tests/conformance/denoise/) share:
+// runs addDenoisePass on the Vulkan device over CPU-made input images (imported into a render graph, result copied
+// back by a readback pass), builds the synthetic scene with a known clean image (albedo, normal and depth edges, a
+// sky band, seeded noise, optional per-pixel variance), and compares a GPU result with the CPU oracle.
 #pragma once
 #include <glm/glm.hpp>
 #include <glm/gtc/packing.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <random>
 #include <vector>
 
-#include "denoise_oracle.hpp"
+#include "conformance/denoise_oracle.hpp"
 #include "graph/render_graph.hpp"
 #include "passes/denoise.hpp"
 #include "render/vk_graph_backend.hpp"
 #include "vk/bindless.hpp"
 #include "vk/transfer.hpp"
 
-namespace idk::test {
+namespace idk::conformance {
 
 // Rounds through half precision, as an RGBA16F image stores the values.
 inline std::vector<glm::vec4> roundToHalf(const std::vector<glm::vec4>& v) {
@@ -183,4 +184,35 @@ inline SyntheticScene makeSyntheticScene(uint32_t width, uint32_t height, float 
     return s;
 }
 
-}  // namespace idk::test
+// GPU vs CPU oracle: per channel |gpu - cpu| <= kDenoiseAbs + kDenoiseRel * |cpu|. The two differ by exp/pow
+// rounding and FMA contraction only; 5 iterations of weighted means keep that near 1e-6 relative, 1e-4 leaves room.
+constexpr float kDenoiseRel = 1e-4f, kDenoiseAbs = 1e-5f;
+
+struct DenoiseDiff {
+    float worst = 0.0f;  // largest |gpu - cpu| / (kDenoiseAbs + kDenoiseRel |cpu|): <= 1 passes
+    size_t nonFinite = 0;
+};
+inline DenoiseDiff compareDenoised(const std::vector<glm::vec4>& gpu, const std::vector<glm::vec4>& cpu) {
+    DenoiseDiff d;
+    for (size_t i = 0; i < gpu.size(); ++i)
+        for (int c = 0; c < 4; ++c) {
+            if (!std::isfinite(gpu[i][c])) ++d.nonFinite;
+            d.worst = std::max(d.worst, std::fabs(gpu[i][c] - cpu[i][c]) / (kDenoiseAbs + kDenoiseRel * std::fabs(cpu[i][c])));
+        }
+    return d;
+}
+
+// The synthetic scene's per-pixel variance input: the luminance variance of its multiplicative noise (relative
+// `noise` per channel, independent channels), as the tracer's second moments estimate it; with
+// `someUnknown`, unknown (-1) in the first column so that both branches run.
+inline void addVariance(SyntheticScene& s, float noise, bool someUnknown) {
+    s.noisy.variance.assign(s.clean.size(), 0.0f);
+    for (size_t k = 0; k < s.clean.size(); ++k) {
+        const glm::vec3 c(s.clean[k]);
+        const glm::vec3 w(0.2126f, 0.7152f, 0.0722f);
+        const glm::vec3 sd = noise * c * w;
+        s.noisy.variance[k] = someUnknown && k % s.noisy.width == 0 ? -1.0f : glm::dot(sd, sd);
+    }
+}
+
+}  // namespace idk::conformance

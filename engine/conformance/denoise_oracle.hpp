@@ -1,7 +1,6 @@
 // denoise_oracle.hpp: the CPU oracle of the denoiser (engine/passes/denoise.cpp, shaders_glsl/denoise/*): the same
 // prepare / a-trous / remodulate loops in the same order over the same per-pixel math (shaders_glsl/shared/
 // denoise_filter.h compiled as C++), so the GPU result must match it up to float rounding (exp/pow ulps, FMA).
-// Header-only: tests/CMakeLists.txt compiles only *_test.cpp files.
 #pragma once
 #include <glm/glm.hpp>
 
@@ -12,7 +11,7 @@
 #include "passes/denoise.hpp"
 #include "shared/denoise_filter.h"
 
-namespace idk::test {
+namespace idk::conformance {
 
 struct DenoiseImages {
     uint32_t width = 0, height = 0;
@@ -187,4 +186,4 @@ private:
     int w_, h_;
 };
 
-}  // namespace idk::test
+}  // namespace idk::conformance

@@ -1,0 +1,42 @@
+// vrs_classify_support.hpp: what the shading-rate classifier check (vrs_checks.cpp) and its asset-based test
+// (tests/conformance/vrs/) share: an HDR frame the renderer produced with a camera-like velocity field, at a size
+// that leaves partial tiles, the edge-case tiles patched into it, the GPU classifier (vrs/classify.comp.glsl) run
+// on it, and the comparison with its CPU oracle (frame::classifyTilesCpu): identical rates per tile, except that a
+// tile within 1e-5 (relative) of a rounding boundary may differ by one (at most one such tile per comparison).
+#pragma once
+#include <glm/glm.hpp>
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "conformance/conformance.hpp"
+#include "passes/vrs_passes.hpp"
+#include "scene/scene.hpp"
+
+namespace idk::conformance {
+
+constexpr uint32_t kVrsWidth = 200, kVrsHeight = 136;  // not multiples of 16 or 32: partial tiles
+
+struct VrsFrame {
+    std::vector<glm::vec4> lit;  // as stored in RGBA16F
+    std::vector<glm::vec2> velocity;
+};
+
+// An HDR frame of the scene (values exactly as the RGBA16F target held them) and a velocity field: a rotation
+// about the image centre plus a zoom, up to ~0.008 UV per frame (0.5 UV/s at 60 Hz).
+VrsFrame recordVrsFrame(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene::Scene& scene);
+
+// Edge cases in tiles of 32 pixels (each covers whole tiles of every tested size), row 0 lit, row 1 velocity: zero
+// luminance, constant colour, NaN, +inf, 65504/0.01, negative radiance; velocity 1e6 and NaN; mean below 0.001.
+void patchVrsEdgeCases(VrsFrame& f);
+
+// The GPU classifier's rate per tile (row-major tiles).
+std::vector<uint32_t> classifyOnGpu(vk::Context& ctx, vk::ShaderLibrary& shaders, const VrsFrame& f,
+                                    const passes::VrsClassifyParams& params);
+
+// GPU vs CPU oracle on every tile, recorded in v; returns the histogram of the oracle's rates (1x1 .. 4x4).
+std::array<int, 5> expectClassifierMatches(Verdict& v, vk::Context& ctx, vk::ShaderLibrary& shaders, const VrsFrame& f,
+                                           const passes::VrsClassifyParams& params, const std::string& what);
+
+}  // namespace idk::conformance

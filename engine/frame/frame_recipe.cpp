@@ -53,11 +53,16 @@ graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Fe
     x.vrs.beginFrame(f);                                              // f.vrsRates: last frame's shading rates
     x.ssao.addPasses(f);                                              // f.ambientOcclusion
     x.vxgi.addConeTracing(f);                                         // f.indirectLight (--gi vxgi)
-    f.hdr = passes::addDeferredLightingPass(
-        f.graph, f.ctx, f.shaders, f.gbuffer, f.frameConstants, f.scene.lights, f.environment, hdrTarget(f),
-        {f.pointShadows, f.scene.materials, f.vrsRates, f.ambientOcclusion, f.indirectLight});
-    f.hdr = passes::addSkyPass(f.graph, f.ctx, f.shaders, f.gbuffer.depth, f.frameConstants, f.environment, f.hdr,
-                               f.vrsRates);
+    const passes::LightingInputs lighting{f.pointShadows, f.scene.materials, f.vrsRates, f.ambientOcclusion,
+                                          f.indirectLight};
+    if (x.vrs.hardwareRung()) {
+        f.hdr = x.vrs.addHardwareLighting(f, hdrTarget(f), lighting);  // VRS hardware rung: lighting + sky, fragment
+    } else {
+        f.hdr = passes::addDeferredLightingPass(f.graph, f.ctx, f.shaders, f.gbuffer, f.frameConstants, f.scene.lights,
+                                                f.environment, hdrTarget(f), lighting);
+        f.hdr = passes::addSkyPass(f.graph, f.ctx, f.shaders, f.gbuffer.depth, f.frameConstants, f.environment,
+                                   f.hdr, f.vrsRates);
+    }
     x.vrs.addReconstructPass(f);                                      // VRS: fills the pixels not shaded
     x.transparency.addPasses(f, scene);                               // blends into f.hdr
     x.volumetrics.addPasses(f, scene);                                // fogs f.hdr (--volumetrics)

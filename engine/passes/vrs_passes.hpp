@@ -48,6 +48,9 @@ graph::TextureHandle addVrsOverlayPass(graph::RenderGraph& graph, vk::Context& c
 // The hardware rungs (frame/vrs_feature.cpp drives them when the "vrs" ladder chose a native rung).
 // vrs_rate_image.cpp: the rates as an R8_UINT image, one texel per tile, in the KHR or NV encoding; returns it in
 // the state of its copy (the lighting pass reads it as its shading-rate attachment / image).
+// Records the conversion alone (tests): `texels` receives (tiles + 3) / 4 uints, byte i = tile i's texel.
+void recordVrsRateTexels(VkCommandBuffer cmd, vk::Context& ctx, vk::ShaderLibrary& shaders, VkDeviceAddress rates,
+                         VkDeviceAddress texels, uint32_t tiles, bool nvEncoding);
 graph::TextureHandle addVrsRateImagePass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                          graph::BufferHandle rates, uint32_t tilesX, uint32_t tilesY, bool nvEncoding);
 

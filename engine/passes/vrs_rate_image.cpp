@@ -9,6 +9,22 @@
 
 namespace idk::passes {
 
+void recordVrsRateTexels(VkCommandBuffer cmd, vk::Context& ctx, vk::ShaderLibrary& shaders, VkDeviceAddress rates,
+                         VkDeviceAddress texels, uint32_t tiles, bool nvEncoding) {
+    vk::ComputePipelineDesc desc;
+    desc.shader = vk::ShaderId::vrs_rate_image_comp;
+    desc.pushBytes = sizeof(gpu::VrsRateImagePush);
+    desc.localSize = {gpu::kVrsRateImageGroupSize, 1, 1};
+    vk::bindPipeline(cmd, shaders.compute(desc));
+    gpu::VrsRateImagePush push{};
+    push.rates = rates;
+    push.texels = texels;
+    push.tiles = tiles;
+    push.encoding = nvEncoding ? gpu::kVrsEncodingNv : gpu::kVrsEncodingKhr;
+    vk::pushConstants(cmd, ctx, push);
+    vkCmdDispatch(cmd, vk::groupCount((tiles + 3) / 4, gpu::kVrsRateImageGroupSize), 1, 1);
+}
+
 graph::TextureHandle addVrsRateImagePass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                          graph::BufferHandle rates, uint32_t tilesX, uint32_t tilesY, bool nvEncoding) {
     const uint32_t tiles = tilesX * tilesY, words = (tiles + 3) / 4;
@@ -22,20 +38,9 @@ graph::TextureHandle addVrsRateImagePass(graph::RenderGraph& graph, vk::Context&
             b.read(rates, graph::Access::StorageRead);
             *packed = b.write(texels, graph::Access::StorageWrite);
         },
-        [&ctx, &shaders, rates, packed, tiles, words, nvEncoding](graph::PassContext& pc) {
-            VkCommandBuffer cmd = pc.commandBuffer();
-            vk::ComputePipelineDesc desc;
-            desc.shader = vk::ShaderId::vrs_rate_image_comp;
-            desc.pushBytes = sizeof(gpu::VrsRateImagePush);
-            desc.localSize = {gpu::kVrsRateImageGroupSize, 1, 1};
-            vk::bindPipeline(cmd, shaders.compute(desc));
-            gpu::VrsRateImagePush push{};
-            push.rates = pc.buffer(rates).address;
-            push.texels = pc.buffer(*packed).address;
-            push.tiles = tiles;
-            push.encoding = nvEncoding ? gpu::kVrsEncodingNv : gpu::kVrsEncodingKhr;
-            vk::pushConstants(cmd, ctx, push);
-            vkCmdDispatch(cmd, vk::groupCount(words, gpu::kVrsRateImageGroupSize), 1, 1);
+        [&ctx, &shaders, rates, packed, tiles, nvEncoding](graph::PassContext& pc) {
+            recordVrsRateTexels(pc.commandBuffer(), ctx, shaders, pc.buffer(rates).address, pc.buffer(*packed).address,
+                                tiles, nvEncoding);
         });
 
     graph::TextureDesc desc;

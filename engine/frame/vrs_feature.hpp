@@ -25,6 +25,8 @@ public:
 
     // Before lighting: last frame's rates into f.vrsRates (invalid when VRS is off).
     void beginFrame(FrameContext& f);
+    // Whether VRS on this device takes a hardware rung (its lighting renders the HDR target as a colour attachment).
+    static bool usesHardwareRung(const vk::Context& ctx) { return ctx.ladder("vrs").chosen == vk::Rung::Native; }
     // True when a hardware rung shades this frame's lighting and sky (addHardwareLighting replaces both passes).
     bool hardwareRung() const noexcept { return hardware_ != vk::ShadingRateSource::None; }
     // Hardware rungs: lighting + sky into `target` at the rates of f.vrsRates; returns the lit image.

@@ -56,12 +56,16 @@ graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Fe
     x.ssao.addPasses(f);                                              // f.ambientOcclusion
     x.vxgi.addConeTracing(f);                                         // f.indirectLight (--gi vxgi)
     x.ssr.addPasses(f);                                               // f.reflections (--ssr)
-    f.hdr = passes::addDeferredLightingPass(
-        f.graph, f.ctx, f.shaders, f.gbuffer, f.frameConstants, f.scene.lights, f.environment, hdrTarget(f),
-        {f.pointShadows, f.scene.materials, f.vrsRates, f.ambientOcclusion, f.indirectLight,
-         f.reflections});
-    f.hdr = passes::addSkyPass(f.graph, f.ctx, f.shaders, f.gbuffer.depth, f.frameConstants, f.environment, f.hdr,
-                               f.vrsRates);
+    const passes::LightingInputs lighting{f.pointShadows, f.scene.materials, f.vrsRates, f.ambientOcclusion,
+                                          f.indirectLight, f.reflections};
+    if (x.vrs.hardwareRung()) {
+        f.hdr = x.vrs.addHardwareLighting(f, hdrTarget(f), lighting);  // VRS hardware rung: lighting + sky, fragment
+    } else {
+        f.hdr = passes::addDeferredLightingPass(f.graph, f.ctx, f.shaders, f.gbuffer, f.frameConstants, f.scene.lights,
+                                                f.environment, hdrTarget(f), lighting);
+        f.hdr = passes::addSkyPass(f.graph, f.ctx, f.shaders, f.gbuffer.depth, f.frameConstants, f.environment,
+                                   f.hdr, f.vrsRates);
+    }
     x.vrs.addReconstructPass(f);                                      // VRS: fills the pixels not shaded
     x.upscale.keepOpaque(f, x.transparency.enabled());                // upscaler: the reactive term's reference
     x.transparency.addPasses(f, scene);                               // blends into f.hdr

@@ -12,6 +12,7 @@
 #include "frame/vrs_oracle.hpp"
 #include "passes/vrs_passes.hpp"
 #include "shared/deferred_types.h"
+#include "vk/shading_rate.hpp"
 #include "vk/transfer.hpp"
 
 namespace idk::frame {
@@ -24,7 +25,9 @@ VrsFeature::~VrsFeature() { release(); }
 void VrsFeature::release() {
     if (rates_) ctx_.destroyDeferred(rates_);
     for (vk::Buffer& b : readback_) ctx_.destroyDeferred(b);
+    for (vk::Buffer& b : invocationReadback_) ctx_.destroyDeferred(b);
     readback_.clear();
+    invocationReadback_.clear();
     rates_ = {};
 }
 
@@ -32,18 +35,28 @@ void VrsFeature::beginFrame(FrameContext& f) {
     lastEnabled_ = f.settings.vrs.enabled;
     width_ = f.width;
     height_ = f.height;
+    hardware_ = vk::ShadingRateSource::None;
     if (!lastEnabled_) {
         release();
         hasPrevious_ = false;
         return;
     }
-    // The software rung is the only one the frame runs (vk/features.cpp says why); consulting the ladder puts it in
-    // --json's "rungs". A hardware rung would take its tile from the device's shading-rate texel size.
-    f.ctx.ladder("vrs");
-    const uint32_t tileSize = gpu::kVrsDefaultTileSize;  // the software rung's tile (the original's 16x16)
+    // Consulting the ladder also puts it in --json's "rungs". A hardware rung's tile is the device's rate texel
+    // (vk/shading_rate.hpp; the ladder offers the rung only where one fits the classifier); the software rung's is
+    // the original's 16x16.
+    const vk::Ladder& ladder = f.ctx.ladder("vrs");
+    const vk::DeviceCapabilities& caps = f.ctx.capabilities();
+    uint32_t tileSize = gpu::kVrsDefaultTileSize;
+    if (ladder.chosen == vk::Rung::Native && ladder.chosenMechanism == "VK_NV_shading_rate_image") {
+        hardware_ = vk::ShadingRateSource::NvImage;
+        tileSize = vk::nvShadingRateTile(caps.shadingRateTexelNv).size;
+    } else if (ladder.chosen == vk::Rung::Native) {
+        hardware_ = vk::ShadingRateSource::KhrAttachment;
+        tileSize = vk::khrShadingRateTile(caps.shadingRateAttachmentTexel).size;
+    }
     const uint32_t tilesX = (f.width + tileSize - 1) / tileSize, tilesY = (f.height + tileSize - 1) / tileSize;
     if (!rates_ || tilesX * tilesY != tiles_ || tilesX != tilesX_ || tileSize != tileSize_ ||
-        readback_.size() != f.framesInFlight) {
+        readback_.size() != f.framesInFlight || invocationReadback_.size() != (hardwareRung() ? f.framesInFlight : 0)) {
         release();
         tileSize_ = tileSize;
         tilesX_ = tilesX;
@@ -56,8 +69,12 @@ void VrsFeature::beginFrame(FrameContext& f) {
         const VkDeviceSize bytes = init.size() * sizeof(uint32_t);
         rates_ = vk::createBufferWithData(ctx_, {bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::GpuOnly,
                                                  "vrs rates", "vrs"}, init.data(), bytes);
-        for (uint32_t i = 0; i < f.framesInFlight; ++i)
+        for (uint32_t i = 0; i < f.framesInFlight; ++i) {
             readback_.push_back(ctx_.createBuffer({bytes, 0, vk::MemoryUsage::Readback, "vrs rates readback", "vrs"}));
+            if (hardwareRung())
+                invocationReadback_.push_back(
+                    ctx_.createBuffer({4, 0, vk::MemoryUsage::Readback, "vrs invocations readback", "vrs"}));
+        }
     }
     // Last written by the previous frame's classifier (a compute storage write).
     f.vrsRates = importBuffer(f.graph, "vrs rates", rates_,
@@ -84,13 +101,13 @@ void VrsFeature::beginFrame(FrameContext& f) {
             vkCmdCopyBuffer(pc.commandBuffer(), pc.vkBuffer(rates), pc.vkBuffer(*copied), 1, &region);
         });
     f.graph.markOutput(*copied);
-    if (f.settings.vrs.testShadedOnly && f.settings.output == render::OutputKind::Hdr)
+    if (f.settings.vrs.testShadedOnly && f.settings.output == render::OutputKind::Hdr && !hardwareRung())
         f.output = passes::addVrsReconstructPass(f.graph, f.ctx, f.shaders, f.gbuffer, f.frameConstants, f.vrsRates,
                                                  f.output, true);
 }
 
 void VrsFeature::addReconstructPass(FrameContext& f) {
-    if (!f.vrsRates.valid() || f.settings.vrs.testShadedOnly) return;
+    if (!f.vrsRates.valid() || f.settings.vrs.testShadedOnly || hardwareRung()) return;
     f.hdr = passes::addVrsReconstructPass(f.graph, f.ctx, f.shaders, f.gbuffer, f.frameConstants, f.vrsRates, f.hdr);
 }
 
@@ -138,6 +155,7 @@ std::vector<uint32_t> VrsFeature::lastRates() const {
 
 uint64_t VrsFeature::lastShadingInvocations() const {
     if (!lastEnabled_) return uint64_t(width_) * height_;
+    if (hardwareRung()) return vk::downloadBuffer<uint32_t>(ctx_, invocationReadback_[lastSlot_], 1)[0];
     return vrsShadingInvocations(lastRates(), tilesX_, tileSize_, width_, height_);
 }
 

@@ -88,6 +88,12 @@ constexpr std::array<Row, kAccessCount> kTable{{
     {Access::HostRead,
      kInvalid,
      {true, VK_PIPELINE_STAGE_2_HOST_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED, false}},
+    // SYNC: the rasterizer reads the rate texels in their own stage; VK_NV_shading_rate_image's stage, access and
+    // layout (SHADING_RATE_IMAGE_BIT_NV, SHADING_RATE_IMAGE_READ_BIT_NV, SHADING_RATE_OPTIMAL_NV) are aliases of these.
+    {Access::ShadingRateRead,
+     {true, VK_PIPELINE_STAGE_2_FRAGMENT_SHADING_RATE_ATTACHMENT_BIT_KHR, VK_PIPELINE_STAGE_2_FRAGMENT_SHADING_RATE_ATTACHMENT_BIT_KHR | kGraphicsOrAll,
+      VK_ACCESS_2_FRAGMENT_SHADING_RATE_ATTACHMENT_READ_BIT_KHR, VK_IMAGE_LAYOUT_FRAGMENT_SHADING_RATE_ATTACHMENT_OPTIMAL_KHR, false},
+     kInvalid},
 }};
 // clang-format on
 
@@ -119,6 +125,7 @@ VkImageUsageFlags imageUsageFor(Access access) noexcept {
         case Access::DepthRead: return VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
         case Access::TransferSrc: return VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
         case Access::TransferDst: return VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+        case Access::ShadingRateRead: return VK_IMAGE_USAGE_FRAGMENT_SHADING_RATE_ATTACHMENT_BIT_KHR;
         default: return 0;
     }
 }
@@ -155,6 +162,7 @@ std::string_view toString(Access access) noexcept {
         case Access::TransferDst: return "TransferDst";
         case Access::Present: return "Present";
         case Access::HostRead: return "HostRead";
+        case Access::ShadingRateRead: return "ShadingRateRead";
     }
     return "?";
 }

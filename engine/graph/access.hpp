@@ -25,8 +25,9 @@ enum class Access : uint8_t {
     TransferDst,       // copy/blit/clear/fill destination
     Present,           // handed to the presentation engine (images only; final state of a swapchain image)
     HostRead,          // read by the CPU after the frame's fence (buffers only)
+    ShadingRateRead,   // fragment shading-rate attachment (KHR) or shading-rate image (NV; same stage/access/layout values)
 };
-inline constexpr uint32_t kAccessCount = static_cast<uint32_t>(Access::HostRead) + 1;
+inline constexpr uint32_t kAccessCount = static_cast<uint32_t>(Access::ShadingRateRead) + 1;
 
 enum class ResourceKind : uint8_t { Image, Buffer };
 

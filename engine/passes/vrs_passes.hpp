@@ -7,6 +7,7 @@
 #include "graph/render_graph.hpp"
 #include "passes/passes.hpp"
 #include "shared/vrs_types.h"
+#include "vk/pipeline.hpp"
 
 namespace idk::passes {
 
@@ -43,5 +44,31 @@ graph::TextureHandle addVrsReconstructPass(graph::RenderGraph& graph, vk::Contex
 // vrs_overlay.cpp: tints `target` by the rates (--vrs-debug); returns its new version.
 graph::TextureHandle addVrsOverlayPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                        graph::BufferHandle rates, graph::TextureHandle target);
+
+// The hardware rungs (frame/vrs_feature.cpp drives them when the "vrs" ladder chose a native rung).
+// vrs_rate_image.cpp: the rates as an R8_UINT image, one texel per tile, in the KHR or NV encoding; returns it in
+// the state of its copy (the lighting pass reads it as its shading-rate attachment / image).
+// Records the conversion alone (tests): `texels` receives (tiles + 3) / 4 uints, byte i = tile i's texel.
+void recordVrsRateTexels(VkCommandBuffer cmd, vk::Context& ctx, vk::ShaderLibrary& shaders, VkDeviceAddress rates,
+                         VkDeviceAddress texels, uint32_t tiles, bool nvEncoding);
+graph::TextureHandle addVrsRateImagePass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                         graph::BufferHandle rates, uint32_t tilesX, uint32_t tilesY, bool nvEncoding);
+
+// What vrs_lighting_rate.cpp reads: the compute lighting's inputs plus the rate image and the invocation counter.
+struct VrsHardwareLighting {
+    GBufferOutputs gbuffer;
+    graph::BufferHandle frame, lights;
+    graph::TextureHandle environment;
+    LightingInputs inputs;            // inputs.vrsRates must be valid (the anchor of each fragment's cell)
+    graph::TextureHandle rateImage;   // addVrsRateImagePass
+    uint32_t texelSize = 16;          // pixels per rate texel side (= the classifier's tile)
+    vk::ShadingRateSource source = vk::ShadingRateSource::KhrAttachment;
+    graph::BufferHandle invocations;  // uint, zeroed before: the fragment invocations are added to it
+};
+// Lighting + sky as one fullscreen fragment pass at the hardware rates into `target`; returns its new version and
+// sets `countedInvocations` to the counter's version after the pass.
+graph::TextureHandle addVrsLightingRatePass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                            const VrsHardwareLighting& in, graph::TextureHandle target,
+                                            graph::BufferHandle& countedInvocations);
 
 }  // namespace idk::passes

@@ -86,6 +86,8 @@ struct FeatureChain {
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_2_FEATURES_EXT};
     VkPhysicalDeviceFragmentShadingRateFeaturesKHR shadingRate{
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FRAGMENT_SHADING_RATE_FEATURES_KHR};
+    VkPhysicalDeviceShadingRateImageFeaturesNV shadingRateNv{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADING_RATE_IMAGE_FEATURES_NV};
     VkPhysicalDeviceRayQueryFeaturesKHR rayQuery{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
     VkPhysicalDeviceAccelerationStructureFeaturesKHR accel{
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
@@ -105,6 +107,7 @@ struct FeatureChain {
         append(VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME, atomicFloat);
         append(VK_EXT_SHADER_ATOMIC_FLOAT_2_EXTENSION_NAME, atomicFloat2);
         append(VK_KHR_FRAGMENT_SHADING_RATE_EXTENSION_NAME, shadingRate);
+        append(VK_NV_SHADING_RATE_IMAGE_EXTENSION_NAME, shadingRateNv);
         if (contains(exts, VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME) &&
             contains(exts, VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME)) {
             append(VK_KHR_RAY_QUERY_EXTENSION_NAME, rayQuery);
@@ -113,6 +116,34 @@ struct FeatureChain {
         *tail = nullptr;
     }
 };
+
+// The device extensions to enable: every optional one present, VRS only for the mechanism the ladder chose.
+// The names are the headers' string literals (static storage: Context keeps the pointers).
+std::vector<const char*> enabledExtensions(const std::vector<std::string>& exts, const std::vector<Ladder>& ladders,
+                                           bool presentation) {
+    std::string vrs;
+    for (const Ladder& l : ladders)
+        if (l.id == "vrs" && l.chosen == Rung::Native) vrs = l.chosenMechanism;
+    std::vector<const char*> enabled;
+    auto enableIf = [&](const char* name) {
+        if (contains(exts, name)) enabled.push_back(name);
+    };
+    if (presentation) enabled.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+    enableIf(VK_EXT_MESH_SHADER_EXTENSION_NAME);
+    enableIf(VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME);
+    enableIf(VK_EXT_SHADER_ATOMIC_FLOAT_2_EXTENSION_NAME);
+    if (vrs == VK_KHR_FRAGMENT_SHADING_RATE_EXTENSION_NAME) enableIf(VK_KHR_FRAGMENT_SHADING_RATE_EXTENSION_NAME);
+    if (vrs == VK_NV_SHADING_RATE_IMAGE_EXTENSION_NAME) enableIf(VK_NV_SHADING_RATE_IMAGE_EXTENSION_NAME);
+    enableIf(VK_EXT_CONSERVATIVE_RASTERIZATION_EXTENSION_NAME);
+    enableIf(VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME);
+    if (contains(exts, VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME) &&
+        contains(exts, VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME)) {
+        enableIf(VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME);
+        enableIf(VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME);
+        enableIf(VK_KHR_RAY_QUERY_EXTENSION_NAME);
+    }
+    return enabled;
+}
 
 // The Vulkan 1.3 baseline of DESIGN.md. Returns the names of missing features (empty = suitable).
 std::vector<std::string> missingBaseline(const FeatureChain& f, uint32_t apiVersion) {
@@ -343,6 +374,18 @@ void Context::createDevice() {
     VkPhysicalDeviceVulkan12Properties p12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_PROPERTIES, &p11};
     VkPhysicalDeviceVulkan13Properties p13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_PROPERTIES, &p12};
     VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &p13};
+    // The VRS hardware rungs' texel sizes, chained only where the extension exists (vk/shading_rate.hpp).
+    VkPhysicalDeviceFragmentShadingRatePropertiesKHR rateKhr{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FRAGMENT_SHADING_RATE_PROPERTIES_KHR};
+    VkPhysicalDeviceShadingRateImagePropertiesNV rateNv{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADING_RATE_IMAGE_PROPERTIES_NV};
+    if (contains(exts, VK_KHR_FRAGMENT_SHADING_RATE_EXTENSION_NAME)) {
+        rateKhr.pNext = p11.pNext;
+        p11.pNext = &rateKhr;
+    }
+    if (contains(exts, VK_NV_SHADING_RATE_IMAGE_EXTENSION_NAME)) {
+        rateNv.pNext = p11.pNext;
+        p11.pNext = &rateNv;
+    }
     vkGetPhysicalDeviceProperties2(physical_, &props);
     info_.name = props.properties.deviceName;
     info_.driverName = p12.driverName;
@@ -374,7 +417,11 @@ void Context::createDevice() {
     caps_.meshShaderExt = supported.mesh.meshShader && supported.mesh.taskShader;
     caps_.meshShaderNv = contains(exts, "VK_NV_mesh_shader");
     caps_.fragmentShadingRate = supported.shadingRate.attachmentFragmentShadingRate;
-    caps_.shadingRateImageNv = contains(exts, "VK_NV_shading_rate_image");
+    caps_.shadingRateImageNv = supported.shadingRateNv.shadingRateImage;
+    caps_.shadingRateAttachmentTexel = {rateKhr.minFragmentShadingRateAttachmentTexelSize,
+                                        rateKhr.maxFragmentShadingRateAttachmentTexelSize,
+                                        rateKhr.maxFragmentShadingRateAttachmentTexelSizeAspectRatio};
+    caps_.shadingRateTexelNv = rateNv.shadingRateTexelSize;
     caps_.rayQuery = supported.rayQuery.rayQuery && supported.accel.accelerationStructure;
     caps_.imageFloat32AtomicAdd = supported.atomicFloat.shaderImageFloat32AtomicAdd;
     caps_.imageFloat32AtomicMinMax = supported.atomicFloat2.shaderImageFloat32AtomicMinMax;
@@ -404,9 +451,12 @@ void Context::createDevice() {
     }
     if (queueFamily_ == UINT32_MAX) throw std::runtime_error(info_.name + " has no graphics+compute queue family");
 
-    // Enable: the baseline, plus every optional feature the device has (all are free to enable).
+    // Enable: the baseline, plus every optional feature the device has (all are free to enable), except VRS:
+    // only the mechanism the "vrs" ladder chose (the NV shading-rate image and the KHR fragment shading rates must
+    // not be enabled together, VUID-VkDeviceCreateInfo-shadingRateImage-04478..04480).
+    const std::vector<const char*> enabled = enabledExtensions(exts, ladders_, desc_.presentation);
     FeatureChain enable;
-    enable.link(exts);
+    enable.link(std::vector<std::string>(enabled.begin(), enabled.end()));
     VkPhysicalDeviceFeatures& c = enable.core.features;
     const VkPhysicalDeviceFeatures& s = supported.core.features;
     c.multiDrawIndirect = VK_TRUE;
@@ -469,26 +519,10 @@ void Context::createDevice() {
     enable.atomicFloat2.shaderBufferFloat32AtomicMinMax = supported.atomicFloat2.shaderBufferFloat32AtomicMinMax;
     enable.shadingRate.attachmentFragmentShadingRate = supported.shadingRate.attachmentFragmentShadingRate;
     enable.shadingRate.pipelineFragmentShadingRate = supported.shadingRate.pipelineFragmentShadingRate;
+    enable.shadingRateNv.shadingRateImage = supported.shadingRateNv.shadingRateImage;
     enable.rayQuery.rayQuery = supported.rayQuery.rayQuery;
     enable.accel.accelerationStructure = supported.accel.accelerationStructure;
 
-    std::vector<const char*> enabled;
-    auto enableIf = [&](const char* name) {
-        if (contains(exts, name)) enabled.push_back(name);
-    };
-    if (desc_.presentation) enabled.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
-    enableIf(VK_EXT_MESH_SHADER_EXTENSION_NAME);
-    enableIf(VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME);
-    enableIf(VK_EXT_SHADER_ATOMIC_FLOAT_2_EXTENSION_NAME);
-    enableIf(VK_KHR_FRAGMENT_SHADING_RATE_EXTENSION_NAME);
-    enableIf(VK_EXT_CONSERVATIVE_RASTERIZATION_EXTENSION_NAME);
-    enableIf(VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME);
-    if (contains(exts, VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME) &&
-        contains(exts, VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME)) {
-        enableIf(VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME);
-        enableIf(VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME);
-        enableIf(VK_KHR_RAY_QUERY_EXTENSION_NAME);
-    }
     enabledDeviceExtensions_ = enabled;
 
     float priority = 1.0f;

@@ -28,10 +28,13 @@ namespace {
 
 std::string missing(bool available, const char* what) { return available ? "" : std::string("device lacks ") + what; }
 
-std::string vrsHardwareNote(bool available, const char* extension) {
-    return available ? std::string("not wired: the frame lights in compute (no fragment lighting pass for ") +
-                           extension + " yet)"
-                     : std::string("device lacks ") + extension;
+// A VRS hardware rung: available when the device has the mechanism and a texel size the classifier can tile by
+// (vk/shading_rate.hpp); the note names the tile, or what is missing.
+RungOption vrsHardwareOption(bool has, const char* extension, const char* feature, const ShadingRateTile& tile) {
+    if (!has) return {Rung::Native, extension, false, std::string("device lacks ") + extension + " (" + feature + ")"};
+    if (tile.size == 0) return {Rung::Native, extension, false, tile.error};
+    const std::string t = std::to_string(tile.size);
+    return {Rung::Native, extension, true, "fragment lighting + sky at " + t + "x" + t + " rate texels"};
 }
 
 // Why a GL-interop rung is unavailable (the probe's reason, or the GL extension the context lacks), or what
@@ -53,12 +56,12 @@ std::vector<Ladder> ladderTable(const DeviceCapabilities& c) {
         {{Rung::Native, "VK_EXT_mesh_shader", c.meshShaderExt, missing(c.meshShaderExt, "VK_EXT_mesh_shader")},
          {Rung::Fallback, "multi-draw-indirect with count", true, ""}}));
     ladders.push_back(ladder("vrs", "variable-rate shading",
-        // The hardware rungs need the lighting and sky as fragment passes with a shading-rate attachment; the frame
-        // shades them in compute today, so they stay unavailable (the note says which) until that pass exists.
-        {{Rung::Native, "VK_KHR_fragment_shading_rate", false,
-          vrsHardwareNote(c.fragmentShadingRate, "VK_KHR_fragment_shading_rate")},
-         {Rung::Native, "VK_NV_shading_rate_image", false,
-          vrsHardwareNote(c.shadingRateImageNv, "VK_NV_shading_rate_image")},
+        // The hardware rungs light and draw the sky in a fragment pass whose rates come from a rate image
+        // (frame/vrs_hardware.cpp); the fallback shades in compute and reconstructs.
+        {vrsHardwareOption(c.fragmentShadingRate, "VK_KHR_fragment_shading_rate", "attachmentFragmentShadingRate",
+                           khrShadingRateTile(c.shadingRateAttachmentTexel)),
+         vrsHardwareOption(c.shadingRateImageNv, "VK_NV_shading_rate_image", "shadingRateImage",
+                           nvShadingRateTile(c.shadingRateTexelNv)),
          {Rung::Fallback, "compute-side coarse shading", true, ""}}));
     ladders.push_back(ladder("vxgi-atomics", "voxel radiance atomics (VXGI)",
         {{Rung::Native, "float32 image atomic add", c.imageFloat32AtomicAdd,

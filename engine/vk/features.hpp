@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "vk/shading_rate.hpp"
+
 namespace idk::vk {
 
 // Optional device capabilities detected at start-up (the baseline ones are required and not listed).
@@ -39,6 +41,9 @@ struct DeviceCapabilities {
     uint32_t minSubgroupSize = 0;
     uint32_t maxSubgroupSize = 0;
     bool cpuDevice = false;               // VK_PHYSICAL_DEVICE_TYPE_CPU (lavapipe): "native" runs in software
+    // The VRS hardware rungs' texel sizes (vk/shading_rate.hpp picks the classifier's tile from them).
+    ShadingRateTexelLimits shadingRateAttachmentTexel;  // VK_KHR_fragment_shading_rate
+    VkExtent2D shadingRateTexelNv{0, 0};                // VK_NV_shading_rate_image
 };
 
 enum class Rung : uint8_t { Native, GlInterop, Fallback };

@@ -2,10 +2,14 @@
 // viewport and scissor; no vertex input: every vertex shader pulls its data through bindless buffers).
 #include "vk/pipeline.hpp"
 
+#include <array>
+
 #include "core/log.hpp"
 #include "shared/bindings.h"
+#include "shared/vrs_types.h"
 #include "vk/check.hpp"
 #include "vk/context.hpp"
+#include "vk/shading_rate.hpp"
 
 namespace idk::vk {
 namespace {
@@ -154,10 +158,22 @@ VkPipeline createGraphicsPipeline(Context& ctx, std::span<const GraphicsStageCod
     blend.attachmentCount = static_cast<uint32_t>(blends.size());
     blend.pAttachments = blends.data();
 
-    VkDynamicState dynamicStates[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    VkDynamicState dynamicStates[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR,
+                                      VK_DYNAMIC_STATE_FRAGMENT_SHADING_RATE_KHR};
     VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-    dynamic.dynamicStateCount = 2;
+    // KHR attachment rates: the combiner ops are dynamic state (vkCmdSetFragmentShadingRateKHR in the pass).
+    dynamic.dynamicStateCount = desc.shadingRate == ShadingRateSource::KhrAttachment ? 3 : 2;
     dynamic.pDynamicStates = dynamicStates;
+    // NV shading-rate image: the palette lives in the viewport state; texel value i selects palette entry i.
+    std::array<VkShadingRatePaletteEntryNV, gpu::kVrsRateCount> paletteEntries{};
+    for (uint32_t i = 0; i < gpu::kVrsRateCount; ++i) paletteEntries[i] = nvPaletteEntry(i);
+    VkShadingRatePaletteNV palette{gpu::kVrsRateCount, paletteEntries.data()};
+    VkPipelineViewportShadingRateImageStateCreateInfoNV nvRates{
+        VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_SHADING_RATE_IMAGE_STATE_CREATE_INFO_NV};
+    nvRates.shadingRateImageEnable = VK_TRUE;
+    nvRates.viewportCount = 1;
+    nvRates.pShadingRatePalettes = &palette;
+    if (desc.shadingRate == ShadingRateSource::NvImage) viewport.pNext = &nvRates;
 
     // Dynamic rendering: the attachment formats replace a VkRenderPass.
     VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
@@ -167,6 +183,10 @@ VkPipeline createGraphicsPipeline(Context& ctx, std::span<const GraphicsStageCod
     rendering.depthAttachmentFormat = desc.depthFormat;
 
     VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering};
+    // Dynamic rendering with a rate attachment needs this flag on every pipeline drawn in it (VUID-vkCmdDraw-
+    // imageView-06183); the KHR combiner state itself is dynamic (above).
+    if (desc.shadingRate == ShadingRateSource::KhrAttachment)
+        info.flags |= VK_PIPELINE_CREATE_RENDERING_FRAGMENT_SHADING_RATE_ATTACHMENT_BIT_KHR;
     info.stageCount = static_cast<uint32_t>(stageInfos.size());
     info.pStages = stageInfos.data();
     info.pVertexInputState = meshPipeline ? nullptr : &vertexInput;

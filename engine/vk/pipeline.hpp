@@ -39,6 +39,13 @@ struct ComputePipelineDesc {
 
 enum class BlendMode : uint8_t { Opaque, Alpha, Additive };
 
+// Where a graphics pipeline takes its fragment shading rates from (the VRS hardware rungs, frame/vrs_hardware.cpp).
+enum class ShadingRateSource : uint8_t {
+    None,
+    KhrAttachment,  // VK_KHR_fragment_shading_rate: the rendering's rate attachment, combiner ops set dynamically
+    NvImage,        // VK_NV_shading_rate_image: the bound shading-rate image through the vrs palette
+};
+
 struct GraphicsPipelineDesc {
     ShaderId vertex;                       // vertex or mesh shader
     std::optional<ShaderId> task;          // with a mesh shader
@@ -59,6 +66,7 @@ struct GraphicsPipelineDesc {
     uint32_t fragmentPushBytes = 0;  // the fragment stage's push block when it reads only a prefix (0: pushBytes)
     std::optional<ShaderId> geometry;      // between vertex and fragment (voxelization's triangle dilation)
     bool conservative = false;             // VK_EXT_conservative_rasterization, overestimate (the device must have it)
+    ShadingRateSource shadingRate = ShadingRateSource::None;  // hardware VRS (the device must have the extension)
 };
 
 // Checks one module against the engine's conventions; throws PipelineError naming the shader.

@@ -58,7 +58,7 @@ std::string keyOf(const GraphicsPipelineDesc& d) {
     for (BlendMode b : d.blend) out << int(b) << ',';
     out << '|' << d.depthFormat << '|' << d.depthCompare << '|' << d.depthWrite << d.depthTest << '|' << d.cull << '|'
         << d.frontFace << '|' << d.topology << '|' << d.polygonMode << '|' << d.viewMask << '|' << specKey(d.spec)
-        << '|' << (d.geometry ? int(*d.geometry) : -1) << '|' << d.conservative
+        << '|' << (d.geometry ? int(*d.geometry) : -1) << '|' << d.conservative << '|' << int(d.shadingRate)
         << '|' << d.pushBytes << '|' << d.fragmentPushBytes;
     return out.str();
 }

@@ -22,6 +22,7 @@ bool vrsIsAnchor(VrsRatesRef r, uvec2 pixel) {
     return pixel.x % cell.x == 0u && pixel.y % cell.y == 0u;
 }
 
+#ifndef IDK_VRS_FRAGMENT_STAGE  // compute only (workgroup built-ins); the hardware rung's fragment pass defines it
 // The software rung in an 8x8-workgroup compute pass (lighting, sky): invocation i of the workgroup takes the i-th
 // anchor of its 8x8 block (one rate per block: tiles are multiples of 8), so the shading work is packed into the
 // first invocations and whole subgroups past the anchor count exit at once. Skipping non-anchor pixels in place
@@ -37,5 +38,7 @@ bool vrsAnchorOfInvocation(uint64_t rates, inout ivec2 pixel) {
     pixel = ivec2(origin + uvec2(i % perRow.x, i / perRow.x) * (8u / perRow));
     return true;
 }
+
+#endif  // IDK_VRS_FRAGMENT_STAGE
 
 #endif

@@ -174,5 +174,13 @@ IDK_INLINE uint vrsRateFromValue(float x) {
     return r >= 4.0f ? 4u : (r <= 0.0f ? 0u : uint(r));
 }
 
+// The palette index as a VK_KHR_fragment_shading_rate attachment texel: (log2(width) << 2) | log2(height) of its
+// cell (spec, "Attachment Fragment Shading Rate"); larger indices are clamped to 4x4. The NV shading-rate image
+// stores the palette index itself (the palette is bound in this order: vk/shading_rate.cpp).
+IDK_INLINE uint vrsKhrRateTexel(uint rate) {
+    uvec2 cell = vrsCellSize(rate < kVrsRateCount ? rate : kVrsRateCount - 1u);
+    return (vrsLog2(cell.x) << 2u) | vrsLog2(cell.y);
+}
+
 IDK_GPU_END
 #endif

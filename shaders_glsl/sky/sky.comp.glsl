@@ -6,7 +6,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "scene_buffers.glsl"
 #include "bindless.glsl"
-#include "environment.glsl"
+#include "sky_pixel.glsl"  // shared with the hardware-VRS fragment pass
 #include "vrs_rates.glsl"
 
 layout(local_size_x = kLightingGroupSize, local_size_y = kLightingGroupSize) in;
@@ -20,10 +20,5 @@ void main() {
     float depth = imageLoad(gImagesR32f[p.depth], pixel).r;
     if (depth < 1.0) return;
 
-    // The ray through the pixel centre from two depths (works for finite and infinite far planes).
-    vec2 ndc = (vec2(pixel) + 0.5) / vec2(f.extent) * 2.0 - 1.0;
-    vec4 a = f.inverseViewProjection * vec4(ndc, 0.0, 1.0);
-    vec4 b = f.inverseViewProjection * vec4(ndc, 0.5, 1.0);
-    vec3 dir = normalize(b.xyz / b.w - a.xyz / a.w);
-    imageStore(gImagesRgba16f[p.target], pixel, vec4(environmentRadiance(f, dir, 0.0), 0.0));  // alpha 0: sky
+    imageStore(gImagesRgba16f[p.target], pixel, vec4(skyPixelRadiance(f, pixel), 0.0));  // alpha 0: sky
 }

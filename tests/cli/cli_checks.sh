@@ -64,6 +64,15 @@ case "$case_name" in
     grep -q '"vrs_overlay"' "$tmp/f.json" || fail "--vrs-debug drew no overlay"
     "$idk" render --size 8x8 --out "$tmp/x.png" --vrs maybe 2>"$tmp/err"; [ $? -eq 2 ] || fail "--vrs maybe should exit 2"
     grep -q -- "--vrs 'maybe'" "$tmp/err" || fail "error does not name --vrs: $(cat "$tmp/err")"
+    # The hardware rungs: where the device has neither VK_KHR_fragment_shading_rate nor VK_NV_shading_rate_image
+    # (lavapipe), the software rung runs with that reason, and forcing --rung vrs=native is a clear error (exit 2).
+    "$idk" info --json --no-validation >"$tmp/info.json" || fail "idk info --json failed"
+    if ! python3 -c "import json,sys; l=[l for l in json.load(open(sys.argv[1]))['ladders'] if l['id']=='vrs'][0]; sys.exit(0 if any(r['available'] for r in l['rungs'][:2]) else 1)" "$tmp/info.json"; then
+      grep -q '"reason": "device lacks VK_KHR_fragment_shading_rate' "$tmp/on.json" || fail "no software-rung reason: $(grep -A3 '"id": "vrs"' "$tmp/on.json")"
+      "$idk" render --size 16x16 --out "$tmp/n.png" --vrs on --rung vrs=native 2>"$tmp/err"; [ $? -eq 2 ] \
+        || fail "--rung vrs=native without the extensions should exit 2"
+      grep -q -- "--rung vrs=native: device lacks VK_KHR_fragment_shading_rate" "$tmp/err" || fail "unclear error: $(cat "$tmp/err")"
+    fi
     ;;
   gi_selection)
     # --gi none (the default) allocates and runs nothing of VXGI; --gi vxgi runs its passes and holds its volumes.

@@ -44,6 +44,7 @@ TEST(AccessTable, EveryValidEntryIsExact) {
         {Access::TransferDst, ResourceKind::Buffer, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, true},
         {Access::Present, ResourceKind::Image, VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, false},
         {Access::HostRead, ResourceKind::Buffer, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED, false},
+        {Access::ShadingRateRead, ResourceKind::Image, VK_PIPELINE_STAGE_2_FRAGMENT_SHADING_RATE_ATTACHMENT_BIT_KHR, VK_ACCESS_2_FRAGMENT_SHADING_RATE_ATTACHMENT_READ_BIT_KHR, VK_IMAGE_LAYOUT_FRAGMENT_SHADING_RATE_ATTACHMENT_OPTIMAL_KHR, false},
     };
     for (const Expected& e : table) {
         SCOPED_TRACE(std::string(toString(e.access)) + " on " + std::string(toString(e.kind)));
@@ -60,7 +61,8 @@ TEST(AccessTable, EveryValidEntryIsExact) {
 }
 
 TEST(AccessTable, InvalidCombinations) {
-    for (Access a : {Access::ColorWrite, Access::ColorReadWrite, Access::DepthWrite, Access::DepthRead, Access::Present}) {
+    for (Access a : {Access::ColorWrite, Access::ColorReadWrite, Access::DepthWrite, Access::DepthRead, Access::Present,
+                     Access::ShadingRateRead}) {
         EXPECT_FALSE(accessInfo(a, ResourceKind::Buffer).valid) << toString(a);
     }
     for (Access a : {Access::IndirectRead, Access::VertexRead, Access::UniformRead, Access::HostRead}) {
@@ -84,6 +86,12 @@ TEST(AccessTable, DerivedUsage) {
     EXPECT_EQ(imageUsageFor(Access::DepthRead), VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT);
     EXPECT_EQ(imageUsageFor(Access::TransferSrc), VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
     EXPECT_EQ(imageUsageFor(Access::Present), 0u);
+    EXPECT_EQ(imageUsageFor(Access::ShadingRateRead), VK_IMAGE_USAGE_FRAGMENT_SHADING_RATE_ATTACHMENT_BIT_KHR);
+    // VK_NV_shading_rate_image's usage, stage, access and layout are aliases of the KHR values the table uses.
+    EXPECT_EQ(VK_IMAGE_USAGE_SHADING_RATE_IMAGE_BIT_NV, VK_IMAGE_USAGE_FRAGMENT_SHADING_RATE_ATTACHMENT_BIT_KHR);
+    EXPECT_EQ(VK_IMAGE_LAYOUT_SHADING_RATE_OPTIMAL_NV, VK_IMAGE_LAYOUT_FRAGMENT_SHADING_RATE_ATTACHMENT_OPTIMAL_KHR);
+    EXPECT_EQ(VK_PIPELINE_STAGE_2_SHADING_RATE_IMAGE_BIT_NV, VK_PIPELINE_STAGE_2_FRAGMENT_SHADING_RATE_ATTACHMENT_BIT_KHR);
+    EXPECT_EQ(VK_ACCESS_2_SHADING_RATE_IMAGE_READ_BIT_NV, VK_ACCESS_2_FRAGMENT_SHADING_RATE_ATTACHMENT_READ_BIT_KHR);
     EXPECT_EQ(bufferUsageFor(Access::IndirectRead), VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
     EXPECT_EQ(bufferUsageFor(Access::VertexRead), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
     EXPECT_EQ(bufferUsageFor(Access::UniformRead), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);

@@ -1,0 +1,52 @@
+// deferred_lighting_pixel.glsl: the radiance of one G-buffer pixel with geometry, shared by the compute lighting
+// pass (deferred_lighting/lighting.comp) and the hardware-VRS fragment pass (vrs/lighting_rate.frag), so every VRS
+// rung shades a pixel identically.
+#ifndef IDK_DEFERRED_LIGHTING_PIXEL_GLSL
+#define IDK_DEFERRED_LIGHTING_PIXEL_GLSL
+#include "scene_buffers.glsl"
+#include "bindless.glsl"
+#include "octahedral.glsl"
+#include "color.glsl"
+#include "surface_lighting.glsl"
+#include "vxgi_ambient.glsl"
+#include "ssr_specular.glsl"
+
+// False for background pixels (depth 1: the sky writes them); else the radiance, alpha 1 (geometry).
+bool deferredLightingPixel(LightingPush p, GpuFrame f, ivec2 pixel, out vec4 result) {
+    result = vec4(0.0);
+    gPtAlbedoTables = f.albedoTables;
+    float depth = imageLoad(gImagesR32f[p.depth], pixel).r;
+    if (depth >= 1.0) return false;
+
+    vec2 ndc = (vec2(pixel) + 0.5) / vec2(f.extent) * 2.0 - 1.0;
+    vec4 h = f.inverseViewProjection * vec4(ndc, depth, 1.0);
+    vec4 hNear = f.inverseViewProjection * vec4(ndc, 0.0, 1.0);
+    vec3 position = h.xyz / h.w;
+    vec3 v = normalize(hNear.xyz / hNear.w - position);  // towards the eye (also right for orthographic views)
+
+    vec3 baseColor = srgbDecode(imageLoad(gImagesRgba8[p.albedo], pixel).rgb);
+    vec3 n = octDecode(unpackSnorm2x16(imageLoad(gImagesR32ui[p.normal], pixel).r));
+    vec4 mro = imageLoad(gImagesRgba8[p.material], pixel);
+    float metallic = mro.r, roughness = mro.g, occlusion = mro.b;
+    if (p.ambientOcclusion != kLightingNoAo) occlusion *= imageLoad(gImagesR32f[p.ambientOcclusion], pixel).r;  // SSAO
+    if (mro.a < 0.5) {  // KHR_materials_unlit
+        result = vec4(baseColor, 1.0);
+        return true;
+    }
+
+    vec4 emissive = imageLoad(gImagesRgba16f[p.emissive], pixel);
+    uint layered = uint(emissive.a + 0.5);  // 1 + material index for materials with BSDF extensions, else 0
+    SurfaceLayers layers = layered > 0u && p.materials != 0 ? materialLayers(MaterialBuffer(p.materials).data[layered - 1u])
+                                                            : noLayers();
+    vec3 radiance = emissive.rgb;
+    gShadowPixel = pixel;  // ray-traced shadows read their mask here (include/rt_shadows.glsl)
+    radiance += shadeSurface(f, p.pointShadows, position, n, v, baseColor, metallic, roughness, occlusion, layers);
+    radiance += vxgiAmbientDelta(f, p.vxgiDiffuse, p.vxgiSpecular, pixel, n, v, baseColor, metallic, roughness,
+                                 occlusion);  // inside the VXGI grid: traced light replaces the SH ambient
+    radiance += ssrSpecularDelta(f, p.ssr, p.vxgiDiffuse, p.vxgiSpecular, pixel, n, v, baseColor, metallic, roughness,
+                                 occlusion, layers);  // --ssr: on-screen reflections replace the specular ambient
+    result = vec4(radiance, 1.0);
+    return true;
+}
+
+#endif

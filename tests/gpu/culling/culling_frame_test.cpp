@@ -77,6 +77,7 @@ protected:
     static void comparePathOn(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene::Scene& scene,
                               const std::vector<scene::CameraView>& cameras, const char* what, PathStats& stats) {
         render::Renderer off(ctx, shaders), frustum(ctx, shaders), hiz(ctx, shaders);
+        off.settings().culling.mode = frame::CullingMode::Off;  // hiz is the default
         frustum.settings().culling.mode = frame::CullingMode::Frustum;
         hiz.settings().culling.mode = frame::CullingMode::Hiz;
         off.setScene(scene);

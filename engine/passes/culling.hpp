@@ -64,6 +64,19 @@ void recordDepthPyramid(VkCommandBuffer cmd, vk::Context& ctx, vk::ShaderLibrary
 graph::BufferHandle addDepthPyramidPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                         graph::TextureHandle depth, glm::uvec2 size, const std::string& name);
 
+// cull_shadows.cpp: the culled draws of `viewCount` views (inputs.view is ignored: views 0..viewCount-1 of
+// inputs.views, frustum phase): view v's commands start at commandOffset(v), its count at countOffset(v).
+struct ShadowCulledDraws {
+    graph::BufferHandle commands, counters;
+    uint32_t maxDraws = 0, viewCount = 0;
+    VkDeviceSize commandOffset(uint32_t v) const {
+        return VkDeviceSize(v) * maxDraws * sizeof(VkDrawIndexedIndirectCommand);
+    }
+    VkDeviceSize countOffset(uint32_t v) const { return VkDeviceSize(v) * sizeof(gpu::GpuCullCounters); }
+};
+ShadowCulledDraws addShadowCullPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                    const CullInputs& inputs, uint32_t viewCount);
+
 // One view's counters as read back after the frame (GpuCullCounters).
 struct CullingViewStats {
     std::string view;  // "camera"

@@ -86,12 +86,12 @@ void PointShadowMaps::createCubes(vk::Context& ctx, const GpuSceneData& scene) {
             view.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
             view.subresourceRange = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, 0, 6};
             vk::check(vkCreateImageView(ctx.device(), &view, nullptr, &cube.layeredView));
-        } else {
-            view.viewType = VK_IMAGE_VIEW_TYPE_2D;
-            for (uint32_t f = 0; f < 6; ++f) {
-                view.subresourceRange = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, f, 1};
-                vk::check(vkCreateImageView(ctx.device(), &view, nullptr, &cube.faceViews[f]));
-            }
+        }
+        // Single-face views on both rungs: GPU culling draws each face's own culled commands into its view.
+        view.viewType = VK_IMAGE_VIEW_TYPE_2D;
+        for (uint32_t f = 0; f < 6; ++f) {
+            view.subresourceRange = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, f, 1};
+            vk::check(vkCreateImageView(ctx.device(), &view, nullptr, &cube.faceViews[f]));
         }
     }
 

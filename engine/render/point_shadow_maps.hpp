@@ -55,7 +55,7 @@ public:
     const std::vector<uint32_t>& casters() const noexcept { return casters_; }  // light index per cube
     const vk::Image& cube(uint32_t i) const { return cubes_.at(i).image; }
     VkImageView layeredView(uint32_t i) const { return cubes_.at(i).layeredView; }  // 2D array of the 6 faces
-    VkImageView faceView(uint32_t i, uint32_t face) const { return cubes_.at(i).faceViews.at(face); }
+    VkImageView faceView(uint32_t i, uint32_t face) const { return cubes_.at(i).faceViews.at(face); }  // both rungs
     const vk::Buffer& layeredDrawCommands() const noexcept { return layeredDraws_; }  // native rung only
     bool alphaMask() const noexcept { return alphaMask_; }  // MASK materials: the pass needs its fragment shader
 

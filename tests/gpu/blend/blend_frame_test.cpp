@@ -64,8 +64,11 @@ TEST_F(PassListTest, BlendSceneWithoutLightsAddsTransparencyButNoShadows) {
 
 TEST_F(PassListTest, LitSceneWithoutBlendAddsShadowsButNoTransparency) {
     nlohmann::json j = renderJson({"--out", out("cornell.png"), "--size", "32x32", "--json"});
-    EXPECT_EQ(passes(j), withCulledGBuffer({"shadow_table", "point_shadows"}, {"deferred_lighting", "sky", "tonemap"}));
-    EXPECT_EQ(j["indirectDraws"]["point_shadows"]["indirectCalls"], 1) << "one instanced draw for the one light";
+    // The cube's six faces are culled (one dispatch per face) and drawn face by face from their culled commands.
+    EXPECT_EQ(passes(j), withCulledGBuffer({"shadow_table", "cull_reset_shadows", "cull_shadows", "cull_stats_shadows",
+                                            "point_shadows"},
+                                           {"deferred_lighting", "sky", "tonemap"}));
+    EXPECT_EQ(j["indirectDraws"]["point_shadows"]["indirectCalls"], 6) << "one culled draw per face of the one light";
     EXPECT_TRUE(j["memoryBytes"].contains("shadow maps"));
     EXPECT_FALSE(j["memoryBytes"].contains("transparency"));
 }

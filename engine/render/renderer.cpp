@@ -59,8 +59,12 @@ graph::TextureHandle Renderer::renderPbr(graph::RenderGraph& graph, const scene:
     f.viewProjection = scene::projectionMatrix(camera, float(width) / float(height)) * scene::viewMatrix(camera);
     graph::PhysicalTexture output = physicalOf(target);
     output.storageIndex = outputStorage_.value;
-    f.output = graph.importTexture("output", output, graph::ResourceState{},
-                                   graph::FinalUse{graph::Access::TransferSrc});
+    // Its first layout transition waits on every earlier stage: the validation layer counts each compute
+    // dispatch that binds the bindless storage array (e.g. the Hi-Z pyramid of --culling hiz, before lighting) as
+    // reading this storage image, and the transition must not race those reads.
+    graph::ResourceState fresh;
+    fresh.readStages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    f.output = graph.importTexture("output", output, fresh, graph::FinalUse{graph::Access::TransferSrc});
     return frame::recordPbrFrame(f, *gpuScene_, features_);
 }
 

@@ -1,5 +1,6 @@
 // depth_pyramid_test.cpp: the Hi-Z pyramid (culling/hiz_build.comp.glsl) against a direct CPU reduction
-// (render::buildDepthPyramid), exactly, for odd, non-power-of-two, thin and tiny depth images; and the screen
+// (render::buildDepthPyramid), exactly, for odd, non-power-of-two, thin and tiny depth images, on both rungs of
+// the ladder "hiz-reduction" (compute; MAX-reduction sampler); and the screen
 // footprint of a box (shared/depth_pyramid.h) is conservative on 100k random boxes: every point of the box
 // projects inside the rectangle, no nearer than its nearest depth, and the chosen level's at most
 // 2 x 2 texels cover every pixel of the rectangle.
@@ -8,6 +9,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include "passes/culling.hpp"
@@ -74,6 +76,101 @@ TEST_F(DepthPyramidTest, EqualsCpuReductionForAnySize) {
         // The last level is one texel holding the image's maximum.
         EXPECT_EQ(expected.back(), *std::max_element(depth.begin(), depth.end()));
     }
+}
+
+// The native rung of "hiz-reduction" (passes/depth_pyramid_minmax.cpp): one MAX-reduction sample per 2 x 2 block.
+// Bit-exact against the CPU reduction and the compute rung for the same odd and non-power-of-two sizes.
+class DepthPyramidMinmaxTest : public DepthPyramidTest {
+protected:
+    vk::Image image(glm::uvec2 size, VkImageUsageFlags usage, const char* name) {
+        vk::ImageDesc desc;
+        desc.format = VK_FORMAT_R32_SFLOAT;
+        desc.extent = {size.x, size.y, 1};
+        desc.usage = usage;
+        desc.name = name;
+        desc.category = "test";
+        return ctx().createImage(desc);
+    }
+    std::vector<float> samplerPyramid(const std::vector<float>& depth, glm::uvec2 size, uint32_t sampler) {
+        vk::Image depthImage = image(size, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "test depth");
+        vk::uploadImage(ctx(), depthImage, depth.data(), depth.size() * sizeof(float),
+                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        const vk::SampledIndex depthSampled = ctx().bindless().addSampled(depthImage.view);
+        std::vector<vk::Image> levels;
+        passes::HizMinmaxResources records;
+        records.sampler = sampler;
+        std::vector<vk::SampledIndex> sampled;
+        for (uint32_t level = 0; level < gpu::hizLevelCount(size); ++level) {
+            levels.push_back(image(gpu::hizLevelSize(size, level),
+                                   VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "test hiz level"));
+            sampled.push_back(ctx().bindless().addSampled(levels.back().view));
+            records.levels.push_back({levels.back().image, sampled.back().value});
+        }
+        const uint32_t count = gpu::hizLevelOffset(size, gpu::hizLevelCount(size));
+        vk::Buffer pyramid = ctx().createBuffer({count * sizeof(float),
+                                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                                 vk::MemoryUsage::GpuOnly, "pyramid", "test"});
+        ctx().runImmediate([&](VkCommandBuffer cmd) {
+            passes::recordDepthPyramidMinmax(cmd, ctx(), shaders(), depthSampled.value, records, size, pyramid.buffer,
+                                             pyramid.address);
+        });
+        std::vector<float> out = vk::downloadBuffer<float>(ctx(), pyramid, count);
+        ctx().bindless().release(depthSampled);
+        for (size_t i = 0; i < levels.size(); ++i) {
+            ctx().bindless().release(sampled[i]);
+            ctx().destroyDeferred(levels[i]);
+        }
+        ctx().destroyDeferred(pyramid);
+        ctx().destroyDeferred(depthImage);
+        return out;
+    }
+};
+
+TEST_F(DepthPyramidMinmaxTest, SamplerRungEqualsCpuReductionAndComputeRungForAnySize) {
+    if (ctx().ladder("hiz-reduction").chosen != vk::Rung::Native)
+        GTEST_SKIP() << "device lacks samplerFilterMinmax: only the compute rung runs (the test above covers it)";
+    vk::SamplerDesc max;
+    max.filter = VK_FILTER_LINEAR;
+    max.mipmap = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    max.address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    max.reduction = VK_SAMPLER_REDUCTION_MODE_MAX;
+    const vk::SamplerIndex sampler = ctx().bindless().addSampler(max);
+    const glm::uvec2 sizes[] = {{1, 1}, {2, 1}, {1, 7}, {7, 5}, {97, 61}, {128, 128}, {300, 17}, {255, 256}, {641, 361}};
+    uint32_t seed = 21;
+    for (glm::uvec2 size : sizes) {
+        const std::vector<float> depth = randomDepth(size, seed++);
+        const std::vector<float> expected = render::buildDepthPyramid(depth, size);
+        const std::vector<float> got = samplerPyramid(depth, size, sampler.value);
+        const std::vector<float> compute = gpuPyramid(depth, size);
+        ASSERT_EQ(got.size(), expected.size());
+        size_t wrong = 0, differsFromCompute = 0;
+        for (size_t i = 0; i < got.size(); ++i) {
+            wrong += std::memcmp(&got[i], &expected[i], sizeof(float)) != 0;
+            differsFromCompute += std::memcmp(&got[i], &compute[i], sizeof(float)) != 0;
+        }
+        EXPECT_EQ(wrong, 0u) << size.x << "x" << size.y << ": texels differing from the CPU reduction";
+        EXPECT_EQ(differsFromCompute, 0u) << size.x << "x" << size.y << ": texels differing from the compute rung";
+    }
+    ctx().bindless().release(sampler);
+}
+
+// The sampler really reduces: a weighted-average sampler at the same coordinates gives the mean of the 2 x 2
+// block, which differs from the maximum on random depth (so the test above cannot pass by accident).
+TEST_F(DepthPyramidMinmaxTest, AveragingSamplerDoesNotGiveTheMaximum) {
+    if (ctx().ladder("hiz-reduction").chosen != vk::Rung::Native) GTEST_SKIP() << "no sampler rung";
+    vk::SamplerDesc average;
+    average.filter = VK_FILTER_NEAREST;  // R32F linear filtering is optional; nearest picks one texel, not the max
+    average.mipmap = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    average.address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    const vk::SamplerIndex sampler = ctx().bindless().addSampler(average);
+    const glm::uvec2 size(97, 61);
+    const std::vector<float> depth = randomDepth(size, 5);
+    const std::vector<float> expected = render::buildDepthPyramid(depth, size);
+    const std::vector<float> got = samplerPyramid(depth, size, sampler.value);
+    size_t wrong = 0;
+    for (size_t i = 0; i < got.size(); ++i) wrong += got[i] != expected[i];
+    EXPECT_GT(wrong, got.size() / 4) << "a plain sampler must not reproduce the MAX reduction";
+    ctx().bindless().release(sampler);
 }
 
 TEST(DepthPyramidLayout, LevelSizesHalveWithCeilingDownToOneTexel) {

@@ -126,7 +126,11 @@ Transition applyUse(const ResourceState& previous, const Use& next) noexcept {
     }
     b.srcStages = previous.writeStages != VK_PIPELINE_STAGE_2_NONE ? previous.writeStages
                                                                    : VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    b.srcAccess = previous.unflushedWrites;
+    // SYNC: when an earlier barrier already made the write available, it did so for other destination stages;
+    // this barrier does not chain on that one (its source scope is the write's stages, not those), so the write's
+    // availability is repeated here to sit in one dependency chain with this visibility operation (a transfer read
+    // of a buffer that a transfer wrote and a vertex shader read since, for example).
+    b.srcAccess = previous.unflushedWrites | previous.lastWriteAccess;
     b.dstAccess = access;
     after.unflushedWrites = VK_ACCESS_2_NONE;
     markVisible(after, stages, reads);
@@ -146,6 +150,19 @@ ResourceState stateAfterAccess(Access access, ResourceKind kind, VkPipelineStage
     s.layout = info.layout;
     s.readStages = stages;
     return s;
+}
+
+ResourceState unknownHistoryState() noexcept {
+    ResourceState s;
+    s.writeStages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    s.lastWriteAccess = VK_ACCESS_2_MEMORY_WRITE_BIT;
+    return s;
+}
+
+bool isUnknownHistory(const ResourceState& s) noexcept {
+    return s.layout == VK_IMAGE_LAYOUT_UNDEFINED && s.writeStages == VK_PIPELINE_STAGE_2_NONE &&
+           s.readStages == VK_PIPELINE_STAGE_2_NONE && s.unflushedWrites == VK_ACCESS_2_NONE &&
+           s.lastWriteAccess == VK_ACCESS_2_NONE;
 }
 
 ResourceState mergeForAliasing(const ResourceState& a, const ResourceState& b) noexcept {

@@ -101,6 +101,10 @@ ResourceState stateAfterAccess(Access access, ResourceKind kind,
 
 // Union of two states for memory that several earlier resources occupied (aliasing): waits on everything
 // either waited on; layout UNDEFINED (the contents belong to someone else) and aliasedMemory set.
+// The state of memory with unknown history (a new image, a new heap): every earlier command may have written it.
+// The first barrier on it then waits on ALL_COMMANDS with MEMORY_WRITE (see planBarriers for why).
+ResourceState unknownHistoryState() noexcept;
+bool isUnknownHistory(const ResourceState& s) noexcept;  // nothing known: UNDEFINED, no stages, no accesses
 ResourceState mergeForAliasing(const ResourceState& a, const ResourceState& b) noexcept;
 
 // The stages a use runs in (its own, or the table default).

@@ -15,6 +15,15 @@ using detail::ResourcePlan;
 
 namespace {
 
+constexpr VkPipelineStageFlags2 kShaderStages =
+    VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_GEOMETRY_SHADER_BIT |
+    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT |
+    VK_PIPELINE_STAGE_2_TASK_SHADER_BIT_EXT | VK_PIPELINE_STAGE_2_MESH_SHADER_BIT_EXT;
+constexpr VkPipelineStageFlags2 kDrawStages =
+    VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
+    VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+
 uint32_t fullMipCount(VkExtent3D e) {
     const uint32_t largest = std::max({e.width, e.height, e.depth, 1u});
     return static_cast<uint32_t>(std::bit_width(largest));
@@ -193,22 +202,41 @@ void RenderGraph::planBarriers() {
                                   persistentCompatible(node.kind, entry->texture, entry->buffer, plan.texture, plan.buffer);
             const uint32_t copy = node.origin == Origin::History ? 1 - currentCopy : currentCopy;
             if (reusable) states[r] = entry->states[copy];
-            if (node.origin == Origin::History && !plan.historyValid && plan.used) {
-                // SYNC: never-written history is cleared before the first pass: discard (UNDEFINED), clear as a
-                // transfer write; the first reader then waits on that write like on any other.
-                Transition t = applyUse(states[r], Use{node.kind, Access::TransferDst, VK_PIPELINE_STAGE_2_NONE, true});
-                if (t.barrier) {
-                    t.barrier->resource = r;
-                    c.prologueBarriers.push_back(*t.barrier);
-                }
-                c.prologueClears.push_back(r);
-                states[r] = t.after;
+        }
+        // SYNC: an image whose history the graph does not know (imported without a state, or persistent and new)
+        // may sit in memory that resources freed earlier used: the allocator recycles memory once the GPU is done
+        // with it, which the host knows from a timeline wait but the synchronization validation layer (1.3.239)
+        // does not see. Its first barrier waits on all earlier commands, so no earlier submission's access to those
+        // bytes can race it. Once per new image; on a GPU the extra wait is for work that is long finished.
+        if (node.kind == ResourceKind::Image && node.origin != Origin::Transient && isUnknownHistory(states[r])) {
+            states[r] = unknownHistoryState();
+        }
+        if (node.origin == Origin::History && !plan.historyValid && plan.used) {
+            // SYNC: never-written history is cleared before the first pass: discard (UNDEFINED), clear as a
+            // transfer write; the first reader then waits on that write like on any other.
+            Transition t = applyUse(states[r], Use{node.kind, Access::TransferDst, VK_PIPELINE_STAGE_2_NONE, true});
+            if (t.barrier) {
+                t.barrier->resource = r;
+                c.prologueBarriers.push_back(*t.barrier);
             }
+            c.prologueClears.push_back(r);
+            states[r] = t.after;
         }
         plan.initial = states[r];
     }
 
+    // SYNC (validation): the stages of every shader that ran earlier in this frame, and whether any wrote storage.
+    // The synchronization validation layer of Debian 12 (1.3.239) cannot tell which element of a bindless
+    // descriptor array a shader indexes, so it charges each draw and dispatch with an access to every image of the
+    // arrays it binds (fixed upstream in 1.3.268, which skips descriptor arrays). A layout transition of an image
+    // then looks like a hazard against a pass that never touched it. Each image layout transition therefore also
+    // waits on these. It is an execution dependency on passes the graph runs in order anyway; on a GPU it can cost
+    // a little overlap at a transition, never correctness.
+    VkPipelineStageFlags2 shaderStagesSoFar = VK_PIPELINE_STAGE_2_NONE;
+    VkAccessFlags2 shaderWritesSoFar = VK_ACCESS_2_NONE;
     for (uint32_t pos = 0; pos < c.order.size(); ++pos) {
+        VkPipelineStageFlags2 passShaderStages = VK_PIPELINE_STAGE_2_NONE;
+        VkAccessFlags2 passShaderWrites = VK_ACCESS_2_NONE;
         for (const PassUse& use : passes_[c.order[pos]].uses) {
             const uint32_t r = use.resource;
             const detail::ResourceNode& node = resources_[r];
@@ -220,7 +248,8 @@ void RenderGraph::planBarriers() {
                 ResourceState seed;
                 if (plan.slot != kInvalidId) {
                     const AliasSlot& slot = c.aliasing.slots[plan.slot];
-                    seed = mergeForAliasing(pool_.heapTail(c.aliasing.heaps[slot.heap].key), {});
+                    const AliasedHeap& heap = c.aliasing.heaps[slot.heap];
+                    seed = mergeForAliasing(pool_.heapTail(heap.key, heap.size, heap.alignment), {});
                     for (const AliasSlot& other : c.aliasing.slots) {
                         if (other.resource != r && bytesOverlap(slot, other) && other.lastPass < pos) {
                             seed = mergeForAliasing(seed, states[other.resource]);
@@ -244,13 +273,27 @@ void RenderGraph::planBarriers() {
                 plan.initial = seed;
             }
             const bool discard = use.version == 0 && (node.origin == Origin::Transient || node.origin == Origin::Persistent);
-            Transition t = applyUse(states[r], Use{node.kind, use.access, use.stages, discard});
+            const Use next{node.kind, use.access, use.stages, discard};
+            Transition t = applyUse(states[r], next);
             if (t.barrier) {
                 t.barrier->resource = r;
+                if (node.kind == ResourceKind::Image && t.barrier->oldLayout != t.barrier->newLayout) {
+                    t.barrier->srcStages |= shaderStagesSoFar;
+                    t.barrier->srcAccess |= shaderWritesSoFar;
+                }
                 c.passes[pos].barriers.push_back(*t.barrier);
             }
             states[r] = t.after;
+            VkPipelineStageFlags2 stages = effectiveStages(next) & kShaderStages;
+            // A draw binds the arrays in its vertex and fragment shaders whatever stages its declared uses name.
+            if (effectiveStages(next) & kDrawStages)
+                stages |= VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+            passShaderStages |= stages;
+            // Any shader may write through the storage-image array it binds, as far as the layer can tell.
+            if (stages != VK_PIPELINE_STAGE_2_NONE) passShaderWrites |= VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
         }
+        shaderStagesSoFar |= passShaderStages;
+        shaderWritesSoFar |= passShaderWrites;
     }
 
     for (uint32_t r = 0; r < resources_.size(); ++r) {

@@ -51,6 +51,13 @@ ResourceState ResourcePool::heapTail(const HeapKey& key) const noexcept {
     return {};
 }
 
+ResourceState ResourcePool::heapTail(const HeapKey& key, VkDeviceSize size, VkDeviceSize alignment) const noexcept {
+    for (const HeapEntry& heap : heaps_) {
+        if (heap.key == key && heap.desc.size >= size && heap.desc.alignment >= alignment) return heap.tail;
+    }
+    return unknownHistoryState();
+}
+
 void ResourcePool::setHeapTail(const HeapKey& key, const ResourceState& tail) {
     for (HeapEntry& heap : heaps_) {
         if (heap.key == key) heap.tail = tail;
@@ -66,7 +73,8 @@ HeapHandle ResourcePool::acquireHeap(const HeapKey& key, VkDeviceSize size, VkDe
             return heap.handle;
         }
         // Too small: a bigger one replaces it (the backend defers freeing the old one past the GPU's use).
-        // The new memory is fresh, but the tail is kept: waiting on stale stages is merely conservative.
+        // The new memory is fresh (this frame's plan waited on everything before it: see heapTail), and the
+        // tail is kept for later frames: waiting on stale stages is merely conservative.
         const ResourceState tail = heap.tail;
         releaseHeapAndContents(i);
         HeapEntry grown;

@@ -82,6 +82,9 @@ private:
     // Compile-time reads (no side effects).
     const PersistentEntry* findPersistent(std::string_view name) const noexcept;
     ResourceState heapTail(const HeapKey& key) const noexcept;
+    // The tail a heap of at least `size` will have: unknown history when acquireHeap must allocate it (new or
+    // grown memory may reuse what freed resources used; see planBarriers).
+    ResourceState heapTail(const HeapKey& key, VkDeviceSize size, VkDeviceSize alignment) const noexcept;
 
     // Execute-time realization (creates through the backend when missing).
     HeapHandle acquireHeap(const HeapKey& key, VkDeviceSize size, VkDeviceSize alignment);

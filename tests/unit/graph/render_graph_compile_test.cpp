@@ -178,18 +178,21 @@ TEST_F(GraphCompile, PlansEveryBarrierBeforeEachPass) {
     ASSERT_EQ(shade.size(), 2u);
     EXPECT_EQ(shade[0].oldLayout, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
     EXPECT_EQ(shade[0].newLayout, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
-    EXPECT_EQ(shade[0].srcAccess, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+    // Every layout transition also waits on the shaders that ran before, with their storage writes (the prepass
+    // is a draw: its vertex and fragment shaders): graph_plan.cpp, for the synchronization validation layer.
+    constexpr VkPipelineStageFlags2 kDrawShaders = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | kFragment;
+    EXPECT_EQ(shade[0].srcAccess, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     EXPECT_EQ(shade[1].newLayout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
 
     const auto post = graph.barriersBefore("post");
     ASSERT_EQ(post.size(), 2u);
-    EXPECT_EQ(post[0].srcStages, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT);
-    EXPECT_EQ(post[0].srcAccess, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+    EXPECT_EQ(post[0].srcStages, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | kDrawShaders);
+    EXPECT_EQ(post[0].srcAccess, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     EXPECT_EQ(post[0].dstStages, kCompute);
     EXPECT_EQ(post[0].dstAccess, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
     EXPECT_EQ(post[1].oldLayout, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
     EXPECT_EQ(post[1].newLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    EXPECT_EQ(post[1].srcAccess, VK_ACCESS_2_NONE);
+    EXPECT_EQ(post[1].srcAccess, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 }
 
 TEST_F(GraphCompile, ResolvesRelativeExtentsMipsAndDerivedUsage) {
@@ -344,7 +347,7 @@ TEST_F(GraphCompile, TextAndGraphvizDumps) {
     EXPECT_NE(text.find("[0] draw"), std::string::npos) << text;
     EXPECT_NE(text.find("[1] blit"), std::string::npos) << text;
     EXPECT_NE(text.find("culled: debug_view"), std::string::npos) << text;
-    EXPECT_NE(text.find("barrier image 'color' UNDEFINED->COLOR_ATTACHMENT [NONE:NONE -> "
+    EXPECT_NE(text.find("barrier image 'color' UNDEFINED->COLOR_ATTACHMENT [ALL_COMMANDS:MEMORY_WRITE -> "
                         "COLOR_ATTACHMENT_OUTPUT:COLOR_ATTACHMENT_WRITE]"), std::string::npos) << text;
     EXPECT_NE(text.find("COLOR_ATTACHMENT->TRANSFER_SRC"), std::string::npos) << text;
     const std::string dot = graph.toGraphviz();

@@ -40,6 +40,7 @@ void CullingFeature::release() {
     for (vk::Buffer& b : views_) ctx_.destroyDeferred(b);
     for (vk::Buffer& b : stats_) ctx_.destroyDeferred(b);
     draws_ = visibility_ = {};
+    hizLevels_.release();
     views_.clear();
     stats_.clear();
     lastPhases_ = 0;
@@ -85,6 +86,7 @@ void CullingFeature::createResources(const render::GpuScene& scene, uint32_t fra
 
 passes::GBufferOutputs CullingFeature::addGBuffer(FrameContext& f, const render::GpuScene& scene) {
     lastPhases_ = 0;
+    const passes::HizMinmaxResources* minmax = nullptr;  // the pyramids' rung (nullptr: compute)
     if (!f.settings.culling.freeze) frozen_.reset();
     const bool frozen = f.settings.culling.freeze && frozen_.has_value();
     const CullingMode mode = frozen && f.settings.culling.mode == CullingMode::Hiz ? CullingMode::Frustum
@@ -135,8 +137,10 @@ passes::GBufferOutputs CullingFeature::addGBuffer(FrameContext& f, const render:
             in.phase = gpu::kCullEarly;
             const passes::GBufferOutputs early = draw("camera early", nullptr, true);
             in.phase = gpu::kCullLate;
+            if (ctx_.ladder("hiz-reduction").chosen == vk::Rung::Native)
+                minmax = hizLevels_.forSize({f.width, f.height});
             in.pyramid = passes::addDepthPyramidPass(f.graph, f.ctx, f.shaders, early.depth, {f.width, f.height},
-                                                     "depth_pyramid_early");
+                                                     "depth_pyramid_early", minmax);
             f.gbuffer = draw("camera late", &early, false);
         }
         passes::addCullStatsCopyPass(f.graph, counters, stats);
@@ -144,7 +148,7 @@ passes::GBufferOutputs CullingFeature::addGBuffer(FrameContext& f, const render:
         lastSlot_ = f.slot;
     }
     f.depthPyramid = passes::addDepthPyramidPass(f.graph, f.ctx, f.shaders, f.gbuffer.depth, {f.width, f.height},
-                                                 "depth_pyramid");
+                                                 "depth_pyramid", minmax);
     return f.gbuffer;
 }
 

@@ -10,12 +10,14 @@
 // meshlets (render/meshlets.hpp, built at the first culled frame), which the task shader culls again (frustum,
 // normal cone, Hi-Z in the late phase); the MDI rung draws whole instances. Ports IDKEngine's GPU culling
 // (reference 2.6, 2.7) without its single-phase previous-frame Hi-Z (which could drop newly visible objects).
+// The Hi-Z pyramid is reduced by a MAX sampler where the ladder "hiz-reduction" allows it, else in compute.
 #pragma once
 #include <cstdint>
 #include <optional>
 #include <vector>
 
 #include "frame/frame_context.hpp"
+#include "frame/hiz_levels.hpp"
 #include "render/gpu_scene.hpp"
 
 namespace idk::frame {
@@ -47,6 +49,7 @@ private:
     uint32_t lastSlot_ = 0;
     uint32_t lastPhases_ = 0;                // counters the last culled frame wrote (0: it did not cull)
     std::optional<gpu::GpuCullView> frozen_;  // CullingSettings::freeze: the view culling keeps using
+    HizLevels hizLevels_{ctx_};  // the sampler rung of the ladder "hiz-reduction" (empty on the compute rung)
 };
 
 }  // namespace idk::frame

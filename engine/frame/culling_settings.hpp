@@ -12,7 +12,7 @@ enum class CullingMode : uint8_t {
 };
 
 struct CullingSettings {
-    CullingMode mode = CullingMode::Off;
+    CullingMode mode = CullingMode::Hiz;  // the issue asks for occlusion culling on by default
     // Keep culling with the camera of the frame this was turned on while the view moves (inspect the culled set
     // from outside). Occlusion culling pauses meanwhile: the frozen view has no depth of its own.
     bool freeze = false;

@@ -7,6 +7,7 @@
 namespace idk::frame {
 
 void PointShadowFeature::addPasses(FrameContext& f, const render::GpuScene& scene) {
+    cull_.beginFrame();
     if (f.settings.lightShadows.rayTraced) {  // frame/rt_shadow_feature.cpp traces them instead
         reset();
         return;
@@ -39,8 +40,13 @@ void PointShadowFeature::addPasses(FrameContext& f, const render::GpuScene& scen
         std::memcpy(bytes.data() + cubeFrame.table.size() * sizeof(gpu::GpuPointShadow), records.data(),
                     records.size() * sizeof(gpu::GpuShadowMap));
     f.pointShadows.table = passes::addShadowTablePass(f.graph, std::move(bytes));
-    if (cubes) f.pointShadows.cubes = passes::addPointShadowPass(f.graph, f.ctx, f.shaders, f.scene, *maps_, cubeFrame,
-                                                                 &f.log);
+    if (cubes) {
+        // Scenes with BLEND casters draw their cubes unculled: the culling kernel's commands leave BLEND out.
+        const std::optional<passes::ShadowCulledDraws> culled =
+            maps_->blendCasters() ? std::nullopt : cull_.addPasses(f, scene, *maps_, cubeFrame);
+        f.pointShadows.cubes = passes::addPointShadowPass(f.graph, f.ctx, f.shaders, f.scene, *maps_, cubeFrame,
+                                                          &f.log, culled ? &*culled : nullptr);
+    }
     if (maps) {
         std::vector<graph::TextureHandle> written =
             passes::addLightShadowMapPass(f.graph, f.ctx, f.shaders, f.scene, *lightMaps_, mapFrame, &f.log);

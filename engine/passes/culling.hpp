@@ -61,8 +61,39 @@ CulledDraws addCullPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderL
 // a new graph buffer; `name` names the pass and the buffer. recordDepthPyramid is its body (conformance tests call it on their own buffers).
 void recordDepthPyramid(VkCommandBuffer cmd, vk::Context& ctx, vk::ShaderLibrary& shaders, uint32_t depthStorage,
                         glm::uvec2 size, VkDeviceAddress pyramid);
+// depth_pyramid_minmax.cpp: the native rung of the ladder "hiz-reduction" (same pyramid, bit for bit): a bindless
+// sampler with reduction MAX and one R32F image per level (hizLevelSize; usage SAMPLED | TRANSFER_DST), into which
+// each level is copied for the next one to sample. The caller owns them (persistent, outside the render graph: only
+// this rung's passes touch them, each copy waiting for all earlier work).
+struct HizLevelImage {
+    VkImage image = VK_NULL_HANDLE;
+    uint32_t sampled = 0;  // bindless index
+};
+struct HizMinmaxResources {
+    uint32_t sampler = 0;
+    std::vector<HizLevelImage> levels;  // hizLevelCount(size) of them
+};
 graph::BufferHandle addDepthPyramidPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
-                                        graph::TextureHandle depth, glm::uvec2 size, const std::string& name);
+                                        graph::TextureHandle depth, glm::uvec2 size, const std::string& name,
+                                        const HizMinmaxResources* minmax = nullptr);
+// The sampler rung's body: `depthSampled` is the depth image's bindless sampled index (SHADER_READ_ONLY_OPTIMAL);
+// the pyramid buffer needs TRANSFER_SRC usage (the levels are copied from it).
+void recordDepthPyramidMinmax(VkCommandBuffer cmd, vk::Context& ctx, vk::ShaderLibrary& shaders, uint32_t depthSampled,
+                              const HizMinmaxResources& minmax, glm::uvec2 size, VkBuffer pyramidBuffer,
+                              VkDeviceAddress pyramid);
+
+// cull_shadows.cpp: the culled draws of `viewCount` views (inputs.view is ignored: views 0..viewCount-1 of
+// inputs.views, frustum phase): view v's commands start at commandOffset(v), its count at countOffset(v).
+struct ShadowCulledDraws {
+    graph::BufferHandle commands, counters;
+    uint32_t maxDraws = 0, viewCount = 0;
+    VkDeviceSize commandOffset(uint32_t v) const {
+        return VkDeviceSize(v) * maxDraws * sizeof(VkDrawIndexedIndirectCommand);
+    }
+    VkDeviceSize countOffset(uint32_t v) const { return VkDeviceSize(v) * sizeof(gpu::GpuCullCounters); }
+};
+ShadowCulledDraws addShadowCullPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                    const CullInputs& inputs, uint32_t viewCount);
 
 // One view's counters as read back after the frame (GpuCullCounters).
 struct CullingViewStats {

@@ -1,6 +1,7 @@
 // depth_pyramid.cpp: "depth_pyramid": the Hi-Z pyramid of an R32F depth image (shared/depth_pyramid.h), one
 // dispatch of culling/hiz_build.comp.glsl per level in one pass, with a buffer barrier between levels (each level
-// reads the one before). The portable compute rung: any size, odd and non-power-of-two included. Ports IDKEngine's
+// reads the one before). The portable compute rung (fallback of the ladder "hiz-reduction"; the sampler rung is
+// depth_pyramid_minmax.cpp): any size, odd and non-power-of-two included. Ports IDKEngine's
 // Hi-Z generation (MeshCulling/Camera/HiZGenerate, a fullscreen draw per mip).
 #include "passes/culling.hpp"
 
@@ -40,11 +41,27 @@ void recordDepthPyramid(VkCommandBuffer cmd, vk::Context& ctx, vk::ShaderLibrary
 }
 
 graph::BufferHandle addDepthPyramidPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
-                                        graph::TextureHandle depth, glm::uvec2 size, const std::string& name) {
+                                        graph::TextureHandle depth, glm::uvec2 size, const std::string& name,
+                                        const HizMinmaxResources* minmax) {
     graph::BufferDesc desc;
     desc.size = VkDeviceSize(gpu::hizLevelOffset(size, gpu::hizLevelCount(size))) * sizeof(float);
+    if (minmax) desc.extraUsage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT;  // the sampler rung copies levels out of it
     graph::BufferHandle created = graph.createBuffer(name, desc);
     auto out = std::make_shared<graph::BufferHandle>();
+    if (minmax) {  // the sampler rung: the depth image is sampled
+        graph.addPass(
+            name,
+            [&](graph::PassBuilder& b) {
+                constexpr VkPipelineStageFlags2 kCs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+                b.read(depth, graph::Access::SampledRead, kCs);
+                *out = b.write(created, graph::Access::StorageReadWrite, kCs);
+            },
+            [&ctx, &shaders, depth, out, size, minmax](graph::PassContext& pc) {
+                recordDepthPyramidMinmax(pc.commandBuffer(), ctx, shaders, pc.texture(depth).sampledIndex, *minmax,
+                                         size, pc.vkBuffer(*out), pc.buffer(*out).address);
+            });
+        return *out;
+    }
     graph.addPass(
         name,
         [&](graph::PassBuilder& b) {

@@ -95,6 +95,7 @@ struct GBufferOutputs {
 // vkCmdDrawIndexedIndirectCount instead of every scene draw. `drawOver` (optional, with `culled`): load and keep
 // drawing into these targets (the late phase of occlusion culling) instead of clearing new ones.
 struct CulledDraws;
+struct ShadowCulledDraws;  // passes/culling.hpp
 GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                               const SceneBuffers& scene, graph::BufferHandle frame, IndirectDrawLog* log,
                               const CulledDraws* culled = nullptr, const GBufferOutputs* drawOver = nullptr);
@@ -110,7 +111,8 @@ struct PointShadowOutputs {
 std::vector<graph::TextureHandle> addPointShadowPass(graph::RenderGraph& graph, vk::Context& ctx,
                                                      vk::ShaderLibrary& shaders, const SceneBuffers& scene,
                                                      const render::PointShadowMaps& maps,
-                                                     const render::PointShadowFrame& frame, IndirectDrawLog* log);
+                                                     const render::PointShadowFrame& frame, IndirectDrawLog* log,
+                                                     const ShadowCulledDraws* culled = nullptr);
 std::vector<graph::TextureHandle> addLightShadowMapPass(graph::RenderGraph& graph, vk::Context& ctx,
                                                         vk::ShaderLibrary& shaders, const SceneBuffers& scene,
                                                         const render::LightShadowMaps& maps,

@@ -1,12 +1,14 @@
 // point_shadows.cpp: renders one depth cube per shadow-casting point light from the scene's multi-draw-indirect
 // buffer, along the capability ladder "point-shadow cube faces": native = ONE instanced indirect draw per light
 // (instanceCount * 6, the vertex shader writes gl_Layer = face), fallback = six indirect draws per light into
-// single-face views (the shadow table the lighting reads is uploaded by passes/light_shadow_maps.cpp). Ports
-// IDKEngine's PointShadowManager.RenderShadowMaps (reference 2.12; its CPU face culling and GPU instance culling
-// come later).
+// single-face views (the shadow table the lighting reads is uploaded by passes/light_shadow_maps.cpp). With GPU
+// culling (passes/cull_shadows.cpp) every face has its own compacted commands and count, so the pass draws face by
+// face with vkCmdDrawIndexedIndirectCount on either rung (face_culled.vert: the instance is gl_InstanceIndex).
+// Ports IDKEngine's PointShadowManager.RenderShadowMaps (reference 2.12; there the faces are culled on the CPU).
 #include <algorithm>
 #include <memory>
 
+#include "passes/culling.hpp"
 #include "passes/passes.hpp"
 #include "passes/rendering.hpp"
 #include "render/point_shadow_maps.hpp"
@@ -32,13 +34,17 @@ void beginDepthRendering(VkCommandBuffer cmd, VkImageView view, uint32_t size, u
 std::vector<graph::TextureHandle> addPointShadowPass(graph::RenderGraph& graph, vk::Context& ctx,
                                                      vk::ShaderLibrary& shaders, const SceneBuffers& scene,
                                                      const render::PointShadowMaps& maps,
-                                                     const render::PointShadowFrame& frameIn, IndirectDrawLog* log) {
+                                                     const render::PointShadowFrame& frameIn, IndirectDrawLog* log,
+                                                     const ShadowCulledDraws* culledIn) {
     auto frame = std::make_shared<render::PointShadowFrame>(frameIn);
     auto out = std::make_shared<std::vector<graph::TextureHandle>>();
     const SceneBuffers s = scene;
-    const bool layered = maps.layered(), mask = maps.alphaMask();
-    // The maps' own commands (x6 on the native rung, BLEND casters) or the scene's.
-    const graph::BufferHandle draws = frame->casterDraws.valid() ? frame->casterDraws : s.drawCommands;
+    const ShadowCulledDraws culled = culledIn ? *culledIn : ShadowCulledDraws{};
+    const bool layered = maps.layered() && !culledIn, mask = maps.alphaMask();
+    // The culled per-face commands, else the maps' own (x6 on the native rung, BLEND casters) or the scene's.
+    const graph::BufferHandle draws = culledIn                    ? culled.commands
+                                      : frame->casterDraws.valid() ? frame->casterDraws
+                                                                   : s.drawCommands;
     graph.addPass(
         "point_shadows",
         [&](graph::PassBuilder& b) {
@@ -49,6 +55,7 @@ std::vector<graph::TextureHandle> addPointShadowPass(graph::RenderGraph& graph, 
             b.read(s.indices, graph::Access::VertexRead);
             b.read(s.instances, graph::Access::StorageRead, mask ? kVs | kFs : kVs);
             b.read(draws, graph::Access::IndirectRead);
+            if (culled.counters.valid()) b.read(culled.counters, graph::Access::IndirectRead);
             if (s.colors.valid()) b.read(s.colors, graph::Access::StorageRead, kVs);
             if (s.uv1.valid()) b.read(s.uv1, graph::Access::StorageRead, kVs);
             if (mask) {
@@ -56,11 +63,13 @@ std::vector<graph::TextureHandle> addPointShadowPass(graph::RenderGraph& graph, 
                 b.read(s.materials, graph::Access::StorageRead, kFs);
             }
         },
-        [&ctx, &shaders, &maps, s, frame, draws, layered, mask, log](graph::PassContext& pc) {
+        [&ctx, &shaders, &maps, s, frame, draws, layered, mask, log, culled](graph::PassContext& pc) {
             VkCommandBuffer cmd = pc.commandBuffer();
 
             vk::GraphicsPipelineDesc desc;
-            desc.vertex = layered ? vk::ShaderId::point_shadows_layered_vert : vk::ShaderId::point_shadows_face_vert;
+            desc.vertex = layered                   ? vk::ShaderId::point_shadows_layered_vert
+                          : culled.commands.valid() ? vk::ShaderId::point_shadows_face_culled_vert
+                                                    : vk::ShaderId::point_shadows_face_vert;
             if (mask) desc.fragment = vk::ShaderId::point_shadows_mask_frag;  // depth-only without MASK / BLEND
             desc.depthFormat = kShadowFormat;
             desc.depthCompare = VK_COMPARE_OP_LESS;
@@ -90,8 +99,16 @@ std::vector<graph::TextureHandle> addPointShadowPass(graph::RenderGraph& graph, 
                                         layered ? 6u : 1u);
                     push.face = face;
                     vk::pushConstants(cmd, ctx, push);
-                    vkCmdDrawIndexedIndirect(cmd, indirect, 0, s.drawCount, sizeof(VkDrawIndexedIndirectCommand));
-                    if (log) log->record(pc.passName(), s.drawCount);
+                    if (culled.commands.valid()) {  // this face's compacted commands and GPU count
+                        const uint32_t view = c * 6 + face;
+                        vkCmdDrawIndexedIndirectCount(cmd, indirect, culled.commandOffset(view),
+                                                      pc.vkBuffer(culled.counters), culled.countOffset(view),
+                                                      culled.maxDraws, sizeof(VkDrawIndexedIndirectCommand));
+                        if (log) log->record(pc.passName(), culled.maxDraws);  // the most it may draw
+                    } else {
+                        vkCmdDrawIndexedIndirect(cmd, indirect, 0, s.drawCount, sizeof(VkDrawIndexedIndirectCommand));
+                        if (log) log->record(pc.passName(), s.drawCount);
+                    }
                     vkCmdEndRendering(cmd);
                 }
             }

@@ -88,18 +88,19 @@ void PointShadowMaps::createCubes(vk::Context& ctx, const GpuSceneData& scene) {
             view.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
             view.subresourceRange = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, 0, 6};
             vk::check(vkCreateImageView(ctx.device(), &view, nullptr, &cube.layeredView));
-        } else {
-            view.viewType = VK_IMAGE_VIEW_TYPE_2D;
-            for (uint32_t f = 0; f < 6; ++f) {
-                view.subresourceRange = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, f, 1};
-                vk::check(vkCreateImageView(ctx.device(), &view, nullptr, &cube.faceViews[f]));
-            }
+        }
+        // Single-face views on both rungs: GPU culling draws each face's own culled commands into its view.
+        view.viewType = VK_IMAGE_VIEW_TYPE_2D;
+        for (uint32_t f = 0; f < 6; ++f) {
+            view.subresourceRange = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, f, 1};
+            vk::check(vkCreateImageView(ctx.device(), &view, nullptr, &cube.faceViews[f]));
         }
     }
 
     // Own draw commands where the scene's buffer will not do: six instances per draw on the native rung
     // (instance = face), and BLEND draws, which the scene's buffer leaves without an instance, so they cast.
-    if (!scene.draws.empty() && (layered_ || blendDrawCount(scene) > 0))
+    blendCasters_ = blendDrawCount(scene) > 0;
+    if (!scene.draws.empty() && (layered_ || blendCasters_))
         casterDraws_ = createShadowCasterDraws(ctx, scene, layered_ ? 6u : 1u, "point shadow draw commands");
 }
 

@@ -56,8 +56,10 @@ public:
     const std::vector<uint32_t>& casters() const noexcept { return casters_; }  // light index per cube
     const vk::Image& cube(uint32_t i) const { return cubes_.at(i).image; }
     VkImageView layeredView(uint32_t i) const { return cubes_.at(i).layeredView; }  // 2D array of the 6 faces
-    VkImageView faceView(uint32_t i, uint32_t face) const { return cubes_.at(i).faceViews.at(face); }
+    VkImageView faceView(uint32_t i, uint32_t face) const { return cubes_.at(i).faceViews.at(face); }  // both rungs
     bool alphaMask() const noexcept { return alphaMask_; }  // MASK or BLEND: the pass needs its fragment shader
+    // BLEND draws cast (by coverage) from the maps' own commands; the culling kernel's per-face commands lack them.
+    bool blendCasters() const noexcept { return blendCasters_; }
 
     // This frame: imports every cube into the graph (in the state the previous frame left it) and builds the
     // per-light table (kNoShadow for lights without a cube) from the lights' current positions.
@@ -82,6 +84,7 @@ private:
     scene::Aabb sceneBox_;
     std::vector<Cube> cubes_;
     vk::SamplerIndex sampler_;
+    bool blendCasters_ = false;
     vk::Buffer casterDraws_;  // render/shadow_caster_draws.hpp: x6 for the native rung; only these or BLEND
 };
 

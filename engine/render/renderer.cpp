@@ -59,8 +59,12 @@ graph::TextureHandle Renderer::renderPbr(graph::RenderGraph& graph, const scene:
     f.viewProjection = scene::projectionMatrix(camera, float(width) / float(height)) * scene::viewMatrix(camera);
     graph::PhysicalTexture output = physicalOf(target);
     output.storageIndex = outputStorage_.value;
-    f.output = graph.importTexture("output", output, graph::ResourceState{},
-                                   graph::FinalUse{graph::Access::TransferSrc});
+    // Its first layout transition waits on every earlier stage: the validation layer counts each compute
+    // dispatch that binds the bindless storage array (e.g. the Hi-Z pyramid of --culling hiz, before lighting) as
+    // reading this storage image, and the transition must not race those reads.
+    graph::ResourceState fresh;
+    fresh.readStages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    f.output = graph.importTexture("output", output, fresh, graph::FinalUse{graph::Access::TransferSrc});
     return frame::recordPbrFrame(f, *gpuScene_, features_);
 }
 
@@ -125,6 +129,8 @@ FrameResult Renderer::renderOffscreen(const scene::CameraView& camera, uint32_t 
     result.indirectDraws = log.entries;
     if (pbr) result.shadingInvocations = features_.vrs.lastShadingInvocations();
     if (pbr) result.culling = features_.culling.lastStats();
+    if (pbr)  // then each point-shadow cube face's counters (frame/shadow_culling.hpp)
+        for (passes::CullingViewStats& v : features_.pointShadows.cullStats()) result.culling.push_back(std::move(v));
 
     std::vector<uint8_t> bytes = vk::readbackImage(ctx_, target, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
     result.image.width = width;

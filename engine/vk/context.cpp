@@ -415,6 +415,12 @@ void Context::createDevice() {
     caps_.subgroupArithmetic = (p11.subgroupSupportedOperations & VK_SUBGROUP_FEATURE_ARITHMETIC_BIT) &&
                                (p11.subgroupSupportedStages & VK_SHADER_STAGE_COMPUTE_BIT);
     caps_.meshShaderExt = supported.mesh.meshShader && supported.mesh.taskShader;
+    {  // the Hi-Z pyramid's reduction sampler reads R32F depth (passes/depth_pyramid.cpp)
+        VkFormatProperties r32f{};
+        vkGetPhysicalDeviceFormatProperties(physical_, VK_FORMAT_R32_SFLOAT, &r32f);
+        caps_.samplerFilterMinmax = supported.v12.samplerFilterMinmax &&
+                                    (r32f.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_MINMAX_BIT);
+    }
     caps_.meshShaderNv = contains(exts, "VK_NV_mesh_shader");
     caps_.fragmentShadingRate = supported.shadingRate.attachmentFragmentShadingRate;
     caps_.shadingRateImageNv = supported.shadingRateNv.shadingRateImage;

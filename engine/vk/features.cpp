@@ -91,6 +91,10 @@ std::vector<Ladder> ladderTable(const DeviceCapabilities& c) {
         {{Rung::Native, "subgroupAdd / subgroupMax", c.subgroupArithmetic,
           missing(c.subgroupArithmetic, "compute-stage subgroup arithmetic")},
          {Rung::Fallback, "shared-memory tree", true, ""}}));
+    ladders.push_back(ladder("hiz-reduction", "Hi-Z pyramid reduction (GPU culling)",
+        {{Rung::Native, "sampler MAX reduction (VK_EXT_sampler_filter_minmax)", c.samplerFilterMinmax,
+          missing(c.samplerFilterMinmax, "samplerFilterMinmax with R32F MINMAX filtering")},
+         {Rung::Fallback, "compute max of 2x2 loads", true, ""}}));
     return ladders;
 }
 

@@ -29,6 +29,7 @@ struct DeviceCapabilities {
     bool shaderOutputLayer = false;       // gl_Layer from the vertex shader (point-shadow cube in one draw)
     bool externalMemoryFd = false;        // VK_KHR_external_memory_fd: share memory with OpenGL
     bool bufferFloat32AtomicAdd = false;  // VK_EXT_shader_atomic_float: shaderBufferFloat32AtomicAdd
+    bool samplerFilterMinmax = false;     // VK_EXT_sampler_filter_minmax (core 1.2) with MAX filtering of R32F
     // The GL-interop rung (gl/interop_probe.hpp), filled only when the context probed it (ContextDesc).
     bool glInterop = false;               // a GL context imports this device's memory; round trip passed
     bool glAtomicFloat = false;           // ... and has GL_NV_shader_atomic_float

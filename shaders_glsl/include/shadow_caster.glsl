@@ -15,12 +15,17 @@ layout(location = 3) flat out uint outDraw;
 
 // World position of this vertex; writes the fragment stage's inputs.
 vec3 shadowCasterVertex(uint64_t vertices, uint64_t instances, uint64_t colors, uint64_t uv1) {
-    GpuInstance instance = InstanceBuffer(instances).data[gl_DrawID];
+#ifdef IDK_SHADOW_CASTER_CULLED  // compacted commands (GPU culling): firstInstance names the instance
+    uint draw = uint(gl_InstanceIndex);
+#else
+    uint draw = gl_DrawID;
+#endif
+    GpuInstance instance = InstanceBuffer(instances).data[draw];
     GpuVertex v = VertexBuffer(vertices).data[gl_VertexIndex];
     outUv = v.uv0;
     outUv1 = uv1 != 0 ? Vec2Buffer(uv1).data[gl_VertexIndex] : vec2(0.0);
     outAlpha = colors != 0 ? Vec4Buffer(colors).data[gl_VertexIndex].a : 1.0;
-    outDraw = gl_DrawID;
+    outDraw = draw;
     return (instance.model * vec4(v.position, 1.0)).xyz;
 }
 #else

@@ -26,6 +26,20 @@ struct HizBuildPush {
 };
 IDK_GPU_SIZE(HizBuildPush, 24);
 
+// culling/hiz_reduce.comp (the sampler rung of the ladder "hiz-reduction", passes/depth_pyramid_minmax.cpp copies
+// each level into an image for the next): one bilinear sample with a MAX
+// reduction sampler at the shared corner of each 2 x 2 block returns the block's maximum (clamp-to-edge folds the
+// missing column/row at odd edges onto the last one, as the compute rung's clipped 2 x 2 does).
+struct HizReducePush {
+    DeviceAddress pyramid;  // float[]: the whole pyramid (the culling passes read this)
+    uvec2 depthSize;        // w, h of the depth image
+    uint source;            // bindless sampled index: the depth image (level 0) or level - 1's image
+    uint samplerIndex;      // bindless sampler index: linear, clamp to edge, reduction MAX
+    uint level;
+    uint pad0;
+};
+IDK_GPU_SIZE(HizReducePush, 32);
+
 IDK_INLINE uvec2 hizLevelSize(uvec2 depthSize, uint level) {
     uint shift = level + 1u;
     return (depthSize + uvec2((1u << shift) - 1u)) >> shift;

@@ -523,6 +523,16 @@ PY
     drawn=$(sed -n 's/.*"instancesDrawn": \([0-9]*\).*/\1/p' "$tmp/frustum.json")
     [ -n "$drawn" ] && [ "$drawn" -gt 0 ] && [ "$drawn" -lt 125 ] || fail "frustum drew '$drawn' of 125"
     grep -q '"trianglesDrawn"' "$tmp/hiz.json" || fail "hiz --json lacks trianglesDrawn"
+    # The Hi-Z pyramid's ladder: hiz consults "hiz-reduction"; forcing its compute rung gives the same image.
+    "$idk" render "$scene" --size 48x32 --out "$tmp/hizc.png" --culling hiz --camera eye=3,2,6:target=-2,0,0 \
+      --rung hiz-reduction=fallback --json >"$tmp/hizc.json" || fail "--rung hiz-reduction=fallback failed"
+    python3 - "$tmp/hiz.json" "$tmp/hizc.json" <<'PY' || fail "hiz-reduction rungs not as expected"
+import json, sys
+rung = lambda f: next(r for r in json.load(open(f))["rungs"] if r["id"] == "hiz-reduction")["chosen"]
+assert rung(sys.argv[2]) == "fallback", rung(sys.argv[2])
+assert rung(sys.argv[1]) in ("native", "fallback"), rung(sys.argv[1])
+PY
+    cmp -s "$tmp/off.png" "$tmp/hizc.png" || fail "hiz culling on the compute pyramid rung changed the image"
     "$idk" render --size 8x8 --out "$tmp/x.png" --culling sometimes 2>"$tmp/err"; [ $? -eq 2 ] \
       || fail "--culling sometimes should exit 2"
     grep -q -- "off|frustum|hiz" "$tmp/err" || fail "error does not list the modes: $(cat "$tmp/err")"

@@ -12,6 +12,7 @@
 #include "render/renderer.hpp"
 #include "render/scene_textures.hpp"
 #include "scene/gltf_loader.hpp"
+#include "support/culled_gbuffer_passes.hpp"
 #include "support/golden.hpp"
 #include "support/gpu_fixture.hpp"
 
@@ -55,8 +56,7 @@ protected:
 
 TEST_F(PassListTest, BlendSceneWithoutLightsAddsTransparencyButNoShadows) {
     nlohmann::json j = renderJson({kAlphaBlend, "--out", out("blend.png"), "--size", "32x32", "--json"});
-    EXPECT_EQ(passes(j), (std::vector<std::string>{"scene_update", "gbuffer", "deferred_lighting", "sky",
-                                                   "transparency", "tonemap"}));
+    EXPECT_EQ(passes(j), withCulledGBuffer({"scene_update"}, {"deferred_lighting", "sky", "transparency", "tonemap"}));
     EXPECT_EQ(j["indirectDraws"]["transparency"]["indirectCalls"], 1);
     EXPECT_TRUE(j["memoryBytes"].contains("transparency"));
     EXPECT_FALSE(j["memoryBytes"].contains("shadow maps"));
@@ -64,9 +64,11 @@ TEST_F(PassListTest, BlendSceneWithoutLightsAddsTransparencyButNoShadows) {
 
 TEST_F(PassListTest, LitSceneWithoutBlendAddsShadowsButNoTransparency) {
     nlohmann::json j = renderJson({"--out", out("cornell.png"), "--size", "32x32", "--json"});
-    EXPECT_EQ(passes(j), (std::vector<std::string>{"shadow_table", "point_shadows", "gbuffer", "deferred_lighting", "sky",
-                                                   "tonemap"}));
-    EXPECT_EQ(j["indirectDraws"]["point_shadows"]["indirectCalls"], 1) << "one instanced draw for the one light";
+    // The cube's six faces are culled (one dispatch per face) and drawn face by face from their culled commands.
+    EXPECT_EQ(passes(j), withCulledGBuffer({"shadow_table", "cull_reset_shadows", "cull_shadows", "cull_stats_shadows",
+                                            "point_shadows"},
+                                           {"deferred_lighting", "sky", "tonemap"}));
+    EXPECT_EQ(j["indirectDraws"]["point_shadows"]["indirectCalls"], 6) << "one culled draw per face of the one light";
     EXPECT_TRUE(j["memoryBytes"].contains("shadow maps"));
     EXPECT_FALSE(j["memoryBytes"].contains("transparency"));
 }
@@ -78,7 +80,7 @@ TEST_F(PassListTest, FallbackRungDrawsSixTimesPerLight) {
 
 TEST_F(PassListTest, SceneWithNeitherHasNeitherPassNorMemory) {
     nlohmann::json j = renderJson({kBox, "--out", out("box.png"), "--size", "32x32", "--json"});
-    EXPECT_EQ(passes(j), (std::vector<std::string>{"gbuffer", "deferred_lighting", "sky", "tonemap"}));
+    EXPECT_EQ(passes(j), withCulledGBuffer({}, {"deferred_lighting", "sky", "tonemap"}));
     EXPECT_FALSE(j["memoryBytes"].contains("shadow maps"));
     EXPECT_FALSE(j["memoryBytes"].contains("transparency"));
 }

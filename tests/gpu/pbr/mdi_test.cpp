@@ -71,6 +71,9 @@ TEST_P(MdiTest, GBufferIsOneIndirectDrawWithOneDrawPerInstancePrimitive) {
     ASSERT_GT(pairs, 0u);
 
     render::Renderer renderer(ctx(), shaders());
+    // The unculled G-buffer is this test's subject (culling's count-driven and mesh-shader draws are
+    // tests/gpu/culling's); hiz is the default.
+    renderer.settings().culling.mode = frame::CullingMode::Off;
     renderer.setScene(scene);
     render::FrameResult frame;
     DrawCounts counts;

@@ -54,7 +54,7 @@ TEST_F(TextureUpdateTest, SetTexturePatchesMaterialsAndTheNextFrameShowsIt) {
     EXPECT_EQ(a[3], 1.0f);
 
     render::FrameResult next = renderer.renderOffscreen(camera, 32, 32);
-    EXPECT_EQ(next.passesRun.front(), "gbuffer") << "nothing changed: no scene_update";
+    EXPECT_EQ(next.passesRun.front(), "cull_reset_early") << "nothing changed: no scene_update before the G-buffer";
     EXPECT_EQ(next.image.pixels, after.image.pixels);
     ctx().waitIdle();
     ctx().bindless().release(index);

@@ -10,6 +10,7 @@
 
 #include "app/default_scene.hpp"
 #include "render/renderer.hpp"
+#include "support/cube_readback.hpp"
 #include "support/gpu_fixture.hpp"
 #include "vk/context.hpp"
 #include "vk/transfer.hpp"
@@ -18,28 +19,6 @@ namespace idk::test {
 namespace {
 
 constexpr uint32_t kFrame = 64, kCube = 128;
-
-// All six faces of a cube left in SHADER_READ_ONLY_OPTIMAL by the frame: float depths, face-major.
-std::vector<float> readCube(vk::Context& ctx, const vk::Image& cube) {
-    const VkDeviceSize faceBytes = VkDeviceSize(cube.extent.width) * cube.extent.height * sizeof(float);
-    vk::BufferDesc desc;
-    desc.size = faceBytes * 6;
-    desc.memory = vk::MemoryUsage::Readback;
-    desc.name = "cube readback";
-    vk::Buffer staging = ctx.createBuffer(desc);
-    ctx.runImmediate([&](VkCommandBuffer cmd) {
-        vk::transitionImage(cmd, cube, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-        VkBufferImageCopy copy{};
-        copy.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 6};
-        copy.imageExtent = cube.extent;
-        vkCmdCopyImageToBuffer(cmd, cube.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.buffer, 1, &copy);
-        vk::transitionImage(cmd, cube, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    });
-    std::vector<float> out(size_t(desc.size / sizeof(float)));
-    vk::downloadBuffer(ctx, staging, out.data(), desc.size);
-    ctx.destroy(staging);
-    return out;
-}
 
 struct RungResult {
     vk::Rung rung;
@@ -53,6 +32,7 @@ RungResult renderCornell(vk::Context& ctx, vk::ShaderLibrary& shaders) {
     render::RenderSettings settings;
     settings.output = render::OutputKind::Hdr;
     settings.pointShadows.resolution = kCube;
+    settings.culling.mode = frame::CullingMode::Off;  // culled cubes are drawn face by face on both rungs
     render::Renderer renderer(ctx, shaders, settings);
     renderer.setScene(scene);
     RungResult r;

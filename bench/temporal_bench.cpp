@@ -17,33 +17,18 @@
 #include "app/flip.hpp"
 #include "app/image_compare.hpp"
 #include "bench_support.hpp"
+#include "core/image_resample.hpp"
 #include "frame/ssao_oracle.hpp"
 #include "render/renderer.hpp"
 
 namespace idk::bench {
 namespace {
 
+using core::boxDownsample;  // core/image_resample.hpp
+using core::compressed;
+
 constexpr uint32_t kWidth = 1280, kHeight = 720;
 constexpr uint32_t kErrorWidth = 320, kErrorHeight = 180, kSuper = 4;
-
-core::ImageRgba32f compressed(core::ImageRgba32f image) {
-    for (size_t i = 0; i < image.pixels.size(); ++i)
-        if (i % 4 != 3) image.pixels[i] = std::max(image.pixels[i], 0.0f) / (1.0f + std::max(image.pixels[i], 0.0f));
-    return image;
-}
-
-core::ImageRgba32f boxDownsample(const core::ImageRgba32f& big, uint32_t k) {
-    core::ImageRgba32f out;
-    out.width = big.width / k;
-    out.height = big.height / k;
-    out.pixels.assign(size_t(out.width) * out.height * 4, 0.0f);
-    for (uint32_t y = 0; y < out.height * k; ++y)
-        for (uint32_t x = 0; x < out.width * k; ++x)
-            for (uint32_t c = 0; c < 4; ++c)
-                out.pixels[(size_t(y / k) * out.width + x / k) * 4 + c] +=
-                    big.pixels[(size_t(y) * big.width + x) * 4 + c] / float(k * k);
-    return out;
-}
 
 struct Variant {
     const char* name;

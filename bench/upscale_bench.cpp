@@ -17,57 +17,19 @@
 #include "app/flip.hpp"
 #include "app/image_compare.hpp"
 #include "bench_support.hpp"
+#include "core/image_resample.hpp"
 #include "frame/upscale_feature.hpp"
 #include "render/renderer.hpp"
 
 namespace idk::bench {
 namespace {
 
+using core::boxDownsample;  // core/image_resample.hpp
+using core::compressed;
+
 constexpr uint32_t kWidth = 1280, kHeight = 720;
 constexpr uint32_t kErrorWidth = 320, kErrorHeight = 180, kSuper = 4;
 constexpr int kPathFrames = 16, kWarmup = 4;
-
-core::ImageRgba32f compressed(core::ImageRgba32f image) {
-    for (size_t i = 0; i < image.pixels.size(); ++i)
-        if (i % 4 != 3) image.pixels[i] = std::max(image.pixels[i], 0.0f) / (1.0f + std::max(image.pixels[i], 0.0f));
-    return image;
-}
-
-core::ImageRgba32f boxDownsample(const core::ImageRgba32f& big, uint32_t k) {
-    core::ImageRgba32f out;
-    out.width = big.width / k;
-    out.height = big.height / k;
-    out.pixels.assign(size_t(out.width) * out.height * 4, 0.0f);
-    for (uint32_t y = 0; y < out.height * k; ++y)
-        for (uint32_t x = 0; x < out.width * k; ++x)
-            for (uint32_t c = 0; c < 4; ++c)
-                out.pixels[(size_t(y / k) * out.width + x / k) * 4 + c] +=
-                    big.pixels[(size_t(y) * big.width + x) * 4 + c] / float(k * k);
-    return out;
-}
-
-core::ImageRgba32f bilinear(const core::ImageRgba32f& small, uint32_t width, uint32_t height) {
-    core::ImageRgba32f out;
-    out.width = width;
-    out.height = height;
-    out.pixels.assign(size_t(width) * height * 4, 0.0f);
-    const auto at = [&](int x, int y, uint32_t c) {
-        return small.pixels[(size_t(std::clamp(y, 0, int(small.height) - 1)) * small.width +
-                             size_t(std::clamp(x, 0, int(small.width) - 1))) * 4 + c];
-    };
-    for (uint32_t y = 0; y < height; ++y)
-        for (uint32_t x = 0; x < width; ++x) {
-            const float sx = (float(x) + 0.5f) * float(small.width) / float(width) - 0.5f;
-            const float sy = (float(y) + 0.5f) * float(small.height) / float(height) - 0.5f;
-            const int x0 = int(std::floor(sx)), y0 = int(std::floor(sy));
-            const float fx = sx - float(x0), fy = sy - float(y0);
-            for (uint32_t c = 0; c < 4; ++c)
-                out.pixels[(size_t(y) * width + x) * 4 + c] =
-                    (at(x0, y0, c) * (1 - fx) + at(x0 + 1, y0, c) * fx) * (1 - fy) +
-                    (at(x0, y0 + 1, c) * (1 - fx) + at(x0 + 1, y0 + 1, c) * fx) * fy;
-        }
-    return out;
-}
 
 scene::CameraView pathCamera(const scene::Scene& scene, int i) {
     scene::CameraView c = scene::defaultCamera(scene);
@@ -137,8 +99,8 @@ void BM_Upscale(benchmark::State& state, const Variant& v) {
         psnr += app::psnr(app::compareImages(image, truth[size_t(i)]));
         flip += app::computeFlip(image, truth[size_t(i)]).mean;
         if (v.aa != frame::AntiAliasing::Upscale) continue;
-        const core::ImageRgba32f up = compressed(
-            bilinear(low.renderOffscreen(camera, lowSize.width, lowSize.height).image, kErrorWidth, kErrorHeight));
+        const core::ImageRgba32f lowFrame = low.renderOffscreen(camera, lowSize.width, lowSize.height).image;
+        const core::ImageRgba32f up = compressed(core::bilinearUpscale(lowFrame, kErrorWidth, kErrorHeight));
         bilinearPsnr += app::psnr(app::compareImages(up, truth[size_t(i)]));
         bilinearFlip += app::computeFlip(up, truth[size_t(i)]).mean;
     }

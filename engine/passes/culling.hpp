@@ -59,8 +59,11 @@ CulledDraws addCullPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderL
 
 // depth_pyramid.cpp: the Hi-Z pyramid (shared/depth_pyramid.h) of the R32F depth image `depth` (size pixels) into
 // a new graph buffer; `name` names the pass and the buffer. recordDepthPyramid is its body (conformance tests call it on their own buffers).
+// `reduction`: Farthest (max: culling; an occluder hides a box only behind all of a cell) or Closest (min: the SSR
+// march; a ray in front of a cell's nearest surface passes the whole cell).
+enum class HizReduction { Farthest, Closest };
 void recordDepthPyramid(VkCommandBuffer cmd, vk::Context& ctx, vk::ShaderLibrary& shaders, uint32_t depthStorage,
-                        glm::uvec2 size, VkDeviceAddress pyramid);
+                        glm::uvec2 size, VkDeviceAddress pyramid, HizReduction reduction = HizReduction::Farthest);
 // depth_pyramid_minmax.cpp: the native rung of the ladder "hiz-reduction" (same pyramid, bit for bit): a bindless
 // sampler with reduction MAX and one R32F image per level (hizLevelSize; usage SAMPLED | TRANSFER_DST), into which
 // each level is copied for the next one to sample. The caller owns them (persistent, outside the render graph: only

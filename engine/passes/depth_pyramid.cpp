@@ -13,9 +13,10 @@
 namespace idk::passes {
 
 void recordDepthPyramid(VkCommandBuffer cmd, vk::Context& ctx, vk::ShaderLibrary& shaders, uint32_t depthStorage,
-                        glm::uvec2 size, VkDeviceAddress pyramid) {
+                        glm::uvec2 size, VkDeviceAddress pyramid, HizReduction reduction) {
     vk::ComputePipelineDesc pipeline;
-    pipeline.shader = vk::ShaderId::culling_hiz_build_comp;
+    pipeline.shader = reduction == HizReduction::Closest ? vk::ShaderId::ssr_hiz_min_comp
+                                                         : vk::ShaderId::culling_hiz_build_comp;
     pipeline.pushBytes = sizeof(gpu::HizBuildPush);
     pipeline.localSize = {gpu::kHizGroupSize, gpu::kHizGroupSize, 1};
     vk::bindPipeline(cmd, shaders.compute(pipeline));

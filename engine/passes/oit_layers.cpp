@@ -14,6 +14,7 @@
 
 #include "passes/passes.hpp"
 #include "passes/rendering.hpp"
+#include "passes/transparency_draws.hpp"
 #include "shared/oit_types.h"
 #include "shared/shadow_types.h"
 
@@ -70,22 +71,11 @@ void drawLayers(graph::PassContext& pc, vk::Context& ctx, vk::ShaderLibrary& sha
     beginRendering(cmd, extent, {});
     vk::bindPipeline(cmd, pipeline);
     ctx.bindless().bind(cmd);
-    const SceneBuffers& s = t.scene;
     gpu::OitLayersPush push{};
-    push.forward.frame = pc.buffer(t.frame).address;
-    push.forward.vertices = pc.buffer(s.vertices).address;
-    push.forward.instances = pc.buffer(s.instances).address;
-    push.forward.meshes = pc.buffer(s.meshes).address;
-    push.forward.materials = pc.buffer(s.materials).address;
-    push.forward.colors = s.colors.valid() ? pc.buffer(s.colors).address : 0;
-    push.forward.uv1 = s.uv1.valid() ? pc.buffer(s.uv1).address : 0;
-    push.forward.pointShadows = t.shadows.table.valid() ? pc.buffer(t.shadows.table).address : 0;
-    push.forward.depth = pc.texture(t.depth).storageIndex;
+    push.forward = transparencyPush(pc, t);
     push.layers = layerBuffers(pc, a, extent, fragment == vk::ShaderId::oit_layers_depth_frag);
     vk::pushConstants(cmd, ctx, push);
-    vkCmdBindIndexBuffer(cmd, pc.vkBuffer(s.indices), 0, VK_INDEX_TYPE_UINT32);
-    vkCmdDrawIndexedIndirect(cmd, pc.vkBuffer(t.sortedDraws), 0, t.drawCount, sizeof(VkDrawIndexedIndirectCommand));
-    if (log) log->record(pc.passName(), t.drawCount);
+    drawTransparent(pc, t, log);
     vkCmdEndRendering(cmd);
 }
 

@@ -7,6 +7,7 @@
 
 #include "passes/passes.hpp"
 #include "passes/rendering.hpp"
+#include "passes/transparency_draws.hpp"
 #include "shared/oit_types.h"
 #include "shared/shadow_types.h"
 
@@ -69,22 +70,9 @@ graph::TextureHandle addWeightedOitPasses(graph::RenderGraph& graph, vk::Context
             beginRendering(cmd, {a.extent.width, a.extent.height}, colors);
             vk::bindPipeline(cmd, pipeline);
             ctx.bindless().bind(cmd);
-            const SceneBuffers& s = t.scene;
-            gpu::TransparencyPush push{};
-            push.frame = pc.buffer(t.frame).address;
-            push.vertices = pc.buffer(s.vertices).address;
-            push.instances = pc.buffer(s.instances).address;
-            push.meshes = pc.buffer(s.meshes).address;
-            push.materials = pc.buffer(s.materials).address;
-            push.colors = s.colors.valid() ? pc.buffer(s.colors).address : 0;
-            push.uv1 = s.uv1.valid() ? pc.buffer(s.uv1).address : 0;
-            push.pointShadows = t.shadows.table.valid() ? pc.buffer(t.shadows.table).address : 0;
-            push.depth = pc.texture(t.depth).storageIndex;
+            gpu::TransparencyPush push = transparencyPush(pc, t);
             vk::pushConstants(cmd, ctx, push);
-            vkCmdBindIndexBuffer(cmd, pc.vkBuffer(s.indices), 0, VK_INDEX_TYPE_UINT32);
-            vkCmdDrawIndexedIndirect(cmd, pc.vkBuffer(t.sortedDraws), 0, t.drawCount,
-                                     sizeof(VkDrawIndexedIndirectCommand));
-            if (log) log->record(pc.passName(), t.drawCount);
+            drawTransparent(pc, t, log);
             vkCmdEndRendering(cmd);
         });
     graph.addPass(

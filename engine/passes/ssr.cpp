@@ -1,7 +1,9 @@
-// ssr.cpp: the screen-space reflection passes: "ssr_hiz" (shaders_glsl/ssr/hiz_min.comp, one dispatch per level),
+// ssr.cpp: the screen-space reflection passes: "ssr_hiz" (passes::recordDepthPyramid with the closest-depth reduction),
 // "ssr_trace" (ssr/ssr_trace.comp, 8x8 tiles) and "ssr_keep" (ssr/ssr_keep.comp: the lit image into graph
 // history). Ports IDKEngine's SSR.cs (reference 2.16) with a Hi-Z march.
 #include "passes/ssr.hpp"
+
+#include "passes/culling.hpp"
 
 #include <memory>
 
@@ -17,35 +19,6 @@ constexpr const char* kLitImage = "ssr lit image";
 
 }  // namespace
 
-void recordSsrPyramid(VkCommandBuffer cmd, vk::Context& ctx, vk::ShaderLibrary& shaders, uint32_t depthStorage,
-                      glm::uvec2 size, VkDeviceAddress pyramid) {
-    vk::ComputePipelineDesc pipeline;
-    pipeline.shader = vk::ShaderId::ssr_hiz_min_comp;
-    pipeline.pushBytes = sizeof(gpu::HizBuildPush);
-    pipeline.localSize = {gpu::kHizGroupSize, gpu::kHizGroupSize, 1};
-    vk::bindPipeline(cmd, shaders.compute(pipeline));
-    ctx.bindless().bind(cmd);
-    const uint32_t levels = gpu::hizLevelCount(size);
-    for (uint32_t level = 0; level < levels; ++level) {
-        if (level > 0) {
-            // Level k reads level k - 1's writes: within one pass the graph cannot order them, so the pass owns
-            // the barrier between its own dispatches (as passes/depth_pyramid.cpp).
-            VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-            barrier.srcStageMask = barrier.dstStageMask = kCs;
-            barrier.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-            barrier.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
-            VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-            dep.memoryBarrierCount = 1;
-            dep.pMemoryBarriers = &barrier;
-            vkCmdPipelineBarrier2(cmd, &dep);
-        }
-        const gpu::HizBuildPush push{pyramid, size, depthStorage, level};
-        vk::pushConstants(cmd, ctx, push);
-        const glm::uvec2 s = gpu::hizLevelSize(size, level);
-        vkCmdDispatch(cmd, vk::groupCount(s.x, gpu::kHizGroupSize), vk::groupCount(s.y, gpu::kHizGroupSize), 1);
-    }
-}
-
 graph::BufferHandle addSsrPyramidPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                       graph::TextureHandle depth, glm::uvec2 size) {
     graph::BufferDesc desc;
@@ -59,8 +32,8 @@ graph::BufferHandle addSsrPyramidPass(graph::RenderGraph& graph, vk::Context& ct
             *out = b.write(created, graph::Access::StorageReadWrite, kCs);
         },
         [&ctx, &shaders, depth, out, size](graph::PassContext& pc) {
-            recordSsrPyramid(pc.commandBuffer(), ctx, shaders, pc.texture(depth).storageIndex, size,
-                             pc.buffer(*out).address);
+            recordDepthPyramid(pc.commandBuffer(), ctx, shaders, pc.texture(depth).storageIndex, size,
+                               pc.buffer(*out).address, HizReduction::Closest);
         });
     return *out;
 }

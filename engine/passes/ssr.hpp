@@ -15,9 +15,7 @@ namespace idk::passes {
 // is the maximum one). A float buffer.
 graph::BufferHandle addSsrPyramidPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                       graph::TextureHandle depth, glm::uvec2 size);
-// The same outside a graph (conformance tests): the depth image (storage index) in GENERAL layout.
-void recordSsrPyramid(VkCommandBuffer cmd, vk::Context& ctx, vk::ShaderLibrary& shaders, uint32_t depthStorage,
-                      glm::uvec2 size, VkDeviceAddress pyramid);
+// Outside a graph (conformance tests): passes::recordDepthPyramid with HizReduction::Closest (passes/culling.hpp).
 
 struct SsrInputs {
     GBufferOutputs gbuffer;

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <random>
 
-#include "passes/ssr.hpp"
+#include "passes/culling.hpp"
 #include "shared/depth_pyramid.h"
 #include "support/gpu_fixture.hpp"
 #include "vk/bindless.hpp"
@@ -55,7 +55,8 @@ TEST_F(SsrPyramidTest, EqualsCpuMinimumReductionForAnySize) {
         vk::Buffer pyramid = ctx().createBuffer(
             {count * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::GpuOnly, "pyramid", "test"});
         ctx().runImmediate([&](VkCommandBuffer cmd) {
-            passes::recordSsrPyramid(cmd, ctx(), shaders(), storage.value, size, pyramid.address);
+            passes::recordDepthPyramid(cmd, ctx(), shaders(), storage.value, size, pyramid.address,
+                                       passes::HizReduction::Closest);
         });
         const std::vector<float> got = vk::downloadBuffer<float>(ctx(), pyramid, count);
         ctx().bindless().release(storage);

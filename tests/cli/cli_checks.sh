@@ -581,6 +581,32 @@ PY
     "$idk" render --size 8x8 --out "$tmp/x.png" --ssr-steps 0 2>"$tmp/err"; [ $? -eq 2 ] || fail "--ssr-steps 0 should exit 2"
     grep -q -- "--ssr-steps" "$tmp/err" || fail "error does not name --ssr-steps: $(cat "$tmp/err")"
     ;;
+  light_flags)
+    # Issue 13: --oit layers runs the fixed-layer rung's four passes on a scene with BLEND surfaces (and none of the
+    # weighted rung's); --shadows raytraced with a light radius runs the soft-shadow denoiser, which hard shadows do
+    # not; both are recorded in --json's settings; values outside the rows' ranges exit 2 naming the flag.
+    shared="${IDK_SHARED_DIR:-$(cd "$(dirname "$0")/../../.." && pwd)/shared}"
+    scene="$shared/scenes/AlphaBlendModeTest/glTF-Binary/AlphaBlendModeTest.glb"
+    "$idk" render "$scene" --size 24x24 --out "$tmp/o.png" --oit layers --json >"$tmp/o.json" \
+      || fail "render with --oit layers failed"
+    for key in '"oit": "layers"' '"oit_layers_clear"' '"oit_layers_depth"' '"oit_layers_shade"' '"oit_layers_resolve"'; do
+      grep -q "$key" "$tmp/o.json" || fail "--json lacks $key: $(cat "$tmp/o.json")"
+    done
+    ! grep -q '"oit_composite"' "$tmp/o.json" || fail "the weighted rung ran with --oit layers"
+    "$idk" render --size 16x16 --out "$tmp/s.png" --shadows raytraced --light-radius 0.05 --soft-shadow-rays 4 \
+      --json >"$tmp/s.json" || fail "render with soft shadows failed"
+    for key in '"soft-shadow-rays": 4' '"rt_shadows"' '"rt_shadow_denoise"'; do
+      grep -q "$key" "$tmp/s.json" || fail "--json lacks $key: $(cat "$tmp/s.json")"
+    done
+    "$idk" render --size 16x16 --out "$tmp/h.png" --shadows raytraced --json >"$tmp/h.json" \
+      || fail "render with hard ray-traced shadows failed"
+    ! grep -q '"rt_shadow_denoise"' "$tmp/h.json" || fail "hard shadows ran the soft-shadow denoiser"
+    "$idk" render --size 8x8 --out "$tmp/x.png" --oit stacked 2>"$tmp/err"; [ $? -eq 2 ] || fail "--oit stacked should exit 2"
+    grep -q -- "--oit" "$tmp/err" || fail "error does not name --oit: $(cat "$tmp/err")"
+    "$idk" render --size 8x8 --out "$tmp/x.png" --soft-shadow-rays 0 2>"$tmp/err"; [ $? -eq 2 ] \
+      || fail "--soft-shadow-rays 0 should exit 2"
+    grep -q -- "--soft-shadow-rays" "$tmp/err" || fail "error does not name --soft-shadow-rays: $(cat "$tmp/err")"
+    ;;
   *) fail "unknown case" ;;
 esac
 echo "ok ($case_name)"

@@ -216,7 +216,15 @@ Context::Context(const ContextDesc& desc) : desc_(desc), validation_(std::make_u
 
     if (desc_.probeGlInterop) {
         // The probe needs a working context (it round-trips an image), so the GL rungs are decided last.
-        gl::ProbeResult probe = gl::probeGlInterop(*this);
+        gl::ProbeResult probe;
+        try {
+            probe = gl::probeGlInterop(*this);
+        } catch (...) {
+            // The device was lost (or ran out of memory) during the round trip: no destructor runs for a throwing
+            // constructor, so everything made so far, the probe's deferred releases included, goes here.
+            destroyAll();
+            throw;
+        }
         caps_.glInterop = probe.context != nullptr;
         caps_.glAtomicFloat = probe.atomicFloat;
         caps_.glAtomicFp16Vector = probe.atomicFp16Vector;
@@ -227,7 +235,9 @@ Context::Context(const ContextDesc& desc) : desc_(desc), validation_(std::make_u
     }
 }
 
-Context::~Context() {
+Context::~Context() { destroyAll(); }
+
+void Context::destroyAll() noexcept {
     if (device_) {
         vkDeviceWaitIdle(device_);
         for (auto& d : deferred_) d.release();
@@ -243,6 +253,9 @@ Context::~Context() {
     }
     if (messenger_) vkDestroyDebugUtilsMessengerEXT(instance_, messenger_, nullptr);
     if (instance_) vkDestroyInstance(instance_, nullptr);
+    device_ = VK_NULL_HANDLE;
+    messenger_ = VK_NULL_HANDLE;
+    instance_ = VK_NULL_HANDLE;
 }
 
 void Context::createInstance() {

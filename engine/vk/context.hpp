@@ -192,6 +192,7 @@ private:
     std::mutex liveMutex_;
     std::unordered_map<VkBuffer, Buffer> liveBuffers_;
     std::unordered_map<VkImage, Image> liveImages_;
+    void destroyAll() noexcept;  // the destructor's body (also for a constructor that throws late)
     void releaseLeftovers();
     std::mutex submitMutex_;
     std::mutex immediateMutex_;  // command pools are externally synchronized

@@ -21,7 +21,6 @@
 namespace idk::passes {
 namespace {
 
-constexpr VkPipelineStageFlags2 kVs = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT;
 constexpr VkPipelineStageFlags2 kFs = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
 constexpr VkPipelineStageFlags2 kCs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
 
@@ -29,26 +28,6 @@ struct LayerArrays {
     graph::BufferHandle keys, claims, colors;
 };
 
-// The forward shading's reads, as the sorted rung declares them (passes/transparency.cpp).
-void readForwardInputs(graph::PassBuilder& b, const TransparencyInputs& t) {
-    const SceneBuffers& s = t.scene;
-    b.read(t.sortedDraws, graph::Access::IndirectRead);
-    b.read(t.depth, graph::Access::StorageRead, kFs);
-    b.read(t.environment, graph::Access::SampledRead, kFs);
-    b.read(t.frame, graph::Access::StorageRead, kVs | kFs);
-    b.read(s.vertices, graph::Access::StorageRead, kVs);
-    b.read(s.indices, graph::Access::VertexRead);
-    b.read(s.instances, graph::Access::StorageRead, kVs | kFs);
-    b.read(s.meshes, graph::Access::StorageRead, kFs);
-    b.read(s.materials, graph::Access::StorageRead, kFs);
-    if (s.lights.valid()) b.read(s.lights, graph::Access::StorageRead, kFs);
-    if (s.colors.valid()) b.read(s.colors, graph::Access::StorageRead, kVs);
-    if (s.uv1.valid()) b.read(s.uv1, graph::Access::StorageRead, kVs);
-    if (t.shadows.table.valid()) {
-        b.read(t.shadows.table, graph::Access::StorageRead, kFs);
-        for (graph::TextureHandle cube : t.shadows.cubes) b.read(cube, graph::Access::SampledRead, kFs);
-    }
-}
 
 // The arrays' addresses; the depth pass declares only the keys (a pass may touch only what it declared).
 gpu::OitLayerBuffers layerBuffers(graph::PassContext& pc, const LayerArrays& a, VkExtent2D extent, bool keysOnly) {
@@ -110,7 +89,7 @@ graph::TextureHandle addLayeredOitPasses(graph::RenderGraph& graph, vk::Context&
     graph.addPass(
         "oit_layers_depth",
         [&](graph::PassBuilder& b) {
-            readForwardInputs(b, t);
+            readTransparencyInputs(b, t);
             a->keys = b.write(a->keys, graph::Access::StorageReadWrite, kFs);  // atomicMin insertion
         },
         [&ctx, &shaders, t, a, extent, log](graph::PassContext& pc) {
@@ -119,7 +98,7 @@ graph::TextureHandle addLayeredOitPasses(graph::RenderGraph& graph, vk::Context&
     graph.addPass(
         "oit_layers_shade",
         [&](graph::PassBuilder& b) {
-            readForwardInputs(b, t);
+            readTransparencyInputs(b, t);
             b.read(a->keys, graph::Access::StorageRead, kFs);
             a->claims = b.write(a->claims, graph::Access::StorageReadWrite, kFs);  // atomicOr claims
             a->colors = b.write(a->colors, graph::Access::StorageWrite, kFs);

@@ -20,26 +20,8 @@ graph::TextureHandle addTransparencyPass(graph::RenderGraph& graph, vk::Context&
     graph.addPass(
         "transparency",
         [&](graph::PassBuilder& b) {
-            constexpr VkPipelineStageFlags2 kVs = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT;
-            constexpr VkPipelineStageFlags2 kFs = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
-            const SceneBuffers& s = t.scene;
             *written = b.write(target, graph::Access::ColorReadWrite);
-            b.read(t.sortedDraws, graph::Access::IndirectRead);
-            b.read(t.depth, graph::Access::StorageRead, kFs);
-            b.read(t.environment, graph::Access::SampledRead, kFs);
-            b.read(t.frame, graph::Access::StorageRead, kVs | kFs);
-            b.read(s.vertices, graph::Access::StorageRead, kVs);
-            b.read(s.indices, graph::Access::VertexRead);
-            b.read(s.instances, graph::Access::StorageRead, kVs | kFs);
-            b.read(s.meshes, graph::Access::StorageRead, kFs);
-            b.read(s.materials, graph::Access::StorageRead, kFs);
-            if (s.lights.valid()) b.read(s.lights, graph::Access::StorageRead, kFs);
-            if (s.colors.valid()) b.read(s.colors, graph::Access::StorageRead, kVs);
-            if (s.uv1.valid()) b.read(s.uv1, graph::Access::StorageRead, kVs);
-            if (t.shadows.table.valid()) {
-                b.read(t.shadows.table, graph::Access::StorageRead, kFs);
-                for (graph::TextureHandle cube : t.shadows.cubes) b.read(cube, graph::Access::SampledRead, kFs);
-            }
+            readTransparencyInputs(b, t);
         },
         [&ctx, &shaders, t, written, log](graph::PassContext& pc) {
             VkCommandBuffer cmd = pc.commandBuffer();

@@ -1,11 +1,34 @@
 // transparency_draws.hpp: what every transparency rung (sorted, weighted blended, fixed layers) records the same
-// way: the forward shading's push block from the frame's buffers, and the one indirect draw of the BLEND draws.
+// way: the forward shading's reads and push block from the frame's buffers, and the one indirect draw of the BLEND draws.
 #pragma once
 #include "graph/render_graph.hpp"
 #include "passes/passes.hpp"
 #include "shared/shadow_types.h"
 
 namespace idk::passes {
+
+// The forward shading's reads (every rung declares the same).
+inline void readTransparencyInputs(graph::PassBuilder& b, const TransparencyInputs& t) {
+    constexpr VkPipelineStageFlags2 kVs = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT;
+    constexpr VkPipelineStageFlags2 kFs = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+    const SceneBuffers& s = t.scene;
+    b.read(t.sortedDraws, graph::Access::IndirectRead);
+    b.read(t.depth, graph::Access::StorageRead, kFs);
+    b.read(t.environment, graph::Access::SampledRead, kFs);
+    b.read(t.frame, graph::Access::StorageRead, kVs | kFs);
+    b.read(s.vertices, graph::Access::StorageRead, kVs);
+    b.read(s.indices, graph::Access::VertexRead);
+    b.read(s.instances, graph::Access::StorageRead, kVs | kFs);
+    b.read(s.meshes, graph::Access::StorageRead, kFs);
+    b.read(s.materials, graph::Access::StorageRead, kFs);
+    if (s.lights.valid()) b.read(s.lights, graph::Access::StorageRead, kFs);
+    if (s.colors.valid()) b.read(s.colors, graph::Access::StorageRead, kVs);
+    if (s.uv1.valid()) b.read(s.uv1, graph::Access::StorageRead, kVs);
+    if (t.shadows.table.valid()) {
+        b.read(t.shadows.table, graph::Access::StorageRead, kFs);
+        for (graph::TextureHandle cube : t.shadows.cubes) b.read(cube, graph::Access::SampledRead, kFs);
+    }
+}
 
 inline gpu::TransparencyPush transparencyPush(graph::PassContext& pc, const TransparencyInputs& t) {
     const SceneBuffers& s = t.scene;

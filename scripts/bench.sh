@@ -22,6 +22,11 @@ if [ -z "${VK_ICD_FILENAMES:-}" ] && [ -z "${VK_DRIVER_FILES:-}" ] && [ -f "$lav
   export VK_ICD_FILENAMES="$lavapipe"
 fi
 
+# Debian's interpreter: python3-matplotlib (scripts/setup.sh) is installed for it, not for a pyenv/venv python3,
+# and the reports draw their plots with it.
+python=/usr/bin/python3
+[ -x "$python" ] || python=python3
+
 mkdir -p bench/results
 start=$(date +%s)
 "$bench" --benchmark_out=bench/results/latest.json --benchmark_out_format=json \
@@ -51,6 +56,6 @@ fi
 # bench/results/vrs_section.md).
 if [ "${IDK_BENCH_VRS:-1}" != 0 ]; then
   "$build/bin/idk_vrs_bench" bench/results/vrs.json --size 1280x720 --frames 4
-  python3 bench/vrs_report.py bench/results
+  "$python" bench/vrs_report.py bench/results
 fi
-python3 scripts/bench_report.py --compact bench/results/latest.json BENCHMARKS.md
+"$python" scripts/bench_report.py --compact bench/results/latest.json BENCHMARKS.md

@@ -64,13 +64,13 @@ VxgiGlAccumulator::VxgiGlAccumulator(vk::Context& ctx, const std::filesystem::pa
 
 VxgiGlAccumulator::~VxgiGlAccumulator() {
     releaseBuffers();
-    if (program_) {
-        try {
-            gl::GlContext::Current current(*ctx_.glContext());
-            program_.reset();
-        } catch (const gl::GlError&) {  // the context cannot be made current: GL frees the program with it
-            program_.release();
-        }
+    if (!program_) return;
+    try {
+        gl::GlContext::Current current(*ctx_.glContext());
+        program_.reset();
+    } catch (const gl::GlError&) {
+        // The context cannot be made current: the delete is a no-op without one, GL frees the program with it.
+        program_.reset();
     }
 }
 
@@ -146,21 +146,19 @@ graph::BufferHandle VxgiGlAccumulator::addPass(graph::RenderGraph& graph, graph:
 
 void VxgiGlAccumulator::accumulateOnGl() {
     const gl::GlContext& gl = *ctx_.glContext();
-    {
-        gl::GlContext::Current current(gl);
-        uint32_t appended = 0;
-        gl.api().glGetNamedBufferSubData(records_->gl(), 0, sizeof(appended), &appended);
-        gl.check("vxgi gl-interop: reading the record count");
-        const uint32_t count = std::min(appended, capacity_);
-        stats_ = {appended, capacity_, appended - count};
-        program_->setUint("count", count);
-        program_->setUint("voxelCount", gridSize_ * gridSize_ * gridSize_);
-        gl.api().glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, records_->gl());
-        gl.api().glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, sums_->gl());
-        const uint32_t groups = (count + kGroup - 1) / kGroup;
-        if (groups) program_->dispatch(std::min(groups, kMaxGroupsX), (groups + kMaxGroupsX - 1) / kMaxGroupsX);
-        gl::finishGl(gl);  // complete before the rest of the frame is submitted
-    }
+    gl::GlContext::Current current(gl);
+    uint32_t appended = 0;
+    gl.api().glGetNamedBufferSubData(records_->gl(), 0, sizeof(appended), &appended);
+    gl.check("vxgi gl-interop: reading the record count");
+    const uint32_t count = std::min(appended, capacity_);
+    stats_ = {appended, capacity_, appended - count};
+    program_->setUint("count", count);
+    program_->setUint("voxelCount", gridSize_ * gridSize_ * gridSize_);
+    gl.api().glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, records_->gl());
+    gl.api().glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, sums_->gl());
+    const uint32_t groups = (count + kGroup - 1) / kGroup;
+    if (groups) program_->dispatch(std::min(groups, kMaxGroupsX), (groups + kMaxGroupsX - 1) / kMaxGroupsX);
+    gl::finishGl(gl);  // complete before the rest of the frame is submitted
 }
 
 void VxgiGlAccumulator::handOver(VkCommandBuffer cmd) {

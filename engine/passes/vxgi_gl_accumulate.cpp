@@ -84,7 +84,7 @@ void VxgiGlAccumulator::releaseBuffers() {
 }
 
 void VxgiGlAccumulator::prepare(uint32_t n) {
-    if (wanted_ == 0) wanted_ = 8 * n * n;  // about the surface area of a few walls across the grid
+    if (wanted_ == 0) wanted_ = 16 * n * n;  // a few walls across the grid, with depth complexity
     if (sums_ && gridSize_ == n && capacity_ == wanted_) return;
     const gl::GlContext& gl = *ctx_.glContext();
     // The descriptor's range limit caps the records (the sums of a 512^3 grid, 2.7 GB, would exceed it too: the
@@ -191,7 +191,7 @@ void VxgiGlAccumulator::handOver(VkCommandBuffer cmd) {
         wanted_ = uint32_t(std::min<uint64_t>(uint64_t(stats_.appended) * 5 / 4 + 1, UINT32_MAX));
         std::fprintf(stderr,
                      "vxgi gl-interop: %u of %u voxel fragments overflowed the record buffer (%u records) and were "
-                     "dropped this frame; it grows to %u records from the next frame\n",
+                     "dropped this frame; it grows to %u records from the next frame (a still renders again)\n",
                      stats_.dropped, stats_.appended, stats_.capacity, wanted_);
     }
 }

@@ -10,10 +10,11 @@
 // VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT (vk::FrameRing's and Context::runImmediate's are). On a GPU this
 // stalls the queue once per frame; GL_EXT_semaphore_fd would order the two APIs on the GPU instead.
 //
-// Overflow: the record buffer holds `capacity` records (first frame: 8 n^2 for an n^3 grid). The fragment counter
+// Overflow: the record buffer holds `capacity` records (first frame: 16 n^2 for an n^3 grid). The fragment counter
 // counts past it, the host reads it at the hand-over: records past the capacity are dropped from that frame (GL
 // adds those that fit), the drop is reported (stderr and lastStats()) and the buffer grows to hold 1.25x the count
-// from the next frame on.
+// from the next frame on; Renderer::renderStill then renders the frame again (the grid fits the scene, not the
+// camera, so the count repeats and fits). Measured at 64^3: DamagedHelmet 74029 fragments, ToyCar 190362.
 #pragma once
 #include <filesystem>
 #include <memory>

@@ -7,7 +7,8 @@
 //    one fragment (count 1 in the GL sums) the same within one fp16 step as the portable r32ui rung (max = mean).
 //    The GL sums count every fragment the voxelization appended, none dropped.
 //  * Overflow: a record buffer too small for the frame reports the dropped fragments (appended - capacity), grows
-//    to hold them, and the next frame is whole again (same grid as before the overflow).
+//    to hold them, and the next frame is whole again (same grid as before the overflow); renderStill renders an
+//    overflowed still again, so its grid is whole.
 //  * Whole frame with --gi vxgi (64x64, point shadows on, conservative raster): the GL rung's image matches the
 //    native rung's within a relative RMSE of 1e-3 (measured: 0, bit-identical: a voxel's two fragments sum the same
 //    in either order).
@@ -234,6 +235,16 @@ TEST(VxgiGlRungTest, OverflowIsReportedAndTheBufferGrows) {
                     whole.appended, occupiedOver, occupied, after.capacity);
         EXPECT_LT(occupiedOver, occupied);
         EXPECT_EQ(differ, 0u) << "the frame after the growth is whole again";
+
+        // A still (idk render) that overflows renders again with the grown buffer: its grid is whole.
+        gl->setCapacity(1000);
+        renderer.renderStill(insideCamera(), 16, 16);
+        EXPECT_EQ(gl->lastStats().dropped, 0u);
+        const std::vector<glm::vec4> still = readGrid(*ctx, *renderer.vxgi().grid());
+        size_t stillDiffer = 0;
+        for (size_t i = 0; i < before.size(); ++i)
+            for (int c = 0; c < 4; ++c) stillDiffer += !within(before[i][c], still[i][c]) ? 1 : 0;
+        EXPECT_EQ(stillDiffer, 0u) << "renderStill returned the overflowed frame";
     }
     ctx->waitIdle();
     expectClean(*ctx, "overflow");

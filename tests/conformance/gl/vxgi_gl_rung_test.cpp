@@ -1,7 +1,7 @@
 // vxgi_gl_rung_test.cpp: the GL-interop rung of "vxgi-atomics" (passes/vxgi_gl_accumulate.hpp), forced with
 // --rung vxgi-atomics=gl-interop on llvmpipe, against the device's other rungs on the same scene (64^3 voxels): an
-// open box of quads, a tilted quad and two parallel quads 0.01 apart (two fragments in the same voxels), lit by
-// an emissive ceiling and a point light.
+// open box of quads, a tilted quad and three parallel quads 0.005 apart (three fragments in the same voxels: their
+// sum depends on the order), lit by an emissive ceiling and a point light.
 //  * Grid: the same occupied voxels as the native float-atomics rung, each voxel's rgba within one fp16 step
 //    (relative 2^-10, + 1e-6): both are the mean of the same fragments, summed in another order. On voxels holding
 //    one fragment (count 1 in the GL sums) the same within one fp16 step as the portable r32ui rung (max = mean).
@@ -56,6 +56,7 @@ scene::Scene testScene() {
     q.push_back(quad({0.1f, -0.2f, 0.15f}, {0.3f, 0.8f, 0.45f}, {0.4f, 0.3f}, {0.2f, 0.7f, 0.3f}, true));
     q.push_back(quad({-0.3f, 0.30f, -0.2f}, {0, 1, 0}, {0.23f, 0.21f}, {0.9f, 0.2f, 0.2f}));
     q.push_back(quad({-0.3f, 0.31f, -0.2f}, {0, 1, 0}, {0.23f, 0.21f}, {0.1f, 0.3f, 0.9f}));
+    q.push_back(quad({-0.3f, 0.305f, -0.2f}, {0, 1, 0}, {0.23f, 0.21f}, {0.2f, 0.9f, 0.4f}));
     scene::Scene s = makePlacedQuadScene(q);
     for (auto& m : s.materials) m.metallic = 0.0f;
     s.materials[1].emissive = {1.5f, 1.2f, 0.9f};
@@ -164,7 +165,7 @@ TEST(VxgiGlRungTest, GridMatchesNativeMeanAndPortableMaxOnSingleFragmentVoxels) 
     for (float c : gl.counts) fragments += c;
     EXPECT_EQ(fragments, double(gl.stats.appended)) << "every appended record lands in one voxel's count";
 
-    size_t occupied = 0, multi = 0, single = 0, nativeDiff = 0, portableDiff = 0, occupancyDiff = 0;
+    size_t occupied = 0, multi = 0, triple = 0, single = 0, nativeDiff = 0, portableDiff = 0, occupancyDiff = 0;
     for (size_t i = 0; i < gl.grid.size(); ++i) {
         const glm::vec4 &g = gl.grid[i], &n = native.grid[i], &p = portable.grid[i];
         if ((g.a > 0.0f) != (n.a > 0.0f)) {
@@ -177,6 +178,7 @@ TEST(VxgiGlRungTest, GridMatchesNativeMeanAndPortableMaxOnSingleFragmentVoxels) 
         }
         ++occupied;
         multi += gl.counts[i] > 1.0f;
+        triple += gl.counts[i] > 2.0f;
         bool same = true;
         for (int c = 0; c < 4; ++c) same = same && within(g[c], n[c]);
         if (!same && nativeDiff++ < 5)
@@ -187,14 +189,14 @@ TEST(VxgiGlRungTest, GridMatchesNativeMeanAndPortableMaxOnSingleFragmentVoxels) 
         for (int c = 0; c < 4; ++c) same = same && within(g[c], p[c]);
         if (!same && portableDiff++ < 5) ADD_FAILURE() << "one-fragment voxel " << i << " differs from the r32ui rung";
     }
-    std::printf("gl-interop rung: %u fragments, %zu occupied voxels (%zu with 2+ fragments, %zu with one); differ "
-                "from native: %zu, from r32ui on one-fragment voxels: %zu, occupancy: %zu\n",
-                gl.stats.appended, occupied, multi, single, nativeDiff, portableDiff, occupancyDiff);
+    std::printf("gl-interop rung: %u fragments, %zu occupied voxels (%zu with 2+ fragments, %zu with 3+, %zu with "
+                "one); differ from native: %zu, from r32ui on one-fragment voxels: %zu, occupancy: %zu\n",
+                gl.stats.appended, occupied, multi, triple, single, nativeDiff, portableDiff, occupancyDiff);
     EXPECT_EQ(occupancyDiff, 0u);
     EXPECT_EQ(nativeDiff, 0u);
     EXPECT_EQ(portableDiff, 0u);
     EXPECT_GT(occupied, 10000u);
-    EXPECT_GT(multi, 50u) << "the thin pair should put two fragments in some voxels";
+    EXPECT_GT(triple, 50u) << "the thin triple should put three fragments in some voxels";
     EXPECT_GT(single, 5000u);
 }
 

@@ -22,6 +22,7 @@ passes::VoxelGridBox fitVoxelGrid(const scene::Aabb& bounds, uint32_t n) {
 VxgiFeature::~VxgiFeature() { release(); }
 
 void VxgiFeature::release() {
+    gl_.reset();
     if (!grid_.image.image) return;
     grid_.release(ctx_);
     for (VoxelVolume& d : directions_) d.release(ctx_);
@@ -64,6 +65,13 @@ void VxgiFeature::addPasses(FrameContext& f) {
 
     passes::VoxelizeInputs in{f.scene, f.frameConstants, f.pointShadows, box_,
                               f.ctx.ladder("vxgi-atomics").chosen};
+    if (in.atomics == vk::Rung::GlInterop) {  // the GL pass's shared buffers live across frames
+        if (!gl_) gl_ = std::make_unique<passes::VxgiGlAccumulator>(ctx_);
+        gl_->prepare(s.voxels);
+        in.gl = gl_.get();
+    } else {
+        gl_.reset();
+    }
     if (f.settings.vxgi.raster == VoxelRaster::Conservative)
         in.conservative = f.ctx.ladder("conservative-raster").chosen;
     f.voxelGrid = passes::addVoxelizePasses(f.graph, f.ctx, f.shaders, in, grid, &f.log);

@@ -6,12 +6,14 @@
 #pragma once
 #include "frame/frame_context.hpp"
 #include "frame/voxel_volume.hpp"
+#include "passes/vxgi_gl_accumulate.hpp"
 #include "passes/vxgi_passes.hpp"
 #include "render/gpu_scene.hpp"
 #include "vk/bindless.hpp"
 #include "vk/resources.hpp"
 
 #include <array>
+#include <memory>
 #include <vector>
 
 namespace idk::frame {
@@ -33,6 +35,8 @@ public:
     // The grid of the last frame (RGBA16F, size^3; left in GENERAL layout) or nullptr: tests read it back.
     const vk::Image* grid() const noexcept { return grid_.image.image ? &grid_.image : nullptr; }
     const passes::VoxelGridBox& box() const noexcept { return box_; }
+    // The gl-interop rung's state (record capacity, last frame's overflow) or nullptr on the other rungs.
+    passes::VxgiGlAccumulator* glAccumulator() const noexcept { return gl_.get(); }
 
 private:
     void release();
@@ -43,6 +47,7 @@ private:
     std::array<VoxelVolume, 6> directions_; // anisotropic mips (+x -x +y -y +z -z), level k = grid level k + 1
     vk::SamplerIndex sampler_;
     graph::TextureHandle directionHandles_[6];  // this frame's imports
+    std::unique_ptr<passes::VxgiGlAccumulator> gl_;  // "vxgi-atomics" gl-interop rung only
 };
 
 }  // namespace idk::frame

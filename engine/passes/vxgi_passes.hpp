@@ -11,6 +11,8 @@
 
 namespace idk::passes {
 
+class VxgiGlAccumulator;  // vxgi_gl_accumulate.hpp
+
 // The grid's cube in world space: gridMin + [0, size * voxelSize]^3.
 struct VoxelGridBox {
     glm::vec3 gridMin{0.0f};
@@ -27,7 +29,9 @@ struct VoxelizeInputs {
     graph::BufferHandle frame;
     PointShadowOutputs shadows;
     VoxelGridBox box;
-    vk::Rung atomics = vk::Rung::Native;  // ladder "vxgi-atomics": Native float add, Fallback r32ui max
+    vk::Rung atomics = vk::Rung::Native;  // ladder "vxgi-atomics": Native float add, Fallback r32ui max,
+                                          // GlInterop records added by GL ("vxgi_gl_accumulate" before the merge)
+    VxgiGlAccumulator* gl = nullptr;      // the GlInterop rung's shared buffers (prepared for box.size)
     // Ladder "conservative-raster": Native VK_EXT_conservative_rasterization, Fallback geometry-shader dilation;
     // none: pixel-centre rasterization (thin voxelization).
     std::optional<vk::Rung> conservative;

@@ -1,9 +1,9 @@
 // vxgi_voxelize.cpp: voxelization of the scene's direct diffuse light into a 3D grid: clear the accumulators, draw
 // the scene once per projection axis into an attachment-less N x N render pass whose fragments write their voxel
 // with image atomics, and merge the accumulators into the RGBA16F grid. Ports IDKEngine's Voxelizer.cs (its
-// 3-draw fallback; the rung of write conflicts follows the "vxgi-atomics" ladder). The GL-interop rung of that
-// ladder (GL_NV_shader_atomic_fp16_vector straight into the RGBA16F image) belongs to the GL-interop issue: when it
-// lands it is one more `mode` here with its own fragment shader, and the merge pass is skipped.
+// 3-draw fallback; the rung of write conflicts follows the "vxgi-atomics" ladder). On its gl-interop rung the
+// fragments append records instead, "vxgi_gl_accumulate" (vxgi_gl_accumulate.cpp) adds them with GL float atomics
+// into a shared sums buffer, and the merge averages those.
 // Rasterisation follows the "conservative-raster" ladder unless --gi-raster centre: VK_EXT_conservative_rasterization
 // (overestimate) where the device has it, else voxelize.geom's triangle dilation, so thin walls never leak.
 #include "passes/vxgi_passes.hpp"
@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "passes/rendering.hpp"
+#include "passes/vxgi_gl_accumulate.hpp"
 #include "shared/vxgi_types.h"
 
 namespace idk::passes {
@@ -20,12 +21,21 @@ namespace {
 struct Accumulators {
     graph::TextureHandle images[4];
     uint32_t count = 0;
+    graph::BufferHandle records, sums;  // gl-interop rung: the shared buffers instead of images
 };
 
 uint32_t modeOf(vk::Rung rung) {
     if (rung == vk::Rung::Native) return gpu::kVoxelAtomicsFloatAdd;
     if (rung == vk::Rung::Fallback) return gpu::kVoxelAtomicsUintMax;
-    throw std::logic_error("vxgi-atomics: the gl-interop rung is not wired yet (GL-interop issue)");
+    return gpu::kVoxelAtomicsGlRecords;
+}
+
+vk::ShaderId fragmentShader(uint32_t mode, bool dilated) {
+    if (mode == gpu::kVoxelAtomicsFloatAdd)
+        return dilated ? vk::ShaderId::vxgi_voxelize_float_dilated_frag : vk::ShaderId::vxgi_voxelize_float_frag;
+    if (mode == gpu::kVoxelAtomicsUintMax)
+        return dilated ? vk::ShaderId::vxgi_voxelize_uint_dilated_frag : vk::ShaderId::vxgi_voxelize_uint_frag;
+    return dilated ? vk::ShaderId::vxgi_voxelize_record_dilated_frag : vk::ShaderId::vxgi_voxelize_record_frag;
 }
 
 }  // namespace
@@ -34,10 +44,22 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
                                        const VoxelizeInputs& in, graph::TextureHandle grid, IndirectDrawLog* log) {
     const uint32_t mode = modeOf(in.atomics);
     const uint32_t n = in.box.size;
+    VxgiGlAccumulator* gl = in.gl;
+    if (mode == gpu::kVoxelAtomicsGlRecords && !gl)
+        throw std::logic_error("addVoxelizePasses: the gl-interop rung needs VoxelizeInputs::gl");
     auto acc = std::make_shared<Accumulators>();
+    if (gl) {
+        acc->records = gl->importRecords(graph);
+        acc->sums = gl->importSums(graph);
+    }
     graph.addPass(
         "vxgi_clear",
         [&](graph::PassBuilder& b) {
+            if (gl) {  // the record counter (the header) and the sums start at zero
+                acc->records = b.write(acc->records, graph::Access::TransferDst);
+                acc->sums = b.write(acc->sums, graph::Access::TransferDst);
+                return;
+            }
             graph::TextureDesc desc;
             desc.format = mode == gpu::kVoxelAtomicsFloatAdd ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32_UINT;
             desc.sizeMode = graph::SizeMode::Absolute;
@@ -48,6 +70,11 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
                 acc->images[i] = b.write(b.create(names[i], desc), graph::Access::TransferDst);
         },
         [acc](graph::PassContext& pc) {
+            if (acc->records.valid()) {
+                vkCmdFillBuffer(pc.commandBuffer(), pc.vkBuffer(acc->records), 0, gpu::kVoxelRecordHeaderWords * 4, 0);
+                vkCmdFillBuffer(pc.commandBuffer(), pc.vkBuffer(acc->sums), 0, VK_WHOLE_SIZE, 0);
+                return;
+            }
             VkClearColorValue zero{};
             VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
             for (uint32_t i = 0; i < acc->count; ++i)
@@ -68,6 +95,7 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             // (voxelize.geom reads only its inputs: no buffer access, so no geometry-stage dependency.)
             for (uint32_t i = 0; i < acc->count; ++i)
                 acc->images[i] = b.write(acc->images[i], graph::Access::StorageReadWrite, kFs);
+            if (acc->records.valid()) acc->records = b.write(acc->records, graph::Access::StorageReadWrite, kFs);
             b.read(frame, graph::Access::StorageRead, kVs | kFs);
             if (s.lights.valid()) b.read(s.lights, graph::Access::StorageRead, kFs);
             if (table.valid()) {
@@ -84,21 +112,19 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             if (s.colors.valid()) b.read(s.colors, graph::Access::StorageRead, kVs);
             if (s.uv1.valid()) b.read(s.uv1, graph::Access::StorageRead, kVs);
         },
-        [&ctx, &shaders, s, frame, table, box, acc, mode, conservative, log](graph::PassContext& pc) {
+        [&ctx, &shaders, s, frame, table, box, acc, mode, conservative, log, gl](graph::PassContext& pc) {
             if (s.drawCount == 0) return;
             VkCommandBuffer cmd = pc.commandBuffer();
             // No attachments: the fragments' only output is their atomics (the render area sets the raster grid).
             beginRendering(cmd, {box.size, box.size}, {});
             vk::GraphicsPipelineDesc desc;
             desc.vertex = vk::ShaderId::vxgi_voxelize_vert;
-            desc.fragment = mode == gpu::kVoxelAtomicsFloatAdd ? vk::ShaderId::vxgi_voxelize_float_frag
-                                                               : vk::ShaderId::vxgi_voxelize_uint_frag;
+            desc.fragment = fragmentShader(mode, false);
             if (conservative == vk::Rung::Native) {
                 desc.conservative = true;
             } else if (conservative == vk::Rung::Fallback) {
                 desc.geometry = vk::ShaderId::vxgi_voxelize_geom;
-                desc.fragment = mode == gpu::kVoxelAtomicsFloatAdd ? vk::ShaderId::vxgi_voxelize_float_dilated_frag
-                                                                   : vk::ShaderId::vxgi_voxelize_uint_dilated_frag;
+                desc.fragment = fragmentShader(mode, true);
             }
             desc.depthTest = false;
             desc.depthWrite = false;
@@ -119,6 +145,10 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             push.voxelSize = box.voxelSize;
             push.gridSize = box.size;
             for (uint32_t i = 0; i < acc->count; ++i) push.accum[i] = pc.texture(acc->images[i]).storageIndex;
+            if (gl) {
+                push.accum[0] = gl->recordsIndex();
+                push.accum[1] = gl->capacity();
+            }
             vkCmdBindIndexBuffer(cmd, pc.vkBuffer(s.indices), 0, VK_INDEX_TYPE_UINT32);
             // Three draws, one per projection axis (IDKEngine's measured-fastest fallback): a real GPU with
             // VK_NV_geometry_shader_passthrough + VK_NV_viewport_swizzle would do it in one.
@@ -132,16 +162,19 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             vkCmdEndRendering(cmd);
         });
 
+    if (gl) acc->sums = gl->addPass(graph, acc->records, acc->sums);
+
     auto written = std::make_shared<graph::TextureHandle>();
     graph.addPass(
         "vxgi_merge",
         [&](graph::PassBuilder& b) {
             constexpr VkPipelineStageFlags2 kCs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
             for (uint32_t i = 0; i < acc->count; ++i) b.read(acc->images[i], graph::Access::StorageRead, kCs);
+            if (acc->sums.valid()) b.read(acc->sums, graph::Access::StorageRead, kCs);
             *written = b.write(grid, graph::Access::StorageWrite, kCs);
             b.sideEffect();  // the grid is persistent state: later frames and readers outside the graph use it
         },
-        [&ctx, &shaders, acc, written, n, mode](graph::PassContext& pc) {
+        [&ctx, &shaders, acc, written, n, mode, gl](graph::PassContext& pc) {
             VkCommandBuffer cmd = pc.commandBuffer();
             vk::ComputePipelineDesc desc;
             desc.shader = vk::ShaderId::vxgi_merge_comp;
@@ -151,6 +184,7 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             ctx.bindless().bind(cmd);
             gpu::VoxelMergePush push{};
             for (uint32_t i = 0; i < acc->count; ++i) push.accum[i] = pc.texture(acc->images[i]).storageIndex;
+            if (gl) push.accum[0] = gl->sumsIndex();
             push.grid = pc.texture(*written).storageIndex;
             push.gridSize = n;
             push.mode = mode;

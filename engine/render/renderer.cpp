@@ -157,7 +157,12 @@ FrameResult Renderer::renderStill(const scene::CameraView& camera, uint32_t widt
     if (settings_.shading == Shading::Pbr && settings_.ssr.enabled) frames = std::max(frames, 2u);
     if (frames > 1) features_.temporal.resetHistory();
     for (uint32_t i = 1; i < frames; ++i) renderOffscreen(camera, width, height);
-    return renderOffscreen(camera, width, height);
+    FrameResult result = renderOffscreen(camera, width, height);
+    // VXGI's gl-interop rung drops the fragments past its record buffer in a frame that overflows it and grows the
+    // buffer to hold them (passes/vxgi_gl_accumulate.hpp): a still renders that frame again, whole.
+    if (const passes::VxgiGlAccumulator* gl = features_.vxgi.glAccumulator(); gl && gl->lastStats().dropped)
+        result = renderOffscreen(camera, width, height);
+    return result;
 }
 
 // ---- renderFrame: the viewer's path (same frame graph, no readback, caller's passes after it) ----

@@ -50,7 +50,7 @@ std::vector<Ladder> ladderTable(const DeviceCapabilities& c) {
     auto ladder = [](const char* id, const char* feature, std::vector<RungOption> options) {
         return Ladder{id, feature, std::move(options), Rung::Fallback, {}, {}};
     };
-    const bool glAtomicFloat = c.glInterop && c.glAtomicFloat, glAtomicFp16 = c.glInterop && c.glAtomicFp16Vector;
+    const bool glAtomicFloat = c.glInterop && c.glAtomicFloat;
     std::vector<Ladder> ladders;
     ladders.push_back(ladder("mesh-shading", "mesh shading",
         {{Rung::Native, "VK_EXT_mesh_shader", c.meshShaderExt, missing(c.meshShaderExt, "VK_EXT_mesh_shader")},
@@ -66,8 +66,9 @@ std::vector<Ladder> ladderTable(const DeviceCapabilities& c) {
     ladders.push_back(ladder("vxgi-atomics", "voxel radiance atomics (VXGI)",
         {{Rung::Native, "float32 image atomic add", c.imageFloat32AtomicAdd,
           missing(c.imageFloat32AtomicAdd, "shaderImageFloat32AtomicAdd")},
-         {Rung::GlInterop, "GL_NV_shader_atomic_fp16_vector via GL_EXT_memory_object_fd", glAtomicFp16,
-          glNote(c, c.glAtomicFp16Vector, "GL_NV_shader_atomic_fp16_vector")},
+         // Fragments append records; GL adds them with float atomics on shared memory (passes/vxgi_gl_accumulate).
+         {Rung::GlInterop, "fragment records + GL_NV_shader_atomic_float adds via GL_EXT_memory_object_fd",
+          glAtomicFloat, glNote(c, c.glAtomicFloat, "GL_NV_shader_atomic_float")},
          {Rung::Fallback, "three r32ui images + merge", true, ""}}));
     ladders.push_back(ladder("float-atomics", "float atomic add (splatting)",
         {{Rung::Native, "buffer float atomicAdd (VK_EXT_shader_atomic_float)", c.bufferFloat32AtomicAdd,

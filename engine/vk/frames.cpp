@@ -11,7 +11,9 @@ namespace idk::vk {
 FrameRing::FrameRing(Context& ctx, uint32_t framesInFlight) : ctx_(ctx), slots_(framesInFlight) {
     for (uint32_t i = 0; i < framesInFlight; ++i) {
         VkCommandPoolCreateInfo pool{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-        pool.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+        // RESET_COMMAND_BUFFER: a pass that hands work to another API mid-frame (passes/vxgi_gl_accumulate.hpp)
+        // submits the frame's command buffer, waits, and begins it again (an implicit reset).
+        pool.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT | VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
         pool.queueFamilyIndex = ctx.queueFamily();
         check(vkCreateCommandPool(ctx.device(), &pool, nullptr, &slots_[i].pool));
         VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};

@@ -11,6 +11,17 @@ IDK_GPU_BEGIN
 // orders non-negative floats like the floats; stored + 1 so that 0 means "no fragment").
 IDK_CONST(uint, kVoxelAtomicsFloatAdd, 0u);
 IDK_CONST(uint, kVoxelAtomicsUintMax, 1u);
+// GlInterop: the fragments append records to a buffer shared with OpenGL (voxelize_record.frag), a GL compute pass
+// adds them into a shared float buffer with GL_NV_shader_atomic_float (engine/passes/vxgi_gl_accumulate.cpp) and
+// the merge averages its sums like the float-add rung's.
+IDK_CONST(uint, kVoxelAtomicsGlRecords, 2u);
+// The record buffer: word 0 counts the fragments (all of them, also those past the capacity, so an overflow is
+// measured), then kVoxelRecordWords words per record from word kVoxelRecordHeaderWords: the voxel's linear index
+// (x + n (y + n z)) and its premultiplied rgba (rgb * coverage, coverage).
+IDK_CONST(uint, kVoxelRecordHeaderWords, 4u);
+IDK_CONST(uint, kVoxelRecordWords, 5u);
+// The GL sums buffer: kVoxelSumWords floats per voxel: sum of premultiplied r, g, b, sum of coverage, count.
+IDK_CONST(uint, kVoxelSumWords, 5u);
 IDK_CONST(uint, kVoxelGroupSize, 4u);  // merge: 4x4x4 threads
 
 // voxelize.vert / voxelize_*.frag: one draw per projection axis (0 x, 1 y, 2 z).
@@ -27,13 +38,15 @@ struct VoxelizePush {
     float voxelSize;             // world size of one voxel (the grid is a cube of gridSize voxels per side)
     uint gridSize;
     uint axis;                   // this draw's projection axis
-    uint accum[4];               // bindless storage indices: r, g, b (and the count for kVoxelAtomicsFloatAdd)
+    uint accum[4];               // bindless storage indices: r, g, b (and the count for kVoxelAtomicsFloatAdd);
+                                 // kVoxelAtomicsGlRecords: [0] the record buffer's storage-buffer index, [1] its
+                                 // capacity in records
 };
 IDK_GPU_SIZE(VoxelizePush, 104);
 
 // merge.comp: accumulators -> the RGBA16F grid's mip 0 (rgb radiance, alpha coverage).
 struct VoxelMergePush {
-    uint accum[4];
+    uint accum[4];  // kVoxelAtomicsGlRecords: [0] the GL sums buffer's storage-buffer index
     uint grid;      // bindless storage index of the grid (mip 0 view)
     uint gridSize;
     uint mode;      // kVoxelAtomics*

@@ -1,10 +1,12 @@
 #version 460
 // merge.comp.glsl: resolves the voxelization's accumulators into the RGBA16F grid (mip 0): rgb = the voxel's
-// radiance (mean of its fragments for the float-add rung, per-channel max for the r32ui rung), alpha = coverage
-// (1 where a fragment landed, 0 elsewhere). Ports IDKEngine's VXGI/Voxelize merge compute shader (4x4x4 groups).
+// radiance (mean of its fragments for the float-add and gl-interop rungs, per-channel max for the r32ui rung),
+// alpha = coverage (1 where a fragment landed, 0 elsewhere). Ports IDKEngine's VXGI/Voxelize merge compute shader (4x4x4 groups).
 #extension GL_GOOGLE_include_directive : require
 #include "vxgi_types.h"
 #include "voxel_images.glsl"
+
+IDK_BINDLESS_BUFFER_READONLY(gVoxelSums, float);  // kVoxelAtomicsGlRecords: the GL pass's sums (kVoxelSumWords each)
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(push_constant, scalar) uniform Push { VoxelMergePush p; };
@@ -18,6 +20,16 @@ void main() {
         if (count > 0.0) {
             value = vec4(imageLoad(gVoxelsR32f[p.accum[0]], voxel).r, imageLoad(gVoxelsR32f[p.accum[1]], voxel).r,
                          imageLoad(gVoxelsR32f[p.accum[2]], voxel).r, count) / count;
+        }
+    } else if (p.mode == kVoxelAtomicsGlRecords) {
+        uint base = (uint(voxel.x) + p.gridSize * (uint(voxel.y) + p.gridSize * uint(voxel.z))) * kVoxelSumWords;
+        float count = gVoxelSums[p.accum[0]].data[base + 4u];
+        float coverage = gVoxelSums[p.accum[0]].data[base + 3u];
+        if (count > 0.0 && coverage > 0.0) {
+            // Premultiplied sums: rgb / coverage is the coverage-weighted mean, coverage / count the mean coverage
+            // (1 with whole fragments: then exactly the float-add rung's mean).
+            value = vec4(vec3(gVoxelSums[p.accum[0]].data[base], gVoxelSums[p.accum[0]].data[base + 1u],
+                              gVoxelSums[p.accum[0]].data[base + 2u]) / coverage, coverage / count);
         }
     } else {
         uvec3 bits = uvec3(imageLoad(gVoxelsR32ui[p.accum[0]], voxel).r, imageLoad(gVoxelsR32ui[p.accum[1]], voxel).r,

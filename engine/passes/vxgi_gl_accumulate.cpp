@@ -1,0 +1,199 @@
+// vxgi_gl_accumulate.cpp: the gl-interop rung of "vxgi-atomics" (see the header): the shared record and sums
+// buffers, and the pass that hands the records to OpenGL, adds them with GL float atomics and gives the sums back
+// to Vulkan within one frame. The GL-side counterpart of IDKEngine's Voxelizer.cs fragment atomics.
+#include "passes/vxgi_gl_accumulate.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "gl/gl_compute.hpp"
+#include "gl/shared_memory.hpp"
+#include "shared/vxgi_types.h"
+#include "vk/check.hpp"
+#include "vk/context.hpp"
+#include "vk/shader_library.hpp"
+
+namespace idk::passes {
+namespace {
+
+constexpr VkPipelineStageFlags2 kCs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+constexpr uint32_t kGroup = 64;         // vxgi_accumulate.comp's local size
+constexpr uint32_t kMaxGroupsX = 65535;  // GL's guaranteed GL_MAX_COMPUTE_WORK_GROUP_COUNT per dimension
+
+std::string readGlSource(const std::filesystem::path& dir) {
+    const std::filesystem::path name = std::filesystem::path("gl") / "vxgi_accumulate.comp.glsl";
+    const std::filesystem::path path = !dir.empty() && std::filesystem::exists(dir / name)
+                                           ? dir / name
+                                           : std::filesystem::path(shaders::kShaderSourceDir) / name;
+    std::ifstream file(path);
+    if (!file) throw std::runtime_error(path.string() + ": cannot open the GL voxel accumulation shader");
+    std::stringstream text;
+    text << file.rdbuf();
+    return text.str();
+}
+
+VkDeviceSize recordBytes(uint32_t capacity) {
+    return (VkDeviceSize(gpu::kVoxelRecordHeaderWords) + VkDeviceSize(capacity) * gpu::kVoxelRecordWords) * 4;
+}
+
+// The label the graph opened around the pass closes before the command buffer ends and reopens after it begins
+// again, so each submission's labels balance.
+void endLabel(VkCommandBuffer cmd) {
+    if (vkCmdBeginDebugUtilsLabelEXT && vkCmdEndDebugUtilsLabelEXT) vkCmdEndDebugUtilsLabelEXT(cmd);
+}
+void beginLabel(VkCommandBuffer cmd, const char* name) {
+    if (!vkCmdBeginDebugUtilsLabelEXT || !vkCmdEndDebugUtilsLabelEXT) return;
+    VkDebugUtilsLabelEXT label{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};
+    label.pLabelName = name;
+    vkCmdBeginDebugUtilsLabelEXT(cmd, &label);
+}
+
+}  // namespace
+
+VxgiGlAccumulator::VxgiGlAccumulator(vk::Context& ctx, const std::filesystem::path& glShaderDir) : ctx_(ctx) {
+    const gl::GlContext* gl = ctx.glContext();
+    if (!gl) throw std::runtime_error("vxgi-atomics gl-interop: no OpenGL context: " + ctx.capabilities().glInteropNote);
+    const std::string source = readGlSource(glShaderDir);
+    gl::GlContext::Current current(*gl);
+    program_ = std::make_unique<gl::ComputeProgram>(*gl, "gl/vxgi_accumulate.comp.glsl", source);
+}
+
+VxgiGlAccumulator::~VxgiGlAccumulator() {
+    releaseBuffers();
+    if (!program_) return;
+    try {
+        gl::GlContext::Current current(*ctx_.glContext());
+        program_.reset();
+    } catch (const gl::GlError&) {
+        // The context cannot be made current: the delete is a no-op without one, GL frees the program with it.
+        program_.reset();
+    }
+}
+
+void VxgiGlAccumulator::releaseBuffers() {
+    // SharedBuffer defers the Vulkan side until the frames using it completed.
+    if (records_) ctx_.bindless().release(recordsIndex_);
+    if (sums_) ctx_.bindless().release(sumsIndex_);
+    records_.reset();
+    sums_.reset();
+    recordsIndex_ = sumsIndex_ = {};
+}
+
+void VxgiGlAccumulator::prepare(uint32_t n) {
+    if (wanted_ == 0) wanted_ = 16 * n * n;  // a few walls across the grid, with depth complexity
+    if (sums_ && gridSize_ == n && capacity_ == wanted_) return;
+    const gl::GlContext& gl = *ctx_.glContext();
+    // The descriptor's range limit caps the records (the sums of a 512^3 grid, 2.7 GB, would exceed it too: the
+    // bindless table then throws DeviceLimitError naming the buffer).
+    const VkDeviceSize maxRange = ctx_.info().limits.maxStorageBufferRange;
+    const VkDeviceSize maxRecords = (maxRange / 4 - gpu::kVoxelRecordHeaderWords) / gpu::kVoxelRecordWords;
+    wanted_ = uint32_t(std::min<VkDeviceSize>(wanted_, maxRecords));
+    if (!sums_ || gridSize_ != n) {
+        if (sums_) ctx_.bindless().release(sumsIndex_);
+        sums_.reset();
+        const VkDeviceSize bytes = VkDeviceSize(n) * n * n * gpu::kVoxelSumWords * 4;
+        sums_ = std::make_unique<gl::SharedBuffer>(ctx_, gl, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "vxgi gl sums");
+        sumsIndex_ = ctx_.bindless().addBuffer(sums_->vk().buffer, bytes, "vxgi gl sums");
+        gridSize_ = n;
+    }
+    if (!records_ || capacity_ != wanted_) {
+        if (records_) ctx_.bindless().release(recordsIndex_);
+        records_.reset();
+        const VkDeviceSize bytes = recordBytes(wanted_);
+        records_ = std::make_unique<gl::SharedBuffer>(ctx_, gl, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                                      "vxgi gl records");
+        recordsIndex_ = ctx_.bindless().addBuffer(records_->vk().buffer, bytes, "vxgi gl records");
+        capacity_ = wanted_;
+    }
+}
+
+const vk::Buffer& VxgiGlAccumulator::sumsBuffer() const {
+    if (!sums_) throw std::logic_error("VxgiGlAccumulator::sumsBuffer: no frame was prepared");
+    return sums_->vk();
+}
+
+graph::BufferHandle VxgiGlAccumulator::importRecords(graph::RenderGraph& graph) const {
+    graph::PhysicalBuffer p{records_->vk().buffer, records_->size(), 0, recordsIndex_.value, 0};
+    // Last frame read it in its GL pass (compute stage after the acquire): a WAR wait before this frame's clear.
+    graph::ResourceState state;
+    state.readStages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    return graph.importBuffer("vxgi gl records", p, state);
+}
+
+graph::BufferHandle VxgiGlAccumulator::importSums(graph::RenderGraph& graph) const {
+    graph::PhysicalBuffer p{sums_->vk().buffer, sums_->size(), 0, sumsIndex_.value, 0};
+    graph::ResourceState state;  // last frame's merge read it
+    state.readStages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    return graph.importBuffer("vxgi gl sums", p, state);
+}
+
+graph::BufferHandle VxgiGlAccumulator::addPass(graph::RenderGraph& graph, graph::BufferHandle records,
+                                               graph::BufferHandle sums) {
+    auto written = std::make_shared<graph::BufferHandle>();
+    graph.addPass(
+        "vxgi_gl_accumulate",
+        [&](graph::PassBuilder& b) {
+            b.read(records, graph::Access::StorageRead, kCs);
+            *written = b.write(sums, graph::Access::StorageReadWrite, kCs);
+        },
+        [this](graph::PassContext& pc) { handOver(pc.commandBuffer()); });
+    return *written;
+}
+
+void VxgiGlAccumulator::accumulateOnGl() {
+    const gl::GlContext& gl = *ctx_.glContext();
+    gl::GlContext::Current current(gl);
+    uint32_t appended = 0;
+    gl.api().glGetNamedBufferSubData(records_->gl(), 0, sizeof(appended), &appended);
+    gl.check("vxgi gl-interop: reading the record count");
+    const uint32_t count = std::min(appended, capacity_);
+    stats_ = {appended, capacity_, appended - count};
+    program_->setUint("count", count);
+    program_->setUint("voxelCount", gridSize_ * gridSize_ * gridSize_);
+    gl.api().glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, records_->gl());
+    gl.api().glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, sums_->gl());
+    const uint32_t groups = (count + kGroup - 1) / kGroup;
+    if (groups) program_->dispatch(std::min(groups, kMaxGroupsX), (groups + kMaxGroupsX - 1) / kMaxGroupsX);
+    gl::finishGl(gl);  // complete before the rest of the frame is submitted
+}
+
+void VxgiGlAccumulator::handOver(VkCommandBuffer cmd) {
+    // Vulkan's side: the graph's barrier before this pass made the fragments' records and the clear of the sums
+    // visible to compute; the release to VK_QUEUE_FAMILY_EXTERNAL follows it (shared_memory.hpp).
+    gl::releaseToGl(cmd, ctx_, *records_, kCs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    gl::releaseToGl(cmd, ctx_, *sums_, kCs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    endLabel(cmd);
+    vk::check(vkEndCommandBuffer(cmd));
+    ctx_.waitFor(ctx_.submit(cmd));  // the CPU-side wait: the voxelization has completed
+
+    // Begin the same command buffer again (an implicit reset: its pool has RESET_COMMAND_BUFFER_BIT) and take the
+    // buffers back; also when GL throws, so the caller can still end and submit it.
+    auto beginAgain = [&] {
+        VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+        begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+        vk::check(vkBeginCommandBuffer(cmd, &begin));
+        beginLabel(cmd, "vxgi_gl_accumulate");
+        gl::acquireFromGl(cmd, ctx_, *records_, kCs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+        gl::acquireFromGl(cmd, ctx_, *sums_, kCs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    };
+    try {
+        accumulateOnGl();
+    } catch (...) {
+        beginAgain();
+        throw;
+    }
+    beginAgain();
+    if (stats_.dropped) {
+        wanted_ = uint32_t(std::min<uint64_t>(uint64_t(stats_.appended) * 5 / 4 + 1, UINT32_MAX));
+        std::fprintf(stderr,
+                     "vxgi gl-interop: %u of %u voxel fragments overflowed the record buffer (%u records) and were "
+                     "dropped this frame; it grows to %u records from the next frame (a still renders again)\n",
+                     stats_.dropped, stats_.appended, stats_.capacity, wanted_);
+    }
+}
+
+}  // namespace idk::passes

@@ -1,0 +1,83 @@
+// vxgi_gl_accumulate.hpp: the gl-interop rung of the "vxgi-atomics" ladder. The voxelization's fragments append
+// records (voxel, premultiplied rgba) to a buffer shared with OpenGL; the "vxgi_gl_accumulate" pass hands it to GL,
+// whose compute program (shaders_glsl/gl/vxgi_accumulate.comp.glsl) adds the records into a shared sums buffer with
+// GL_NV_shader_atomic_float, and gives the sums back to Vulkan, whose merge pass (vxgi_voxelize.cpp) averages them
+// into the RGBA16F grid in the same render graph.
+//
+// The hand-over is CPU-side (llvmpipe has no GL_EXT_semaphore_fd, see gl/shared_memory.hpp): the pass ends the
+// graph's command buffer, submits it and waits, runs GL and glFinish, then begins the same command buffer again and
+// records the rest of the frame into it. So the graph's command buffer must come from a pool created with
+// VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT (vk::FrameRing's and Context::runImmediate's are). On a GPU this
+// stalls the queue once per frame; GL_EXT_semaphore_fd would order the two APIs on the GPU instead.
+//
+// Overflow: the record buffer holds `capacity` records (first frame: 16 n^2 for an n^3 grid). The fragment counter
+// counts past it, the host reads it at the hand-over: records past the capacity are dropped from that frame (GL
+// adds those that fit), the drop is reported (stderr and lastStats()) and the buffer grows to hold 1.25x the count
+// from the next frame on; Renderer::renderStill then renders the frame again (the grid fits the scene, not the
+// camera, so the count repeats and fits). Measured at 64^3: DamagedHelmet 74029 fragments, ToyCar 190362.
+#pragma once
+#include <filesystem>
+#include <memory>
+
+#include "graph/render_graph.hpp"
+#include "vk/bindless.hpp"
+#include "vk/resources.hpp"
+
+namespace idk::gl {
+class ComputeProgram;
+class SharedBuffer;
+}  // namespace idk::gl
+namespace idk::vk {
+class Context;
+}
+
+namespace idk::passes {
+
+struct VxgiGlStats {
+    uint32_t appended = 0;  // fragments the last frame's voxelization produced
+    uint32_t capacity = 0;  // records its buffer held
+    uint32_t dropped = 0;   // appended - capacity when it overflowed, else 0
+};
+
+class VxgiGlAccumulator {
+public:
+    // Throws std::runtime_error when ctx has no GL context (the rung is unavailable) or the GL program fails.
+    // glShaderDir/gl/vxgi_accumulate.comp.glsl, when present, replaces the build's GL source.
+    explicit VxgiGlAccumulator(vk::Context& ctx, const std::filesystem::path& glShaderDir = {});
+    ~VxgiGlAccumulator();
+    VxgiGlAccumulator(const VxgiGlAccumulator&) = delete;
+    VxgiGlAccumulator& operator=(const VxgiGlAccumulator&) = delete;
+
+    // Before a frame's passes: sizes the sums for an n^3 grid and the records for the current capacity.
+    void prepare(uint32_t gridSize);
+    const VxgiGlStats& lastStats() const noexcept { return stats_; }
+    uint32_t capacity() const noexcept { return capacity_; }
+    // Test hook: the record capacity of the next prepare() (an overflow test starts small).
+    void setCapacity(uint32_t records) { wanted_ = records; }
+
+    // This frame's imports of the two shared buffers (after prepare).
+    graph::BufferHandle importRecords(graph::RenderGraph& graph) const;
+    graph::BufferHandle importSums(graph::RenderGraph& graph) const;
+    uint32_t recordsIndex() const noexcept { return recordsIndex_.value; }
+    uint32_t sumsIndex() const noexcept { return sumsIndex_.value; }
+    // The sums of the last frame (kVoxelSumWords floats per voxel, Vulkan-owned after the frame): tests read the
+    // per-voxel fragment counts from it.
+    const vk::Buffer& sumsBuffer() const;
+
+    // "vxgi_gl_accumulate": reads `records` (written by the voxelization), writes `sums` (cleared before); returns
+    // the sums' new version, which the merge reads. Records the frame's stats when it runs.
+    graph::BufferHandle addPass(graph::RenderGraph& graph, graph::BufferHandle records, graph::BufferHandle sums);
+
+private:
+    void handOver(VkCommandBuffer cmd);  // submit, wait, run GL, begin again
+    void accumulateOnGl();               // the GL dispatch over this frame's records, glFinish
+    void releaseBuffers();
+    vk::Context& ctx_;
+    std::unique_ptr<gl::ComputeProgram> program_;
+    std::unique_ptr<gl::SharedBuffer> records_, sums_;
+    vk::StorageBufferIndex recordsIndex_, sumsIndex_;
+    uint32_t gridSize_ = 0, capacity_ = 0, wanted_ = 0;
+    VxgiGlStats stats_;
+};
+
+}  // namespace idk::passes

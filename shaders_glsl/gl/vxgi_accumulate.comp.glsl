@@ -1,0 +1,26 @@
+#version 450 core
+// vxgi_accumulate.comp.glsl (OpenGL, compiled by the GL driver at run time, not SPIR-V): the gl-interop rung of
+// "vxgi-atomics" (engine/passes/vxgi_gl_accumulate.cpp). Adds each record the voxelization appended (layout:
+// shaders_glsl/shared/vxgi_types.h, kVoxelRecord*) into its voxel's sums with GL_NV_shader_atomic_float's float
+// atomicAdd on Vulkan memory: premultiplied r, g, b, coverage and a count (kVoxelSumWords = 5 per voxel). Vulkan's
+// merge pass averages them. A GL with GL_NV_shader_atomic_fp16_vector could add an f16vec4 per record into an
+// RGBA16F image instead (one atomic, not five): no driver here exposes it, so that variant is not built.
+#extension GL_NV_shader_atomic_float : require
+layout(local_size_x = 64) in;
+layout(std430, binding = 0) readonly buffer Records { uint records[]; };
+layout(std430, binding = 1) buffer Sums { float sums[]; };
+uniform uint count;       // records to add: min(appended, capacity)
+uniform uint voxelCount;  // n^3: a record's voxel index is below it
+const uint kHeaderWords = 4u, kRecordWords = 5u, kSumWords = 5u;
+
+void main() {
+    // 2D dispatch: more records than one dimension's 65535 groups of 64 hold.
+    uint i = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 64u + gl_LocalInvocationIndex;
+    if (i >= count) return;
+    uint base = kHeaderWords + i * kRecordWords;
+    uint voxel = records[base];
+    if (voxel >= voxelCount) return;
+    uint dst = voxel * kSumWords;
+    for (uint c = 0u; c < 4u; ++c) atomicAdd(sums[dst + c], uintBitsToFloat(records[base + 1u + c]));
+    atomicAdd(sums[dst + 4u], 1.0);
+}

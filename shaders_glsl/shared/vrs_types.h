@@ -66,17 +66,17 @@ struct VrsClassifyPush {
 };
 IDK_GPU_SIZE(VrsClassifyPush, 40);
 
-// camera_motion.comp: the stand-in for the motion vectors of issue 12 (camera motion only): for each pixel, the
-// UV movement of its surface point (from depth) between the previous and the current view-projection.
-struct VrsMotionPush {
-    mat4 currentToPrevious;  // previous viewProjection * inverse(current viewProjection)
-    DeviceAddress velocity;  // vec2[width * height]
-    uint depth;              // R32F G-buffer depth
+// velocity.comp: the classifier's velocity field from the temporal motion vectors (object, skinned and camera
+// motion), the background reprojected by the camera.
+struct VrsVelocityPush {
+    DeviceAddress temporal;  // GpuTemporalFrame (shared/temporal_types.h): this and last frame's camera
+    DeviceAddress velocity;  // vec2[width * height], UV units per frame
+    uint motion;             // R32UI storage: packHalf2x16(current uv - previous uv), zero on the background
+    uint depth;              // R32F G-buffer depth (1: background)
     uint width;
     uint height;
-    uint pad;
 };
-IDK_GPU_SIZE(VrsMotionPush, 88);
+IDK_GPU_SIZE(VrsVelocityPush, 32);
 
 // reconstruct.comp: fills the pixels the coarse lighting and sky did not shade, edge-aware from the G-buffer.
 struct VrsReconstructPush {

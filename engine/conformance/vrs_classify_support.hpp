@@ -1,8 +1,8 @@
 // vrs_classify_support.hpp: what the shading-rate classifier check (vrs_checks.cpp) and its asset-based test
 // (tests/conformance/vrs/) share: an HDR frame the renderer produced with a camera-like velocity field, at a size
 // that leaves partial tiles, the edge-case tiles patched into it, the GPU classifier (vrs/classify.comp.glsl) run
-// on it, and the comparison with its CPU oracle (frame::classifyTilesCpu): identical rates per tile, except that a
-// tile within 1e-5 (relative) of a rounding boundary may differ by one (at most one such tile per comparison).
+// on it, and the comparison with its CPU oracle (frame::classifyTilesCpu): identical rates on every tile (the shared
+// arithmetic of shared/vrs_types.h rounds the same on every device).
 #pragma once
 #include <glm/glm.hpp>
 

@@ -14,7 +14,7 @@
 // only 2.5 ULP (a value at a rounding boundary used to go either way). The speed's square root is an integer
 // square root (a float estimate corrected by 64-bit products); the rate compares the value with each rounding
 // threshold after multiplying out the divisions and squaring the square root away (vrsTileRate). The C++ side
-// must not contract either (GCC contracts only when the target has fma; the project builds for baseline x86-64).
+// must not contract either: the oracle (frame/vrs_oracle.cpp) is compiled with -ffp-contract=off.
 // Denormals, which a GPU may flush, arise only below 1 in the speed (floored to 0 either way) and not at all in
 // the decision (factors below kVrsMinFactor count as 0).
 #ifndef IDK_VRS_TYPES_H

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""vrs_report.py: turns idk_vrs_bench's JSON (bench/results/vrs.json) into the plot bench/results/vrs.png (shading
-invocations saved against PSNR of the displayed frame relative to VRS off, one point per factor pair, per scene)
+"""vrs_report.py: turns idk_vrs_bench's JSON (bench/results/vrs.json) into the plot bench/results/vrs.png (per
+scene: shading invocations saved and lighting + sky time saved, each against PSNR and against FLIP of the displayed
+frame relative to VRS off; one point per factor pair)
 and the Markdown section bench/results/vrs_section.md that scripts/bench_report.py puts into BENCHMARKS.md
 (issue 14's benchmarks).
 
@@ -21,11 +22,13 @@ def section(data, plotted):
              "and lighting time are relative to VRS off in the same run. Error: the displayed 8-bit frame against "
              "VRS off of the same frame (PSNR over sRGB values; LDR-FLIP mean). On lavapipe the classifier and the "
              "reconstruction cost more than the lighting they save; their times are listed apart, not hidden in the "
-             "lighting column (on a GPU both are small per-pixel dispatches, not measured here). Lavapipe timings on "
+             "lighting column (classify: the motion-vector pass, which VRS runs alone with --aa none, the velocity "
+             "field, the classifier and the rates' readback; on a GPU these are small per-pixel dispatches, not "
+             "measured here). Lavapipe timings on "
              "a busy 2-core machine vary by tens of percent between runs; the invocation counts and errors are exact.",
              f"Reproduce: `{data['command']}` then `python3 bench/vrs_report.py bench/results`.", ""]
     if plotted:
-        lines += ["![invocations saved vs PSNR](bench/results/vrs.png)", ""]
+        lines += ["![invocations and lighting time saved vs PSNR and FLIP](bench/results/vrs.png)", ""]
     lines += ["| scene | SpeedFactor | LumVarianceFactor | invocations | saved | lighting+sky ms (off) | saved | "
               "reconstruct ms | classify ms | PSNR dB (min) | FLIP |",
               "|---|---|---|---|---|---|---|---|---|---|---|"]
@@ -65,24 +68,37 @@ def plot(data, path):
     except ImportError:
         return False
     names = list(data["scenes"])
-    fig, axes = plt.subplots(1, len(names), figsize=(6 * len(names), 4.5), squeeze=False)
-    for ax, name in zip(axes[0], names):
+    # Columns: per scene, invocations saved then lighting + sky time saved; rows: PSNR (higher is better), FLIP
+    # (lower is better).
+    fig, axes = plt.subplots(2, 2 * len(names), figsize=(5 * 2 * len(names), 8), squeeze=False)
+    for s, name in enumerate(names):
         rows = data["scenes"][name]
         off = next(r for r in rows if not r["vrs"])
-        for sf, color in ((0.0, "tab:blue"), (0.2, "tab:orange"), (0.8, "tab:green")):
-            pts = [r for r in rows if r["vrs"] and abs(r["speedFactor"] - sf) < 1e-6]
-            xs = [100.0 * (1.0 - r["invocationsMean"] / off["invocationsMean"]) for r in pts]
-            ys = [r["psnrMedian"] for r in pts]
-            ax.plot(xs, ys, "o-", color=color, label=f"SpeedFactor {sf:g}")
-            for x, y, r in zip(xs, ys, pts):
-                ax.annotate(f"{r['lumVarianceFactor']:g}", (x, y), fontsize=7, xytext=(3, 3),
-                            textcoords="offset points")
-        ax.axhline(40.0, color="grey", linestyle=":")
-        ax.axvline(50.0, color="grey", linestyle=":")
-        ax.set_title(f"{name}, {data['size']} (labels: LumVarianceFactor)")
-        ax.set_xlabel("shading invocations saved (%)")
-        ax.set_ylabel("PSNR vs VRS off (dB)")
-        ax.legend(fontsize=8)
+        saved = {
+            "shading invocations saved (%)": lambda r: 100.0 * (1.0 - r["invocationsMean"] / off["invocationsMean"]),
+            "lighting + sky time saved (%)": lambda r: (100.0 * (1.0 - r["lightingMsMedian"] / off["lightingMsMedian"])
+                                                        if off["lightingMsMedian"] else 0.0),
+        }
+        for c, (xlabel, xof) in enumerate(saved.items()):
+            for row, (ylabel, key, aim) in enumerate((("PSNR vs VRS off (dB)", "psnrMedian", 40.0),
+                                                      ("FLIP vs VRS off (mean)", "flipMedian", None))):
+                ax = axes[row][2 * s + c]
+                for sf, color in ((0.0, "tab:blue"), (0.2, "tab:orange"), (0.8, "tab:green")):
+                    pts = [r for r in rows if r["vrs"] and abs(r["speedFactor"] - sf) < 1e-6]
+                    xs = [xof(r) for r in pts]
+                    ys = [r[key] for r in pts]
+                    # Invocation counts are exact and move with the factors; timings are noisy on lavapipe: points.
+                    ax.plot(xs, ys, "o-" if c == 0 else "o", color=color, label=f"SpeedFactor {sf:g}")
+                    for x, y, r in zip(xs, ys, pts):
+                        ax.annotate(f"{r['lumVarianceFactor']:g}", (x, y), fontsize=7, xytext=(3, 3),
+                                    textcoords="offset points")
+                if aim is not None:
+                    ax.axhline(aim, color="grey", linestyle=":")
+                ax.axvline(50.0 if c == 0 else 0.0, color="grey", linestyle=":")
+                ax.set_title(f"{name}, {data['size']} (labels: LumVarianceFactor)", fontsize=9)
+                ax.set_xlabel(xlabel)
+                ax.set_ylabel(ylabel)
+                ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     return True

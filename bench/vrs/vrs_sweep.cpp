@@ -3,7 +3,7 @@
 // for a sweep of the classifier's two factors (SpeedFactor x LumVarianceFactor, the original's 0.2 / 0.04 among
 // them), each configuration in its own renderer so its rates follow the path as the viewer's would. Per frame
 // after the first: shading invocations of lighting + sky, GPU time of lighting + sky (+ the software rung's
-// reconstruction and the classifier, reported apart), and the error of the displayed frame against VRS off of
+// reconstruction and the classifier with its velocity input, the motion-vector pass included, reported apart), and the error of the displayed frame against VRS off of
 // the same frame (PSNR over the sRGB-encoded 8-bit values, and LDR-FLIP). Writes one JSON (bench/vrs_report.py
 // turns it into the plot and the BENCHMARKS.md section).
 //
@@ -149,7 +149,9 @@ int main(int argc, char** argv) {
                 s.invocations = double(f.shadingInvocations);
                 s.lightingMs = passMs(f, {"deferred_lighting", "sky"});
                 s.reconstructMs = passMs(f, {"vrs_reconstruct"});
-                s.classifyMs = passMs(f, {"vrs_classify", "vrs_camera_motion", "vrs_rates_readback"});
+                // With --aa none the motion-vector pass runs for VRS alone: its cost is the classifier's.
+                s.classifyMs = off ? 0.0
+                                   : passMs(f, {"motion_vectors", "vrs_velocity", "vrs_classify", "vrs_rates_readback"});
                 s.psnr = off ? 99.0 : psnr8(f.display, reference[size_t(i)]);
                 s.flip = off ? 0.0 : app::computeFlip(f.image, referenceLinear[size_t(i)]).mean;
                 samples.push_back(s);

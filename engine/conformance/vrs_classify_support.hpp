@@ -1,8 +1,8 @@
-// vrs_classify_support.hpp: what the shading-rate classifier check (vrs_checks.cpp) and its asset-based test
-// (tests/conformance/vrs/) share: an HDR frame the renderer produced with a camera-like velocity field, at a size
+// vrs_classify_support.hpp: what the VRS checks (vrs_checks.cpp, vrs_frame_checks.cpp) and their asset-based tests
+// (tests/conformance/vrs/, tests/gpu/vrs/) share. For the classifier: an HDR frame the renderer produced with a camera-like velocity field, at a size
 // that leaves partial tiles, the edge-case tiles patched into it, the GPU classifier (vrs/classify.comp.glsl) run
-// on it, and the comparison with its CPU oracle (frame::classifyTilesCpu): identical rates per tile, except that a
-// tile within 1e-5 (relative) of a rounding boundary may differ by one (at most one such tile per comparison).
+// on it, and the comparison with its CPU oracle (frame::classifyTilesCpu): identical rates on every tile (the shared
+// arithmetic of shared/vrs_types.h rounds the same on every device).
 #pragma once
 #include <glm/glm.hpp>
 
@@ -38,5 +38,14 @@ std::vector<uint32_t> classifyOnGpu(vk::Context& ctx, vk::ShaderLibrary& shaders
 // GPU vs CPU oracle on every tile, recorded in v; returns the histogram of the oracle's rates (1x1 .. 4x4).
 std::array<int, 5> expectClassifierMatches(Verdict& v, vk::Context& ctx, vk::ShaderLibrary& shaders, const VrsFrame& f,
                                            const passes::VrsClassifyParams& params, const std::string& what);
+
+// The software rung's frame checks on `scene` (two views; vrs_frame_checks.cpp registers them on the Cornell box):
+// 1x1 everywhere equals VRS off bit for bit; at coarse rates exactly the counted anchors are shaded.
+void expectOneByOneEqualsOff(CheckEnv& env, Verdict& v, const scene::Scene& scene);
+void expectCoarseCountedInvocations(CheckEnv& env, Verdict& v, const scene::Scene& scene);
+
+// The frame-level checks of vrs_frame_checks.cpp (software rung 1x1 and coarse rates, hardware rung), which
+// vrsChecks() lists too.
+std::vector<Check> vrsFrameChecks();
 
 }  // namespace idk::conformance

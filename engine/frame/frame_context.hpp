@@ -53,9 +53,10 @@ struct FrameContext {
     // of depth pixels it covers; depth 0 near .. 1 far (not reversed), background 1. Built only if a pass reads it.
     graph::BufferHandle depthPyramid;
 
-    // Temporal (temporal_feature.cpp), only with --aa taa: viewProjection above is then jittered by jitterPixels
+    // Temporal (temporal_feature.cpp), with --aa taa/upscale: viewProjection above is then jittered by jitterPixels
     // (the offset of this frame's samples from the pixel centres); motionVectors holds R32UI
     // packHalf2x16(current uv - previous uv, unjittered) for geometry pixels (background: reproject by camera).
+    // With --vrs on alone: temporalConstants and motionVectors only (no jitter), for the VRS classifier.
     glm::mat4 unjitteredViewProjection{1.0f};
     glm::vec2 jitterPixels{0.0f};
     graph::BufferHandle temporalConstants;         // gpu::GpuTemporalFrame (shared/temporal_types.h)

@@ -1,5 +1,5 @@
 // temporal_feature.cpp: Halton jitter of the projection, motion vectors (with the history copies of animated
-// scene buffers) and the TAA resolve (see temporal_feature.hpp).
+// scene buffers; also for VRS alone, without jitter) and the TAA resolve (see temporal_feature.hpp).
 #include "frame/temporal_feature.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -111,20 +111,26 @@ uint32_t TemporalFeature::jitterPhases(const render::RenderSettings& s) {
 
 uint32_t TemporalFeature::stillFrames(const render::RenderSettings& s) { return enabled(s) ? jitterPhases(s) : 1u; }
 
+bool TemporalFeature::motionVectorsNeeded(const render::RenderSettings& s) { return enabled(s) || s.vrs.enabled; }
+
 void TemporalFeature::beginFrame(FrameContext& f) {
-    if (!enabled(f.settings)) {
+    if (!motionVectorsNeeded(f.settings)) {
         reset_ = true;  // switching TAA back on starts from a fresh history
         havePrevious_ = false;
         return;
     }
-    if (previousWidth_ != f.width || previousHeight_ != f.height) reset_ = true;
+    const bool jitter = enabled(f.settings);
+    if (previousWidth_ != f.width || previousHeight_ != f.height || jitter != jittered_) reset_ = true;
+    jittered_ = jitter;
     if (reset_) {
         frameIndex_ = 0;
         havePrevious_ = false;
     }
     f.unjitteredViewProjection = f.viewProjection;
-    f.jitterPixels = jitterOffset(frameIndex_, jitterPhases(f.settings));
-    f.viewProjection = jitteredViewProjection(f.viewProjection, f.jitterPixels, f.width, f.height);
+    if (jitter) {  // VRS alone (--aa none) needs the motion vectors but no jitter
+        f.jitterPixels = jitterOffset(frameIndex_, jitterPhases(f.settings));
+        f.viewProjection = jitteredViewProjection(f.viewProjection, f.jitterPixels, f.width, f.height);
+    }
 
     if (constants_.empty()) {
         for (uint32_t i = 0; i < f.framesInFlight; ++i) {
@@ -164,7 +170,7 @@ void TemporalFeature::beginFrame(FrameContext& f) {
 }
 
 void TemporalFeature::addMotionVectors(FrameContext& f, render::GpuScene& scene) {
-    if (!enabled(f.settings)) return;
+    if (!motionVectorsNeeded(f.settings)) return;
     // A static frame: the same camera, no pose uploaded or vertices deformed this frame (the animation passes
     // write new versions of the scene buffers only when the pose changed), the same lights.
     const bool lightsSame = f.lights && f.lights->size() == previousLights_.size() &&

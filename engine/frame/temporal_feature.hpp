@@ -3,7 +3,9 @@
 // surfaces with this and last frame's transforms (FrameContext::motionVectors, read by TAA and by VRS);
 // addResolve blends the lit image with the reprojected history (passes/taa.cpp). Last frame's instances and
 // (skinned/morphed) vertices, colour, depth and motion are graph history resources; the camera matrices of the
-// last frame are kept here. Nothing is allocated or dispatched while --aa is none. Ports IDKEngine's TAAResolve
+// last frame are kept here. With --aa none and --vrs on, only the motion vectors (and the last-frame copies of
+// animated scene buffers they need) are made, unjittered, for the VRS classifier: no TAA history; with both off,
+// nothing is allocated or dispatched. Ports IDKEngine's TAAResolve
 // and the jitter/velocity parts of RasterPipeline (reference 2.5).
 #pragma once
 #include <glm/glm.hpp>
@@ -32,6 +34,8 @@ public:
     TemporalFeature& operator=(const TemporalFeature&) = delete;
 
     static bool enabled(const render::RenderSettings& s);  // --aa taa or upscale: jitter and motion vectors
+    // Motion vectors this frame: TAA and the upscaler, or VRS (its classifier's speed; frame/vrs_feature.hpp).
+    static bool motionVectorsNeeded(const render::RenderSettings& s);
     // Length of the Halton jitter sequence: --temporal-frames, or for the upscaler that / S^2.
     static uint32_t jitterPhases(const render::RenderSettings& s);
     // Frames a still needs (the jitter phases with TAA on, else 1).
@@ -59,6 +63,7 @@ private:
     uint32_t frameIndex_ = 0;
     bool reset_ = true;
     bool havePrevious_ = false;
+    bool jittered_ = false;              // the last frame was jittered (TAA/upscaler), not motion vectors for VRS alone
     glm::mat4 previous_{1.0f};           // last frame's unjittered view-projection
     glm::vec2 previousJitter_{0.0f};
     uint32_t previousWidth_ = 0, previousHeight_ = 0;

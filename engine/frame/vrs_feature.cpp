@@ -1,10 +1,11 @@
 // vrs_feature.cpp: variable-rate shading's per-frame work: the persistent rate buffer (this frame's classifier
 // writes it, the next frame's lighting and sky read it), a copy of the rates in use for the invocation count,
-// the camera-motion stand-in, the classifier and the overlay. The classifier's reduction takes subgroup
+// the velocity field from the temporal motion vectors, the classifier and the overlay (and the tests' capture of
+// the classifier's inputs and output). The classifier's reduction takes subgroup
 // arithmetic where the "subgroup-arithmetic" ladder allows, else the shared-memory tree.
 #include "frame/vrs_feature.hpp"
 
-#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/packing.hpp>
 
 #include <memory>
 
@@ -24,6 +25,8 @@ VrsFeature::~VrsFeature() { release(); }
 
 void VrsFeature::release() {
     if (rates_) ctx_.destroyDeferred(rates_);
+    if (captured_) ctx_.destroyDeferred(captured_);
+    captured_ = {};
     for (vk::Buffer& b : readback_) ctx_.destroyDeferred(b);
     for (vk::Buffer& b : invocationReadback_) ctx_.destroyDeferred(b);
     readback_.clear();
@@ -38,7 +41,6 @@ void VrsFeature::beginFrame(FrameContext& f) {
     hardware_ = vk::ShadingRateSource::None;
     if (!lastEnabled_) {
         release();
-        hasPrevious_ = false;
         return;
     }
     // Consulting the ladder also puts it in --json's "rungs". A hardware rung's tile is the device's rate texel
@@ -47,12 +49,11 @@ void VrsFeature::beginFrame(FrameContext& f) {
     const vk::Ladder& ladder = f.ctx.ladder("vrs");
     const vk::DeviceCapabilities& caps = f.ctx.capabilities();
     uint32_t tileSize = gpu::kVrsDefaultTileSize;
-    if (ladder.chosen == vk::Rung::Native && ladder.chosenMechanism == "VK_NV_shading_rate_image") {
-        hardware_ = vk::ShadingRateSource::NvImage;
-        tileSize = vk::nvShadingRateTile(caps.shadingRateTexelNv).size;
-    } else if (ladder.chosen == vk::Rung::Native) {
-        hardware_ = vk::ShadingRateSource::KhrAttachment;
-        tileSize = vk::khrShadingRateTile(caps.shadingRateAttachmentTexel).size;
+    if (usesHardwareRung(f.ctx, f.settings.vrs)) {
+        const bool nv = ladder.chosenMechanism == "VK_NV_shading_rate_image";
+        hardware_ = nv ? vk::ShadingRateSource::NvImage : vk::ShadingRateSource::KhrAttachment;
+        tileSize = nv ? vk::nvShadingRateTile(caps.shadingRateTexelNv).size
+                      : vk::khrShadingRateTile(caps.shadingRateAttachmentTexel).size;
     }
     const uint32_t tilesX = (f.width + tileSize - 1) / tileSize, tilesY = (f.height + tileSize - 1) / tileSize;
     if (!rates_ || tilesX * tilesY != tiles_ || tilesX != tilesX_ || tileSize != tileSize_ ||
@@ -113,14 +114,6 @@ void VrsFeature::addReconstructPass(FrameContext& f) {
 
 void VrsFeature::addClassifyPasses(FrameContext& f) {
     if (!f.vrsRates.valid()) return;
-    // Camera motion only (stand-in for issue 12's motion vectors); none on the first frame.
-    graph::BufferHandle velocity;
-    if (hasPrevious_)
-        velocity = passes::addVrsCameraMotionPass(f.graph, f.ctx, f.shaders, f.gbuffer.depth,
-                                                  previousViewProjection_ * glm::inverse(f.viewProjection));
-    previousViewProjection_ = f.viewProjection;
-    hasPrevious_ = true;
-
     if (f.settings.vrs.fixedRate >= 0) {
         // Every tile at one rate: the rates part of the buffer filled with the palette index.
         graph::BufferHandle rates = f.vrsRates;
@@ -136,6 +129,10 @@ void VrsFeature::addClassifyPasses(FrameContext& f) {
         if (f.settings.vrs.debug) f.hdr = passes::addVrsOverlayPass(f.graph, f.ctx, f.shaders, *written, f.hdr);
         return;
     }
+    // Speed from the temporal motion vectors (the temporal feature makes them whenever VRS is on): object, skinned
+    // and camera motion; the background moves with the camera. Zero on a first frame or after a reset.
+    const graph::BufferHandle velocity = passes::addVrsVelocityPass(f.graph, f.ctx, f.shaders, f.temporalConstants,
+                                                                    f.motionVectors, f.gbuffer.depth);
     passes::VrsClassifyParams params;
     params.tileSize = tileSize_;
     params.subgroupReduce = f.ctx.ladder("subgroup-arithmetic").chosen == vk::Rung::Native;
@@ -144,7 +141,60 @@ void VrsFeature::addClassifyPasses(FrameContext& f) {
     params.lumVarianceFactor = f.settings.vrs.lumVarianceFactor;
     graph::BufferHandle next = passes::addVrsClassifyPass(f.graph, f.ctx, f.shaders, params, f.hdr, velocity, f.vrsRates);
     f.graph.markOutput(next);
+    if (capture_) addCapture(f, velocity, next);
     if (f.settings.vrs.debug) f.hdr = passes::addVrsOverlayPass(f.graph, f.ctx, f.shaders, next, f.hdr);
+}
+
+void VrsFeature::addCapture(FrameContext& f, graph::BufferHandle velocity, graph::BufferHandle rates) {
+    const VkDeviceSize pixels = VkDeviceSize(f.width) * f.height, litBytes = pixels * 8, velocityBytes = pixels * 8;
+    const VkDeviceSize bytes = litBytes + velocityBytes + (4 + VkDeviceSize(tiles_)) * sizeof(uint32_t);
+    if (!captured_ || captured_.size < bytes) {
+        if (captured_) ctx_.destroyDeferred(captured_);
+        captured_ = ctx_.createBuffer({bytes, 0, vk::MemoryUsage::Readback, "vrs classifier capture", "readback"});
+    }
+    capturedWidth_ = f.width;
+    capturedHeight_ = f.height;
+    const graph::BufferHandle target = importBuffer(f.graph, "vrs classifier capture", captured_);
+    const graph::TextureHandle lit = f.hdr;
+    const uint32_t width = f.width, height = f.height;
+    f.graph.addPass(
+        "vrs_capture",
+        [&](graph::PassBuilder& b) {
+            b.read(lit, graph::Access::TransferSrc);
+            b.read(velocity, graph::Access::TransferSrc);
+            b.read(rates, graph::Access::TransferSrc);
+            b.write(target, graph::Access::TransferDst);
+            b.sideEffect();
+        },
+        [lit, velocity, rates, target, width, height, litBytes, velocityBytes](graph::PassContext& pc) {
+            VkBufferImageCopy region{};
+            region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+            region.imageExtent = {width, height, 1};
+            vkCmdCopyImageToBuffer(pc.commandBuffer(), pc.image(lit), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                                   pc.vkBuffer(target), 1, &region);
+            const VkBufferCopy v{0, litBytes, velocityBytes};
+            vkCmdCopyBuffer(pc.commandBuffer(), pc.vkBuffer(velocity), pc.vkBuffer(target), 1, &v);
+            const VkBufferCopy r{0, litBytes + velocityBytes, pc.buffer(rates).size};
+            vkCmdCopyBuffer(pc.commandBuffer(), pc.vkBuffer(rates), pc.vkBuffer(target), 1, &r);
+        });
+}
+
+VrsCapture VrsFeature::capturedClassification() const {
+    VrsCapture c;
+    if (!captured_) return c;
+    c.width = capturedWidth_;
+    c.height = capturedHeight_;
+    const size_t pixels = size_t(c.width) * c.height;
+    const std::vector<uint16_t> halves = vk::downloadBuffer<uint16_t>(ctx_, captured_, pixels * 4);
+    for (size_t i = 0; i < pixels; ++i)
+        c.lit.emplace_back(glm::unpackHalf1x16(halves[i * 4]), glm::unpackHalf1x16(halves[i * 4 + 1]),
+                           glm::unpackHalf1x16(halves[i * 4 + 2]), glm::unpackHalf1x16(halves[i * 4 + 3]));
+    c.velocity = vk::downloadBuffer<glm::vec2>(ctx_, captured_, pixels, pixels * 8);
+    const std::vector<uint32_t> rates = vk::downloadBuffer<uint32_t>(ctx_, captured_, 4 + tiles_, pixels * 16);
+    c.tileSize = rates[0];
+    c.tilesX = rates[1];
+    c.rates.assign(rates.begin() + 4, rates.end());
+    return c;
 }
 
 std::vector<uint32_t> VrsFeature::lastRates() const {

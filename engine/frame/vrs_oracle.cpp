@@ -1,6 +1,7 @@
 // vrs_oracle.cpp: the VRS classifier on the CPU: per tile, the maximum sanitised luminance, then the integer sums
-// of fixed-point luminance, its square and speed, then the shared decision gpu::vrsRateValue. Integer sums are
-// order-free, so this matches the GPU's subgroup and shared-memory reductions exactly.
+// of fixed-point luminance, its square and speed, then the shared decision gpu::vrsTileRate. Integer sums are
+// order-free and the shared arithmetic rounds the same everywhere (shared/vrs_types.h; this file is compiled
+// without fma contraction), so this matches the GPU's subgroup and shared-memory reductions exactly.
 #include "frame/vrs_oracle.hpp"
 
 #include <algorithm>
@@ -39,10 +40,8 @@ VrsTileRates classifyTilesCpu(const std::vector<glm::vec4>& lit, const std::vect
                         s2 += q * q;
                     }
             }
-            const float value = gpu::vrsRateValue((x1 - x0) * (y1 - y0), tilePixels, maxBits, s1, s2, speed,
-                                                  speedFactor, lumVarianceFactor);
-            out.values.push_back(value);
-            out.rates.push_back(gpu::vrsRateFromValue(value));
+            out.rates.push_back(gpu::vrsTileRate((x1 - x0) * (y1 - y0), tilePixels, maxBits, s1, s2, speed,
+                                                 speedFactor, lumVarianceFactor));
         }
     }
     return out;

@@ -12,7 +12,6 @@ namespace idk::frame {
 struct VrsTileRates {
     uint32_t tileSize = 16, tilesX = 0, tilesY = 0;
     std::vector<uint32_t> rates;   // palette index per tile, row-major
-    std::vector<float> values;     // the value before rounding (vrsRateValue), for boundary checks
 };
 
 // lit: RGBA per pixel (as stored, e.g. rounded through half), row-major; velocity: UV per frame per pixel, or

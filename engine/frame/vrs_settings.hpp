@@ -15,6 +15,9 @@ struct VrsSettings {
     // Test hook (Hdr output only): the target is filled with kVrsSentinel before lighting and not reconstructed,
     // so a test sees exactly which pixels lighting and sky shaded.
     bool testShadedOnly = false;
+    // Checks and tests: the software rung even where the "vrs" ladder chose a hardware one (rungs compared on one
+    // device; `--rung vrs=fallback` does the same for a whole run).
+    bool softwareRung = false;
 };
 
 }  // namespace idk::frame

@@ -1,5 +1,5 @@
-// vrs_passes.hpp: the passes of variable-rate shading (issue 14; frame/vrs_feature.* drives them): the camera-
-// motion stand-in for motion vectors, the per-tile rate classifier, the software rung's reconstruction and the
+// vrs_passes.hpp: the passes of variable-rate shading (issue 14; frame/vrs_feature.* drives them): the velocity
+// field from the temporal motion vectors, the per-tile rate classifier, the software rung's reconstruction and the
 // --vrs-debug overlay. Shaders in shaders_glsl/vrs/, shared structs in shaders_glsl/shared/vrs_types.h.
 #pragma once
 #include <glm/glm.hpp>
@@ -30,10 +30,11 @@ graph::BufferHandle addVrsClassifyPass(graph::RenderGraph& graph, vk::Context& c
                                        const VrsClassifyParams& params, graph::TextureHandle lit,
                                        graph::BufferHandle velocity, graph::BufferHandle rates);
 
-// vrs_camera_motion.cpp: vec2 UV-per-frame motion of each pixel from depth and the two view-projections (the
-// stand-in for issue 12's motion vectors); returns a transient buffer.
-graph::BufferHandle addVrsCameraMotionPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
-                                           graph::TextureHandle depth, const glm::mat4& currentToPrevious);
+// vrs_velocity.cpp: vec2 UV-per-frame motion of each pixel: the motion vectors (R32UI packHalf2x16, zero on the
+// background) where depth < 1, the camera's reprojection (temporal constants) elsewhere; returns a transient buffer.
+graph::BufferHandle addVrsVelocityPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                       graph::BufferHandle temporal, graph::TextureHandle motion,
+                                       graph::TextureHandle depth);
 
 // vrs_reconstruct.cpp: fills the non-anchor pixels of `target` (software rung); returns its new version.
 graph::TextureHandle addVrsReconstructPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,

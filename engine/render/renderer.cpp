@@ -79,7 +79,7 @@ FrameResult Renderer::renderOffscreen(const scene::CameraView& camera, uint32_t 
     // Display: the tonemap pass's colour attachment. Hdr: the lighting and sky passes' storage image.
     desc.usage = pbr && !display ? VK_IMAGE_USAGE_STORAGE_BIT : VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
     if (pbr && features_.transparency.enabled()) desc.usage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;  // Hdr: transparency blends into it
-    if (pbr && settings_.vrs.enabled && frame::VrsFeature::usesHardwareRung(ctx_))
+    if (pbr && frame::VrsFeature::usesHardwareRung(ctx_, settings_.vrs))
         desc.usage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;  // Hdr: the hardware-VRS lighting pass renders into it
     desc.name = "offscreen output";
     desc.category = "render targets";

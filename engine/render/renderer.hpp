@@ -97,6 +97,7 @@ public:
     const PointShadowMaps* pointShadowMaps() const noexcept { return features_.pointShadows.maps(); }
     // Variable-rate shading's state (the rates the last frame used): tests and the viewer's overlay read it.
     const frame::VrsFeature& vrs() const noexcept { return features_.vrs; }
+    frame::VrsFeature& vrs() noexcept { return features_.vrs; }  // tests: captureClassification
     // Jitter, motion vectors and TAA (tests capture the motion vectors through it).
     frame::TemporalFeature& temporal() noexcept { return features_.temporal; }
     frame::SsaoFeature& ssao() noexcept { return features_.ssao; }  // tests capture its inputs and output

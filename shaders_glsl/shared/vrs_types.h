@@ -1,16 +1,22 @@
 // vrs_types.h: variable-rate shading (issue 14), shared by C++ and GLSL: the rate buffer's layout, the passes'
-// push blocks, and the per-tile rate decision of the classifier (vrs/classify.comp.glsl), which the CPU oracle
-// (engine/frame/vrs_classify_cpu.cpp) calls too. Ports IDKEngine's ShadingRateClassification/compute.glsl
+// push blocks, and the per-pixel and per-tile arithmetic of the classifier (vrs/classify.comp.glsl), which the CPU
+// oracle (engine/frame/vrs_oracle.cpp) calls too. Ports IDKEngine's ShadingRateClassification/compute.glsl
 // (reference internals 2.13): palette {1x1, 2x1, 2x2, 4x2, 4x4}; rate = round(lerp(0,4, meanSpeed * 0.2) +
 // lerp(0,4, 0.04 / CV)) clamped to [0, 4]; tiles of mean luminance <= 0.001 get 4x4; luminance = mean of RGB.
 //
-// Exactness: the tile sums are integers (fixed point), so subgroup and shared-memory reductions, in any order and
-// for any subgroup size, give bit-identical sums, and so does the CPU. Luminance is quantised per tile to B bits
-// of the tile's maximum (B = (32 - log2 pixels) / 2: the sum of squares fits 32 bits); the scale is a power of
-// two taken from the maximum's exponent, so L * scale is exact and floor() is the only rounding. Speed (UV units
-// per second) is clamped to kVrsMaxSpeed (the speed term saturates at 5 already) in 26 - log2(pixels) fraction
-// bits. What is left inexact is the final sqrt and two divisions per tile, which a GPU may round differently
-// from the CPU by an ulp: a tile whose value lies within such an error of a rounding boundary may then differ.
+// Exactness: GPU and CPU compute bit-identical rates. The tile sums are integers (fixed point), so subgroup and
+// shared-memory reductions, in any order and for any subgroup size, give the same sums as the CPU. Luminance is
+// quantised per tile to B bits of the tile's maximum (B = (32 - log2 pixels) / 2: the sum of squares fits 32 bits);
+// the scale is a power of two taken from the maximum's exponent, so L * scale is exact and floor() is the only
+// rounding. Everything else uses only operations that Vulkan requires to be correctly rounded (float add, subtract,
+// multiply and conversions; spec appendix "Precision and Operation of SPIR-V Instructions"), marked precise so no
+// compiler fuses them into an fma, and integer arithmetic: no division and no float sqrt, whose GPU precision is
+// only 2.5 ULP (a value at a rounding boundary used to go either way). The speed's square root is an integer
+// square root (a float estimate corrected by 64-bit products); the rate compares the value with each rounding
+// threshold after multiplying out the divisions and squaring the square root away (vrsTileRate). The C++ side
+// must not contract either: the oracle (frame/vrs_oracle.cpp) is compiled with -ffp-contract=off.
+// Denormals, which a GPU may flush, arise only below 1 in the speed (floored to 0 either way) and not at all in
+// the decision (factors below kVrsMinFactor count as 0).
 #ifndef IDK_VRS_TYPES_H
 #define IDK_VRS_TYPES_H
 #include "interop.h"
@@ -20,7 +26,7 @@
 namespace idk::gpu {
 using glm::floatBitsToUint;
 using glm::uintBitsToFloat;
-using std::floor;
+using std::abs;
 using std::sqrt;
 }  // namespace idk::gpu
 #define IDK_PRECISE
@@ -66,17 +72,17 @@ struct VrsClassifyPush {
 };
 IDK_GPU_SIZE(VrsClassifyPush, 40);
 
-// camera_motion.comp: the stand-in for the motion vectors of issue 12 (camera motion only): for each pixel, the
-// UV movement of its surface point (from depth) between the previous and the current view-projection.
-struct VrsMotionPush {
-    mat4 currentToPrevious;  // previous viewProjection * inverse(current viewProjection)
-    DeviceAddress velocity;  // vec2[width * height]
-    uint depth;              // R32F G-buffer depth
+// velocity.comp: the classifier's velocity field from the temporal motion vectors (object, skinned and camera
+// motion), the background reprojected by the camera.
+struct VrsVelocityPush {
+    DeviceAddress temporal;  // GpuTemporalFrame (shared/temporal_types.h): this and last frame's camera
+    DeviceAddress velocity;  // vec2[width * height], UV units per frame
+    uint motion;             // R32UI storage: packHalf2x16(current uv - previous uv), zero on the background
+    uint depth;              // R32F G-buffer depth (1: background)
     uint width;
     uint height;
-    uint pad;
 };
-IDK_GPU_SIZE(VrsMotionPush, 88);
+IDK_GPU_SIZE(VrsVelocityPush, 32);
 
 // reconstruct.comp: fills the pixels the coarse lighting and sky did not shade, edge-aware from the G-buffer.
 struct VrsReconstructPush {
@@ -126,14 +132,22 @@ IDK_INLINE float vrsLuminance(vec3 rgb) {
     return l > kVrsMaxLuminance ? kVrsMaxLuminance : l;
 }
 
-// The pixel's speed in fixed point (UV units per second * 2^speedBits), NaN -> 0, clamped to kVrsMaxSpeed.
+// The pixel's speed in fixed point: floor(|velocity| * invFrameSeconds * 2^speedBits), NaN -> 0, clamped to
+// kVrsMaxSpeed. Products and a sum (correctly rounded, no contraction), then the integer square root of their floor.
 IDK_INLINE uint vrsSpeedFixed(vec2 velocity, float invFrameSeconds, uint tilePixels) {
-    IDK_PRECISE float sq = velocity.x * velocity.x + velocity.y * velocity.y;
-    IDK_PRECISE float s = sqrt(sq) * invFrameSeconds;
-    if (!(s >= 0.0f)) return 0u;
-    if (s > kVrsMaxSpeed) s = kVrsMaxSpeed;
-    IDK_PRECISE float scaled = s * float(1u << vrsSpeedBits(tilePixels));  // a power of two: exact
-    return uint(scaled);
+    uint bits = vrsSpeedBits(tilePixels);
+    IDK_PRECISE float k = invFrameSeconds * float(1u << bits);  // a power of two: exact
+    IDK_PRECISE float vx = velocity.x * k;
+    IDK_PRECISE float vy = velocity.y * k;
+    IDK_PRECISE float sq = vx * vx + vy * vy;
+    if (!(sq >= 0.0f)) return 0u;  // NaN
+    uint maxFixed = uint(kVrsMaxSpeed) << bits;
+    if (sq >= float(maxFixed) * float(maxFixed)) return maxFixed;  // also +inf; 2^(2 (5 + bits)) is exact
+    uint64_t m = uint64_t(sq);  // floor (sq < 2^52)
+    uint r = uint(sqrt(float(m)));  // an estimate (GPU sqrt is not correctly rounded), corrected in integers
+    while (uint64_t(r) * uint64_t(r) > m) r--;
+    while (uint64_t(r + 1u) * uint64_t(r + 1u) <= m) r++;
+    return r;
 }
 
 // 2^(bits - e) where the tile maximum is f * 2^e, f in [0.5, 1): luminance * scale < 2^bits, exact.
@@ -147,31 +161,39 @@ IDK_INLINE uint vrsLumFixed(float luminance, float scale) {
     return uint(q);
 }
 
-// The rate value before rounding (large for dark or flat tiles): lerp(0,4, meanSpeed * speedFactor) +
-// lerp(0,4, lumVarianceFactor / CV). n = pixels of the tile inside the image; maxLumBits = the tile's maximum
-// sanitised luminance as float bits; s1, s2 = sums of the fixed-point luminance and its square; speedSum = sum of
-// vrsSpeedFixed.
-IDK_INLINE float vrsRateValue(uint n, uint tilePixels, uint maxLumBits, uint s1, uint s2, uint speedSum,
-                              float speedFactor, float lumVarianceFactor) {
-    if (n == 0u || maxLumBits < floatBitsToUint(kVrsDarkLuminance)) return 1.0e30f;  // max <= 0.001: dark
+// The tile's palette index: round(lerp(0,4, meanSpeed * speedFactor) + lerp(0,4, lumVarianceFactor / CV)) clamped
+// to [0, 4] (round half up); 4x4 for dark tiles (mean luminance <= 0.001) and constant ones (CV = 0). n = pixels
+// of the tile inside the image; maxLumBits = the tile's maximum sanitised luminance as float bits; s1, s2 = sums of
+// the fixed-point luminance and its square; speedSum = sum of vrsSpeedFixed. With meanSpeed = speedSum 2^-bits / n
+// and CV = sqrt(V) / s1, V = n s2 - s1^2 (exact in 64 bits), the value reaches the rounding threshold h (0.5, 1.5,
+// 2.5, 3.5; the rate is how many it reaches) iff, multiplied by n, L >= D sqrt(V) with L = 4 lvf s1 n and
+// D = n h - 4 sf speedSum 2^-bits: decided by signs and L^2 against D^2 V, without division or square root.
+IDK_CONST(float, kVrsMinFactor, 1.0e-15f);  // smaller |factors| count as 0 (keeps every product above denormals)
+
+IDK_INLINE uint vrsTileRate(uint n, uint tilePixels, uint maxLumBits, uint s1, uint s2, uint speedSum,
+                            float speedFactor, float lumVarianceFactor) {
+    const uint coarsest = kVrsRateCount - 1u;
+    if (n == 0u || maxLumBits < floatBitsToUint(kVrsDarkLuminance)) return coarsest;  // max <= 0.001: dark
     float scale = vrsLumScale(maxLumBits, vrsLumBits(tilePixels));
     IDK_PRECISE float darkSum = kVrsDarkLuminance * float(n) * scale;
-    if (float(s1) <= darkSum) return 1.0e30f;  // mean <= 0.001
-    IDK_PRECISE float meanSpeed = float(speedSum) * uintBitsToFloat(uint(127 - int(vrsSpeedBits(tilePixels))) << 23u)
-                                / float(n);
-    IDK_PRECISE float speedTerm = 4.0f * (meanSpeed * speedFactor);
-    // CV = sqrt(E[L^2] - E[L]^2) / E[L] = sqrt(n S2 - S1^2) / S1, with the difference exact in 64 bits.
-    uint64_t varianceNumerator = uint64_t(n) * uint64_t(s2) - uint64_t(s1) * uint64_t(s1);
-    if (varianceNumerator == uint64_t(0)) return 1.0e30f;  // constant tile: CV = 0, the term is infinite
-    IDK_PRECISE float cv = sqrt(float(varianceNumerator)) / float(s1);
-    IDK_PRECISE float lumTerm = 4.0f * (lumVarianceFactor / cv);
-    return speedTerm + lumTerm;
-}
-
-// Palette index from the rate value: round half up, clamped to [0, 4].
-IDK_INLINE uint vrsRateFromValue(float x) {
-    IDK_PRECISE float r = floor(x + 0.5f);
-    return r >= 4.0f ? 4u : (r <= 0.0f ? 0u : uint(r));
+    if (float(s1) <= darkSum) return coarsest;  // mean <= 0.001
+    uint64_t variance = uint64_t(n) * uint64_t(s2) - uint64_t(s1) * uint64_t(s1);  // n^2 times the variance
+    if (variance == uint64_t(0)) return coarsest;  // constant tile: CV = 0, the term is infinite
+    float sf = abs(speedFactor) < kVrsMinFactor ? 0.0f : speedFactor;
+    float lf = abs(lumVarianceFactor) < kVrsMinFactor ? 0.0f : lumVarianceFactor;
+    float speedStep = uintBitsToFloat(uint(127 - int(vrsSpeedBits(tilePixels))) << 23u);  // 2^-bits
+    IDK_PRECISE float speedN = (4.0f * sf) * (float(speedSum) * speedStep);  // the speed term times n
+    IDK_PRECISE float l = ((4.0f * lf) * float(s1)) * float(n);
+    IDK_PRECISE float l2 = l * l;
+    float v = float(variance);
+    uint rate = 0u;
+    for (uint k = 0u; k < coarsest; ++k) {
+        IDK_PRECISE float d = float(n) * (float(k) + 0.5f) - speedN;
+        IDK_PRECISE float d2v = (d * d) * v;
+        bool reached = l >= 0.0f ? (d <= 0.0f || l2 >= d2v) : (d <= 0.0f && l2 <= d2v);
+        rate += reached ? 1u : 0u;
+    }
+    return rate;
 }
 
 // The palette index as a VK_KHR_fragment_shading_rate attachment texel: (log2(width) << 2) | log2(height) of its

@@ -3,8 +3,9 @@
 // (the velocity buffer) and the coefficient of variation of their luminance (the lit frame), writing the palette
 // index into the rate buffer that the next frame's lighting and sky read. Ports IDKEngine's
 // ShadingRateClassification/compute.glsl (reference 2.13): subgroupAdd then shared memory across subgroups; here
-// also a shared-memory-only tree (kSubgroupReduce = 0) for devices without subgroup arithmetic, and integer sums
-// (shared/vrs_types.h) so both variants and the CPU oracle agree bit for bit.
+// also a shared-memory-only tree (kSubgroupReduce = 0) for devices without subgroup arithmetic, integer sums and
+// a decision without division or float sqrt (shared/vrs_types.h), so both variants and the CPU oracle agree bit
+// for bit.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
@@ -86,8 +87,8 @@ void main() {
     uvec4 sums = workgroupReduce(uvec4(0u, s1, s2, speed), false);
 
     if (gl_LocalInvocationIndex == 0u) {
-        float x = vrsRateValue(n, tilePixels, maxBits, sums.y, sums.z, sums.w, p.speedFactor, p.lumVarianceFactor);
         VrsRatesRef r = VrsRatesRef(p.rates);
-        r.rate[gl_WorkGroupID.y * r.header.tilesX + gl_WorkGroupID.x] = vrsRateFromValue(x);
+        r.rate[gl_WorkGroupID.y * r.header.tilesX + gl_WorkGroupID.x] =
+            vrsTileRate(n, tilePixels, maxBits, sums.y, sums.z, sums.w, p.speedFactor, p.lumVarianceFactor);
     }
 }

@@ -54,6 +54,8 @@ case "$case_name" in
     on=$(inv "$tmp/on.json")
     [ -n "$on" ] && [ "$on" -lt 3072 ] || fail "--vrs on: shadingInvocations '$on', expected < 3072"
     grep -q '"vrs_classify"' "$tmp/on.json" || fail "--vrs on ran no classifier"
+    grep -q '"motion_vectors"' "$tmp/on.json" && grep -q '"vrs_velocity"' "$tmp/on.json" \
+      || fail "--vrs on (with --aa none) took its speed from no motion vectors"
     grep -q '"id": "vrs"' "$tmp/on.json" || fail "--vrs on does not report the vrs rung"
     "$idk" render --size 64x48 --out "$tmp/sh.png" --vrs on --rung subgroup-arithmetic=fallback --stats --json \
       >"$tmp/sh.json" 2>/dev/null || fail "--rung subgroup-arithmetic=fallback failed"

@@ -1,8 +1,6 @@
-// vrs_frame_test.cpp: the software VRS rung in whole frames (Hdr output, sizes with partial tiles):
-//  * every tile at 1x1 gives exactly the VRS-off frame (bit for bit), reconstruction included;
-//  * at coarse rates (each fixed rate, and the classifier's own mix), lighting and sky shade exactly the pixels
-//    the rates imply: with the target pre-filled by a sentinel and no reconstruction, the shaded pixels are
-//    exactly the cell anchors, their count is FrameResult::shadingInvocations, and each equals the VRS-off pixel;
+// vrs_frame_test.cpp: the software VRS rung in whole frames (Hdr output, sizes with partial tiles) on DamagedHelmet:
+//  * the registered software checks (engine/conformance/vrs_frame_checks.cpp: 1x1 equals VRS off bit for bit; at
+//    coarse rates exactly the counted anchors are shaded, each equal to the VRS-off pixel) on this shared asset;
 //  * with reconstruction, the frame stays close to VRS off (PSNR bound stated below).
 #include <gtest/gtest.h>
 
@@ -10,7 +8,7 @@
 #include <cstring>
 #include <iostream>
 
-#include "app/default_scene.hpp"
+#include "conformance/vrs_classify_support.hpp"
 #include "frame/vrs_oracle.hpp"
 #include "render/renderer.hpp"
 #include "render/scene_textures.hpp"
@@ -65,57 +63,15 @@ double psnr(const core::ImageRgba32f& a, const core::ImageRgba32f& b) {
 
 class VrsFrameTest : public GpuTest {};
 
-TEST_F(VrsFrameTest, OneByOneEverywhereEqualsVrsOffExactly) {
-    for (const scene::Scene& scene : {app::loadDefaultScene(), helmet()}) {
-        Rendered off = render(ctx(), shaders(), scene, {});
-        frame::VrsSettings vrs;
-        vrs.enabled = true;
-        vrs.fixedRate = 0;
-        Rendered on = render(ctx(), shaders(), scene, vrs);
-        ASSERT_EQ(on.frame.image.pixels.size(), off.frame.image.pixels.size());
-        EXPECT_EQ(std::memcmp(on.frame.image.pixels.data(), off.frame.image.pixels.data(),
-                              off.frame.image.pixels.size() * sizeof(float)), 0);
-        EXPECT_EQ(off.frame.shadingInvocations, uint64_t(kWidth) * kHeight);
-        EXPECT_EQ(on.frame.shadingInvocations, uint64_t(kWidth) * kHeight);
-        EXPECT_NE(std::find(on.frame.passesRun.begin(), on.frame.passesRun.end(), "vrs_reconstruct"),
-                  on.frame.passesRun.end());
-    }
-}
-
-TEST_F(VrsFrameTest, CoarseRatesShadeExactlyTheCountedInvocations) {
-    const scene::Scene scene = helmet();
-    const Rendered off = render(ctx(), shaders(), scene, {});
-    const uint32_t tile = gpu::kVrsDefaultTileSize, tilesX = (kWidth + tile - 1) / tile;
-    for (int fixed : {1, 3, 4, -1}) {  // -1: the classifier's rates from the first frame
-        frame::VrsSettings vrs;
-        vrs.enabled = true;
-        vrs.fixedRate = fixed;
-        vrs.testShadedOnly = true;
-        const Rendered on = render(ctx(), shaders(), scene, vrs);
-        ASSERT_EQ(on.rates.size(), size_t(tilesX) * ((kHeight + tile - 1) / tile));
-        const uint64_t expected = frame::vrsShadingInvocations(on.rates, tilesX, tile, kWidth, kHeight);
-        EXPECT_EQ(on.frame.shadingInvocations, expected) << "rate " << fixed;
-        uint64_t shaded = 0;
-        for (uint32_t y = 0; y < kHeight; ++y) {
-            for (uint32_t x = 0; x < kWidth; ++x) {
-                const size_t i = (size_t(y) * kWidth + x) * 4;
-                const glm::uvec2 cell = gpu::vrsCellSize(on.rates[(y / tile) * tilesX + x / tile]);
-                const bool anchor = x % cell.x == 0 && y % cell.y == 0;
-                const bool written = on.frame.image.pixels[i] != gpu::kVrsSentinel;
-                shaded += written;
-                ASSERT_EQ(written, anchor) << "rate " << fixed << " pixel " << x << "," << y;
-                if (anchor) {
-                    ASSERT_EQ(std::memcmp(&on.frame.image.pixels[i], &off.frame.image.pixels[i], 16), 0)
-                        << "rate " << fixed << ": anchor " << x << "," << y << " differs from VRS off";
-                }
-            }
-        }
-        EXPECT_EQ(shaded, expected) << "rate " << fixed;
-        if (fixed == 4) {
-            EXPECT_EQ(expected, uint64_t(kWidth / 4) * (kHeight / 4));
-        }
-        std::cout << "[ vrs ] rate " << fixed << ": " << shaded << " of " << kWidth * kHeight << " pixels shaded\n";
-    }
+// The registered checks "vrs/software 1x1 equals off" and "vrs/coarse counted invocations" run these bodies on the
+// Cornell box; here on DamagedHelmet (textured materials, the sky around it).
+TEST_F(VrsFrameTest, SoftwareRungChecksOnDamagedHelmet) {
+    conformance::CheckEnv env{ctx(), shaders(), std::nullopt, {}};
+    conformance::Verdict oneByOne, coarse;
+    conformance::expectOneByOneEqualsOff(env, oneByOne, helmet());
+    EXPECT_TRUE(oneByOne.passed()) << oneByOne.messages() << " (" << oneByOne.failures() << " failures)";
+    conformance::expectCoarseCountedInvocations(env, coarse, helmet());
+    EXPECT_TRUE(coarse.passed()) << coarse.messages() << " (" << coarse.failures() << " failures)";
 }
 
 TEST_F(VrsFrameTest, ReconstructedFramesStayCloseToVrsOff) {

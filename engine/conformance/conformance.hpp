@@ -12,6 +12,7 @@
 #pragma once
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -66,6 +67,13 @@ private:
 
 using CheckFn = void (*)(CheckEnv& env, Verdict& verdict);
 
+// For kernels that read their rung from the context's ladder (a whole Renderer feature): runs fn(ctx, shaders) on
+// a context whose `ladder` chose `rung`: env.ctx when it already did, else a new context on the same device with
+// the same validation settings and that rung forced (no GL probe unless the rung is gl-interop); that context's
+// validation errors fail v. Creating a context costs a fraction of a second on lavapipe (pipelines compile anew).
+void onRung(CheckEnv& env, Verdict& v, const std::string& ladder, vk::Rung rung,
+            const std::function<void(vk::Context&, vk::ShaderLibrary&)>& fn);
+
 struct Check {
     std::string kernel;     // unique, "area/what", e.g. "scan/exclusive"
     std::string ladder;     // "" = one run (rung "-"); else one run per rung of this capability ladder
@@ -114,5 +122,10 @@ std::vector<Check> denoiseChecks();
 std::vector<Check> textureChecks();
 std::vector<Check> vrsChecks();
 std::vector<Check> cullingChecks();
+std::vector<Check> cullKernelChecks();
+std::vector<Check> bvhRefitChecks();
+std::vector<Check> atmosphereChecks();
+std::vector<Check> vxgiChecks();
+std::vector<Check> shadowChecks();
 
 }  // namespace idk::conformance

@@ -10,6 +10,7 @@
 
 #include "vk/check.hpp"
 #include "vk/context.hpp"
+#include "vk/shader_library.hpp"
 
 namespace idk::conformance {
 
@@ -18,7 +19,8 @@ const std::vector<Check>& allChecks() {
         std::vector<Check> all;
         for (std::vector<Check> (*area)() : {computeChecks, subgroupChecks, splatChecks, ptMathChecks, bvhChecks,
                                                 ptWavefrontChecks, denoiseChecks, textureChecks,
-                                                vrsChecks, cullingChecks}) {
+                                                vrsChecks, cullingChecks, cullKernelChecks, bvhRefitChecks,
+                                                atmosphereChecks, vxgiChecks, shadowChecks}) {
             std::vector<Check> list = area();
             all.insert(all.end(), list.begin(), list.end());
         }
@@ -51,6 +53,31 @@ bool Verdict::expectNear(double got, double want, double tolerance, const std::s
 
 void Verdict::recordError(double error) {
     if (!(error <= maxError_)) maxError_ = error;  // NaN sticks
+}
+
+void onRung(CheckEnv& env, Verdict& v, const std::string& ladder, vk::Rung rung,
+            const std::function<void(vk::Context&, vk::ShaderLibrary&)>& fn) {
+    if (env.ctx.ladder(ladder).chosen == rung) {
+        fn(env.ctx, env.shaders);
+        return;
+    }
+    vk::ContextDesc desc = env.ctx.desc();
+    desc.forcedRungs = {{ladder, rung}};
+    desc.probeGlInterop = rung == vk::Rung::GlInterop;
+    vk::Context ctx(desc);
+    if (!v.expect(ctx.ladder(ladder).chosen == rung, ladder + ": the forced rung " + vk::rungName(rung) +
+                                                         " was not taken: " + ctx.ladder(ladder).reason))
+        return;
+    uint32_t errors = 0;
+    std::string first;
+    {
+        vk::ShaderLibrary shaders(ctx);
+        fn(ctx, shaders);
+        ctx.waitIdle();
+        errors = ctx.validationErrors();
+        if (errors && !ctx.validationMessages().empty()) first = ": " + ctx.validationMessages().front();
+    }
+    v.expect(errors == 0, std::to_string(errors) + " validation error(s) on the " + vk::rungName(rung) + " context" + first);
 }
 
 std::string PlannedRun::name() const {

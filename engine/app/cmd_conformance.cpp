@@ -113,7 +113,12 @@ int runConformance(const std::vector<std::string>& argv) {
         if (n < 0 || n != double(uint32_t(n))) throw core::CliError("--device '" + *device + "': give a device index 0, 1, ...");
         desc.deviceIndex = uint32_t(n);
     }
-    std::unique_ptr<vk::Context> ctx = createContext(desc);
+    std::unique_ptr<vk::Context> ctx;
+    try {
+        ctx = createContext(desc);
+    } catch (const vk::DeviceIndexError& e) {
+        throw core::CliError("--device " + *args.get("--device") + ": " + e.what());  // a usage error: exit 2
+    }
     vk::ShaderLibrary shaders(*ctx);
     const std::filesystem::path shaderDir = args.get("--shader-dir", "");
     if (!shaderDir.empty()) overrideShaders(shaders, shaderDir);

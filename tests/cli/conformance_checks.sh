@@ -3,7 +3,8 @@
 # passes on this device with --json/--junit written (every kernel family listed); a planted broken kernel (the
 # native splat, the 8-wide BVH walk) fails naming kernel and rung, and the intact peer passes; with EGL
 # disabled the GL rung is reported absent with the reason and everything else still runs; a forced GL rung runs;
-# --device N beyond the loader's list exits 2 naming the option and the devices.
+# --device N beyond the loader's list exits 2 naming the option and the devices; a planted kernel is caught on a
+# rung that runs on a context of its own.
 set -u
 idk="$1"
 case_name="$2"
@@ -85,6 +86,21 @@ PY
     grep -q "closest-hit mismatches" "$tmp/err" || fail "stderr does not say what differs: $(cat "$tmp/err")"
     grep -q "bvh/blas binary \[-\]" "$tmp/err" && fail "the binary walk was not broken: $(cat "$tmp/err")"
     grep -Eq "bvh/blas binary +- +pass" "$tmp/out" || fail "the intact walk did not pass: $(cat "$tmp/out")"
+    ;;
+  broken_forced_rung)
+    # A kernel whose rung runs on a context of its own (onRung: the fallback voxelizer on lavapipe, whose shared
+    # context chose the native rung) gets the planted shader too: the r32ui fragment shader with red and green
+    # swapped, made from the source at test time (a copy would go stale).
+    src="$here/../../shaders_glsl/vxgi/voxelize_uint.frag.glsl"
+    mkdir -p "$tmp/vx/vxgi"
+    sed 's/p.accum\[0\]], voxel, floatBitsToUint(radiance.r)/p.accum[0]], voxel, floatBitsToUint(radiance.g)/' "$src" \
+      >"$tmp/vx/vxgi/voxelize_uint.frag.glsl"
+    cmp -s "$src" "$tmp/vx/vxgi/voxelize_uint.frag.glsl" && fail "the planted change no longer applies to $src"
+    "$idk" conformance --shader-dir "$tmp/vx" --filter "vxgi/voxelize" >"$tmp/out" 2>"$tmp/err"
+    code=$?
+    [ "$code" -eq 1 ] || fail "exit code $code, expected 1 for a broken fallback voxelizer: $(cat "$tmp/out")"
+    grep -q "vxgi/voxelize \[fallback\]" "$tmp/err" || fail "stderr does not name the fallback rung: $(cat "$tmp/err")"
+    grep -Eq "vxgi/voxelize +native +pass" "$tmp/out" || fail "the intact native rung did not pass: $(cat "$tmp/out")"
     ;;
   no_egl)
     IDK_GL_INTEROP=off "$idk" info >"$tmp/info" || fail "idk info failed without EGL"

@@ -32,25 +32,6 @@ const char* const kConformanceHelp =
 
 namespace {
 
-// Recompiles every shader DIR has a source for; an unknown file is an error naming it.
-void overrideShaders(vk::ShaderLibrary& shaders, const std::filesystem::path& dir) {
-    if (!std::filesystem::is_directory(dir)) throw std::runtime_error(dir.string() + ": --shader-dir is not a folder");
-    for (const auto& file : std::filesystem::recursive_directory_iterator(dir)) {
-        if (!file.is_regular_file() || file.path().extension() != ".glsl") continue;
-        const std::string relative = std::filesystem::relative(file.path(), dir).generic_string();
-        if (relative.rfind("gl/", 0) == 0) continue;  // GL sources are read by the GL rung itself
-        const shaders::ShaderEntry* entry = nullptr;
-        for (const shaders::ShaderEntry& e : shaders::allShaders())
-            if (relative == e.sourcePath) entry = &e;
-        if (!entry) throw std::runtime_error(file.path().string() + ": no shader of the build has this name");
-        std::ifstream in(file.path());
-        std::stringstream text;
-        text << in.rdbuf();
-        const vk::ReloadResult r = shaders.reload(vk::ShaderId(entry - shaders::allShaders().data()), text.str());
-        if (!r.ok) throw std::runtime_error(file.path().string() + ": " + r.message);
-    }
-}
-
 std::string xmlEscape(const std::string& s) {
     std::string out;
     for (char c : s) {
@@ -113,10 +94,15 @@ int runConformance(const std::vector<std::string>& argv) {
         if (n < 0 || n != double(uint32_t(n))) throw core::CliError("--device '" + *device + "': give a device index 0, 1, ...");
         desc.deviceIndex = uint32_t(n);
     }
-    std::unique_ptr<vk::Context> ctx = createContext(desc);
+    std::unique_ptr<vk::Context> ctx;
+    try {
+        ctx = createContext(desc);
+    } catch (const vk::DeviceIndexError& e) {
+        throw core::CliError("--device " + *args.get("--device") + ": " + e.what());  // a usage error: exit 2
+    }
     vk::ShaderLibrary shaders(*ctx);
     const std::filesystem::path shaderDir = args.get("--shader-dir", "");
-    if (!shaderDir.empty()) overrideShaders(shaders, shaderDir);
+    if (!shaderDir.empty()) conformance::overrideShaders(shaders, shaderDir);
 
     std::printf("conformance on %s (%s)\n  %-48s %-11s %-6s %-10s %-8s %s\n", ctx->info().name.c_str(),
                 ctx->info().driverName.c_str(), "kernel", "rung", "result", "max error", "time", "note");

@@ -12,6 +12,7 @@
 #pragma once
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -29,7 +30,9 @@ struct CheckEnv {
     vk::Context& ctx;
     vk::ShaderLibrary& shaders;
     std::optional<vk::Rung> rung;       // the rung under test, for checks registered on a ladder
-    std::filesystem::path glShaderDir;  // GL sources (gl/*.comp.glsl); empty: the build's shaders_glsl/
+    // --shader-dir: its gl/*.comp.glsl replace the GL-interop sources, and onRung re-applies its Vulkan shaders to
+    // the contexts it creates; empty: the build's shaders_glsl/.
+    std::filesystem::path glShaderDir;
 };
 
 // What a check found: failures with their first messages, and the largest error it measured (0 when exact).
@@ -65,6 +68,17 @@ private:
 };
 
 using CheckFn = void (*)(CheckEnv& env, Verdict& verdict);
+
+// Recompiles every shader `dir` has a source for (DIR/<folder>/<entry>.<stage>.glsl; gl/ is left to the GL rung):
+// `idk conformance --shader-dir`. An unknown file or a compile error throws, naming the file.
+void overrideShaders(vk::ShaderLibrary& shaders, const std::filesystem::path& dir);
+
+// For kernels that read their rung from the context's ladder (a whole Renderer feature): runs fn(ctx, shaders) on
+// a context whose `ladder` chose `rung`: env.ctx when it already did, else a new context on the same device with
+// the same validation settings, that rung forced (no GL probe unless the rung is gl-interop) and env.glShaderDir's
+// shaders; that context's validation errors fail v. A new context costs a fraction of a second on lavapipe.
+void onRung(CheckEnv& env, Verdict& v, const std::string& ladder, vk::Rung rung,
+            const std::function<void(vk::Context&, vk::ShaderLibrary&)>& fn);
 
 struct Check {
     std::string kernel;     // unique, "area/what", e.g. "scan/exclusive"
@@ -114,5 +128,10 @@ std::vector<Check> denoiseChecks();
 std::vector<Check> textureChecks();
 std::vector<Check> vrsChecks();
 std::vector<Check> cullingChecks();
+std::vector<Check> cullKernelChecks();
+std::vector<Check> bvhRefitChecks();
+std::vector<Check> atmosphereChecks();
+std::vector<Check> vxgiChecks();
+std::vector<Check> shadowChecks();
 
 }  // namespace idk::conformance

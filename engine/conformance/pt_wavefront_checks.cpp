@@ -7,7 +7,11 @@
 //   watertight but differently rounded test, so up to 0.2% of ray-query rays may pick a neighbour at an edge.
 // * "pathtrace/compaction" is exact: the next ray queue holds exactly the pixels whose path the shade stage
 //   extended (a CPU filter over the path states), each once, and the indirect dispatch size is ceil(count / 64).
-// Moved here from tests/conformance/pathtrace/wavefront_test.cpp (which keeps the sorting test on an asset scene).
+// * "pathtrace/ray sorting": the sort by (material, direction octant) before shading is a permutation of the
+//   unsorted queue into non-decreasing key order, every key the CPU's for its hit, dead slots last, and compaction
+//   after a sorted trace stays exact (bounces 0 and 1).
+// Moved here from tests/conformance/pathtrace/wavefront_test.cpp (which keeps the sorting sweep on an asset scene,
+// through expectSortedByKey).
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -24,9 +28,10 @@ namespace {
 constexpr uint32_t kSize = 64;
 
 render::PtCapture capture(CheckEnv& env, const scene::Scene& scene, const pathtrace::PathTraceScene& pts,
-                          render::PtTraversal traversal, uint32_t bounce) {
+                          render::PtTraversal traversal, uint32_t bounce, bool sort = false) {
     render::PathTracerOptions options;
     options.traversal = traversal;
+    options.sortRays = sort;
     render::PathTracer tracer(env.ctx, env.shaders, scene, pts, options);
     render::PathTraceSettings settings;
     settings.maxDepth = 4;
@@ -101,7 +106,48 @@ void compaction(CheckEnv& env, Verdict& v) {
     }
 }
 
+void raySorting(CheckEnv& env, Verdict& v) {
+    const scene::Scene cornell = app::loadDefaultScene();
+    const pathtrace::PathTraceScene pts = pathtrace::buildPathTraceScene(cornell, nullptr, 1.0f);
+    for (uint32_t bounce : {0u, 1u}) {
+        const render::PtCapture sorted = capture(env, cornell, pts, render::PtTraversal::Bvh, bounce, true);
+        const render::PtCapture plain = capture(env, cornell, pts, render::PtTraversal::Bvh, bounce, false);
+        expectSortedByKey(v, pts, sorted, plain, "bounce " + std::to_string(bounce));
+    }
+}
+
+// The CPU's sort key of a traced ray (wf_trace_stage.h): material << 3 | direction octant; misses after all hits.
+uint32_t cpuKey(const pathtrace::PathTraceScene& pts, const gpu::GpuPtHit& hit, const glm::vec3& d) {
+    if (hit.triangle == gpu::kPtInvalid) return gpu::kPtSortKeyMiss;
+    const uint32_t geometry = pts.instances.at(hit.instance).blasIndex;
+    const uint32_t material = pts.geometries.at(geometry).triangleMaterial.at(hit.triangle);
+    const uint32_t octant = (d.x < 0.0f ? 1u : 0u) | (d.y < 0.0f ? 2u : 0u) | (d.z < 0.0f ? 4u : 0u);
+    return std::min((material << 3u) | octant, gpu::kPtSortKeyMiss - 1u);
+}
+
 }  // namespace
+
+void expectSortedByKey(Verdict& v, const pathtrace::PathTraceScene& pts, const render::PtCapture& sorted,
+                       const render::PtCapture& plain, const std::string& what) {
+    std::vector<uint32_t> a = queueItems(sorted.queueIn), b = queueItems(plain.queueIn);
+    if (!v.expectEq(a.size(), b.size(), what + ": queue length sorted vs unsorted")) return;
+    if (!v.expectEq(sorted.keys.size(), sorted.rays.size(), what + ": one key slot per pixel")) return;
+    std::set<uint32_t> distinct;
+    for (size_t i = 0; i < a.size(); ++i) {
+        const uint32_t pixel = a[i];
+        v.expectEq(sorted.keys[i], cpuKey(pts, sorted.hits.at(pixel), sorted.rays.at(pixel).direction),
+                   what + ": key of slot " + std::to_string(i));
+        if (i > 0) v.expect(sorted.keys[i - 1] <= sorted.keys[i], what + ": slot " + std::to_string(i) + " out of order");
+        distinct.insert(sorted.keys[i]);
+    }
+    for (size_t i = a.size(); i < sorted.keys.size(); ++i)
+        v.expectEq(sorted.keys[i], gpu::kPtSortKeyDead, what + ": dead slot " + std::to_string(i));
+    v.expect(distinct.size() > 2, what + ": the scene must give several keys");
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    v.expect(a == b, what + ": sorting changed the set of rays");
+    expectExactCompaction(v, sorted, what + " (sorted)");
+}
 
 void expectExactCompaction(Verdict& v, const render::PtCapture& c, const std::string& what) {
     const std::vector<uint32_t> in = queueItems(c.queueIn), out = queueItems(c.queueOut);
@@ -124,6 +170,7 @@ std::vector<Check> ptWavefrontChecks() {
     return {
         {"pathtrace/traversal", "ray-traversal", "CPU BVH hits: ours exact (t 1e-4), ray query 0.2% of rays", traversalOnRung},
         {"pathtrace/compaction", "", "exact", compaction},
+        {"pathtrace/ray sorting", "", "exact (keys, order, permutation)", raySorting},
     };
 }
 

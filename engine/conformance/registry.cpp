@@ -7,9 +7,12 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <fstream>
+#include <sstream>
 
 #include "vk/check.hpp"
 #include "vk/context.hpp"
+#include "vk/shader_library.hpp"
 
 namespace idk::conformance {
 
@@ -18,7 +21,8 @@ const std::vector<Check>& allChecks() {
         std::vector<Check> all;
         for (std::vector<Check> (*area)() : {computeChecks, subgroupChecks, splatChecks, ptMathChecks, bvhChecks,
                                                 ptWavefrontChecks, denoiseChecks, textureChecks,
-                                                vrsChecks, cullingChecks}) {
+                                                vrsChecks, cullingChecks, cullKernelChecks, bvhRefitChecks,
+                                                atmosphereChecks, vxgiChecks, shadowChecks}) {
             std::vector<Check> list = area();
             all.insert(all.end(), list.begin(), list.end());
         }
@@ -51,6 +55,50 @@ bool Verdict::expectNear(double got, double want, double tolerance, const std::s
 
 void Verdict::recordError(double error) {
     if (!(error <= maxError_)) maxError_ = error;  // NaN sticks
+}
+
+void overrideShaders(vk::ShaderLibrary& shaders, const std::filesystem::path& dir) {
+    if (!std::filesystem::is_directory(dir)) throw std::runtime_error(dir.string() + ": --shader-dir is not a folder");
+    for (const auto& file : std::filesystem::recursive_directory_iterator(dir)) {
+        if (!file.is_regular_file() || file.path().extension() != ".glsl") continue;
+        const std::string relative = std::filesystem::relative(file.path(), dir).generic_string();
+        if (relative.rfind("gl/", 0) == 0) continue;  // GL sources are read by the GL rung itself
+        const shaders::ShaderEntry* entry = nullptr;
+        for (const shaders::ShaderEntry& e : shaders::allShaders())
+            if (relative == e.sourcePath) entry = &e;
+        if (!entry) throw std::runtime_error(file.path().string() + ": no shader of the build has this name");
+        std::ifstream in(file.path());
+        std::stringstream text;
+        text << in.rdbuf();
+        const vk::ReloadResult r = shaders.reload(vk::ShaderId(entry - shaders::allShaders().data()), text.str());
+        if (!r.ok) throw std::runtime_error(file.path().string() + ": " + r.message);
+    }
+}
+
+void onRung(CheckEnv& env, Verdict& v, const std::string& ladder, vk::Rung rung,
+            const std::function<void(vk::Context&, vk::ShaderLibrary&)>& fn) {
+    if (env.ctx.ladder(ladder).chosen == rung) {
+        fn(env.ctx, env.shaders);
+        return;
+    }
+    vk::ContextDesc desc = env.ctx.desc();
+    desc.forcedRungs = {{ladder, rung}};
+    desc.probeGlInterop = rung == vk::Rung::GlInterop;
+    vk::Context ctx(desc);
+    if (!v.expect(ctx.ladder(ladder).chosen == rung, ladder + ": the forced rung " + vk::rungName(rung) +
+                                                         " was not taken: " + ctx.ladder(ladder).reason))
+        return;
+    uint32_t errors = 0;
+    std::string first;
+    {
+        vk::ShaderLibrary shaders(ctx);
+        if (!env.glShaderDir.empty()) overrideShaders(shaders, env.glShaderDir);  // a planted kernel runs here too
+        fn(ctx, shaders);
+        ctx.waitIdle();
+        errors = ctx.validationErrors();
+        if (errors && !ctx.validationMessages().empty()) first = ": " + ctx.validationMessages().front();
+    }
+    v.expect(errors == 0, std::to_string(errors) + " validation error(s) on the " + vk::rungName(rung) + " context" + first);
 }
 
 std::string PlannedRun::name() const {

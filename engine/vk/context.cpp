@@ -332,9 +332,16 @@ void Context::pickPhysicalDevice() {
     std::vector<VkPhysicalDevice> devices(count);
     check(vkEnumeratePhysicalDevices(instance_, &count, devices.data()));
     if (desc_.deviceIndex) {
-        if (*desc_.deviceIndex >= count)
-            throw std::runtime_error(core::concat("device ", *desc_.deviceIndex, " requested but the loader lists only ",
-                                                  count, " Vulkan device(s) (`vulkaninfo --summary` lists them)"));
+        if (*desc_.deviceIndex >= count) {
+            std::string names;
+            for (uint32_t i = 0; i < count; ++i) {
+                VkPhysicalDeviceProperties props;
+                vkGetPhysicalDeviceProperties(devices[i], &props);
+                names += core::concat(i ? ", " : "", i, ": ", props.deviceName);
+            }
+            throw DeviceIndexError(core::concat("device ", *desc_.deviceIndex, " requested but the loader lists only ",
+                                                count, " Vulkan device(s): ", names));
+        }
         devices = {devices[*desc_.deviceIndex]};  // still checked against the baseline below
     }
 

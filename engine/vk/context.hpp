@@ -37,6 +37,12 @@ struct DeviceLimitOverrides {
     std::optional<VkDeviceSize> maxBufferSize;
 };
 
+// ContextDesc::deviceIndex names no device the loader lists: the message lists those it does ("0: llvmpipe ...").
+class DeviceIndexError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
 // A resource larger than a device limit allows: the message names the resource, its size and the limit (instead
 // of the validation error or driver failure creating it would give).
 class DeviceLimitError : public std::runtime_error {

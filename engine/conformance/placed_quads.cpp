@@ -1,13 +1,13 @@
 // placed_quads.cpp: quads with arbitrary placement (an orthonormal frame from the normal), box faces, and the
 // double-precision ray/quad intersection the GPU shadow and transparency tests use as their oracle.
-// Test support, no IDKEngine counterpart.
-#include "support/placed_quads.hpp"
+// Conformance and test support (the VXGI check's scene), no IDKEngine counterpart.
+#include "conformance/placed_quads.hpp"
 
 #include <cmath>
 
-#include "support/quad_scene.hpp"
+#include "conformance/quad_scene.hpp"
 
-namespace idk::test {
+namespace idk::conformance {
 namespace {
 
 // Local x and y axes of a quad: a right-handed frame (x, y, normal).
@@ -98,4 +98,4 @@ scene::Light pointLight(glm::vec3 position, float intensity) {
     return l;
 }
 
-}  // namespace idk::test
+}  // namespace idk::conformance

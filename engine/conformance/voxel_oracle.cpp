@@ -1,9 +1,9 @@
 // voxel_oracle.cpp: the CPU voxelizer of voxel_oracle.hpp, in double precision.
-#include "voxel_oracle.hpp"
+#include "conformance/voxel_oracle.hpp"
 
 #include <cmath>
 
-namespace idk::test {
+namespace idk::conformance {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -89,4 +89,4 @@ std::vector<OracleVoxel> voxelizeOnCpu(const std::vector<PlacedQuad>& quads, con
     return grid;
 }
 
-}  // namespace idk::test
+}  // namespace idk::conformance

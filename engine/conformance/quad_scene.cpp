@@ -1,10 +1,10 @@
 // quad_scene.cpp: builds the flat-quad scenes of the BRDF oracle test directly as scene::Scene arrays (one mesh,
-// material, node and instance per quad). Test support, no IDKEngine counterpart.
-#include "support/quad_scene.hpp"
+// material, node and instance per quad). Test and conformance support, no IDKEngine counterpart.
+#include "conformance/quad_scene.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
 
-namespace idk::test {
+namespace idk::conformance {
 
 scene::Scene makeQuadScene(const std::vector<QuadSpec>& quads) {
     scene::Scene s;
@@ -47,4 +47,4 @@ scene::Scene makeQuadScene(const std::vector<QuadSpec>& quads) {
     return s;
 }
 
-}  // namespace idk::test
+}  // namespace idk::conformance

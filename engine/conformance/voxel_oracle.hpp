@@ -1,4 +1,4 @@
-// voxel_oracle.hpp: a CPU voxelizer for scenes of planar quads (support/placed_quads.hpp): the oracle of the VXGI
+// voxel_oracle.hpp: a CPU voxelizer for scenes of planar quads (placed_quads.hpp): the oracle of the VXGI
 // voxelization passes. It does what the GPU does, exactly: each quad is projected along the dominant axis of its
 // normal onto the grid's N x N raster; every voxel-centre sample inside the quad gives one "fragment" at the
 // quad's point there, whose voxel is found along the axis; the fragment carries the outgoing diffuse radiance of
@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "passes/vxgi_passes.hpp"
-#include "support/placed_quads.hpp"
+#include "conformance/placed_quads.hpp"
 
-namespace idk::test {
+namespace idk::conformance {
 
 struct OracleVoxel {
     glm::dvec3 sum{0.0};
@@ -31,4 +31,4 @@ struct OracleLight {
 std::vector<OracleVoxel> voxelizeOnCpu(const std::vector<PlacedQuad>& quads, const std::vector<glm::vec3>& emissive,
                                        const std::vector<OracleLight>& lights, const passes::VoxelGridBox& box);
 
-}  // namespace idk::test
+}  // namespace idk::conformance

@@ -1,0 +1,264 @@
+// vxgi_checks.cpp: the VXGI voxelization passes (passes/vxgi_voxelize.cpp through the Renderer's VXGI feature)
+// against the CPU voxelizer (voxel_oracle.hpp) on a 64^3 grid over a scene of quads: an open box of six walls (gaps
+// at the edges so no two walls share a voxel), an emissive ceiling, a tilted double-sided quad inside, and two
+// parallel quads 0.01 apart that land in the same voxels (two fragments per voxel: the mean and the max differ
+// there). One unshadowed point light. With --gi-raster centre, the oracle's thin voxelization:
+//  * "vxgi/voxelize" on each rung of "vxgi-atomics": occupancy agrees with the oracle on >= 99.5% of the voxels
+//    either marks (the oracle's tie-free design makes it 100% here); each occupied voxel's rgb is the oracle's MEAN
+//    of its fragments (native: float atomic add + count; gl-interop: fragment records added by GL float atomics,
+//    merged by Vulkan) or MAX (fallback: three r32ui + max) within 0.2% (+1e-5); empty voxels are all-zero.
+//  * "vxgi/rungs agree": both rungs give the same grid (within 1e-3 relative) on the voxels holding one fragment.
+//  * "vxgi/thin wall" on each rung of "conservative-raster" (native VK_EXT_conservative_rasterization, fallback
+//    geometry-shader dilation): a wall one voxel thin whose edges stop inside voxels: every voxel column along its
+//    normal that the wall touches holds a wall voxel (no holes), and no column it does not touch does; centre
+//    raster must miss some edge columns (or the check could not fail).
+// Moved from tests/conformance/vxgi/voxelize_test.cpp.
+#include <glm/gtc/packing.hpp>
+
+#include <cmath>
+#include <cstring>
+
+#include "conformance/conformance.hpp"
+#include "conformance/voxel_oracle.hpp"
+#include "render/renderer.hpp"
+#include "vk/transfer.hpp"
+
+namespace idk::conformance {
+namespace {
+
+constexpr uint32_t kVoxels = 64;
+constexpr double kRelTolerance = 2e-3, kAbsTolerance = 1e-5;
+
+struct VoxelScene {
+    std::vector<PlacedQuad> quads;
+    std::vector<glm::vec3> emissive;
+    OracleLight light{{0.2, 0.6, 0.1}, {3.0, 3.0, 3.0}};
+};
+
+PlacedQuad quad(glm::vec3 centre, glm::vec3 normal, glm::vec2 half, glm::vec3 color, bool doubleSided = false) {
+    PlacedQuad q;
+    q.centre = centre;
+    q.normal = glm::normalize(normal);
+    q.halfSize = half;
+    q.baseColor = color;
+    q.doubleSided = doubleSided;
+    return q;
+}
+
+VoxelScene makeVoxelScene() {
+    VoxelScene t;
+    // The walls lie on the scene bounds [-1, 1]^3 (voxel centres, fitVoxelGrid's half-voxel margin); their
+    // edges stop short of the corners at coordinates that are no voxel centre.
+    t.quads.push_back(quad({0.0f, -1.0f, 0.0f}, {0, 1, 0}, {0.83f, 0.81f}, {0.8f, 0.8f, 0.8f}));     // floor
+    t.quads.push_back(quad({0.05f, 1.0f, -0.02f}, {0, -1, 0}, {0.71f, 0.77f}, {0.9f, 0.9f, 0.9f}));  // ceiling
+    t.quads.push_back(quad({-1.0f, 0.02f, 0.03f}, {1, 0, 0}, {0.74f, 0.69f}, {0.8f, 0.1f, 0.1f}));   // left
+    t.quads.push_back(quad({1.0f, -0.03f, 0.01f}, {-1, 0, 0}, {0.67f, 0.73f}, {0.1f, 0.8f, 0.1f}));  // right
+    t.quads.push_back(quad({0.01f, 0.02f, -1.0f}, {0, 0, 1}, {0.79f, 0.72f}, {0.7f, 0.7f, 0.6f}));   // back
+    t.quads.push_back(quad({-0.02f, 0.04f, 1.0f}, {0, 0, -1}, {0.76f, 0.7f}, {0.5f, 0.6f, 0.7f}));   // front
+    t.quads.push_back(quad({0.1f, -0.2f, 0.15f}, {0.3f, 0.8f, 0.45f}, {0.4f, 0.3f}, {0.2f, 0.7f, 0.3f}, true));
+    t.quads.push_back(quad({-0.3f, 0.30f, -0.2f}, {0, 1, 0}, {0.23f, 0.21f}, {0.9f, 0.2f, 0.2f}));   // thin pair
+    t.quads.push_back(quad({-0.3f, 0.31f, -0.2f}, {0, 1, 0}, {0.23f, 0.21f}, {0.1f, 0.3f, 0.9f}));
+    t.emissive.assign(t.quads.size(), glm::vec3(0.0f));
+    t.emissive[1] = {1.5f, 1.2f, 0.9f};  // the ceiling glows
+    return t;
+}
+
+scene::Scene toScene(const VoxelScene& t) {
+    scene::Scene s = makePlacedQuadScene(t.quads);
+    for (size_t i = 0; i < t.quads.size(); ++i) {
+        s.materials[i].metallic = 0.0f;
+        s.materials[i].emissive = t.emissive[i];
+    }
+    s.lights.push_back(pointLight(glm::vec3(t.light.position), float(t.light.intensity.x)));
+    return s;
+}
+
+// The grid left in GENERAL layout by the frame, as RGBA floats (x fastest).
+std::vector<glm::vec4> readGrid(vk::Context& ctx, const vk::Image& grid) {
+    const size_t voxels = size_t(grid.extent.width) * grid.extent.height * grid.extent.depth;
+    vk::BufferDesc desc;
+    desc.size = voxels * 8;
+    desc.memory = vk::MemoryUsage::Readback;
+    desc.name = "voxel grid readback";
+    vk::Buffer staging = ctx.createBuffer(desc);
+    ctx.runImmediate([&](VkCommandBuffer cmd) {
+        vk::transitionImage(cmd, grid, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        VkBufferImageCopy copy{};
+        copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        copy.imageExtent = grid.extent;
+        vkCmdCopyImageToBuffer(cmd, grid.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.buffer, 1, &copy);
+        vk::transitionImage(cmd, grid, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+    });
+    std::vector<uint16_t> halves(voxels * 4);
+    vk::downloadBuffer(ctx, staging, halves.data(), desc.size);
+    ctx.destroy(staging);
+    std::vector<glm::vec4> out(voxels);
+    for (size_t i = 0; i < voxels; ++i)
+        for (int c = 0; c < 4; ++c) out[i][c] = glm::unpackHalf1x16(halves[i * 4 + c]);
+    return out;
+}
+
+struct Grid {
+    std::vector<glm::vec4> voxels;  // empty when the frame made no grid
+    passes::VoxelGridBox box;
+};
+
+// One 16x16 HDR frame with VXGI on (its voxelization runs the context's chosen rungs), no shadows (the oracle has
+// none); the grid read back.
+Grid voxelize(vk::Context& ctx, vk::ShaderLibrary& shaders, const VoxelScene& t, frame::VoxelRaster raster) {
+    render::RenderSettings settings;
+    settings.output = render::OutputKind::Hdr;
+    settings.pointShadows.maxLights = 0;
+    settings.vxgi.mode = frame::GiMode::Vxgi;
+    settings.vxgi.voxels = kVoxels;
+    settings.vxgi.raster = raster;
+    render::Renderer renderer(ctx, shaders, settings);
+    renderer.setScene(toScene(t));
+    scene::CameraView camera;
+    camera.position = {0.0f, 0.0f, 0.9f};
+    renderer.renderOffscreen(camera, 16, 16);
+    Grid g;
+    if (const vk::Image* grid = renderer.vxgi().grid()) g.voxels = readGrid(ctx, *grid);
+    g.box = renderer.vxgi().box();
+    return g;
+}
+
+// A GPU grid against the oracle: `useMax` picks the oracle's max (r32ui rung) or mean (float-add rung).
+void expectMatchesOracle(Verdict& v, const Grid& g, const VoxelScene& t, bool useMax) {
+    const std::vector<OracleVoxel> oracle = voxelizeOnCpu(t.quads, t.emissive, {t.light}, g.box);
+    if (!v.expectEq(g.voxels.size(), oracle.size(), "voxel count")) return;
+    size_t either = 0, agree = 0, compared = 0, multi = 0, ambiguous = 0, nonZeroEmpty = 0, partial = 0;
+    for (size_t i = 0; i < oracle.size(); ++i) {
+        const OracleVoxel& o = oracle[i];
+        const glm::vec4& c = g.voxels[i];
+        if (o.ambiguous) {
+            ++ambiguous;
+            continue;
+        }
+        const bool gpu = c.a > 0.0f, cpu = o.count > 0;
+        if (!gpu && !cpu) {
+            nonZeroEmpty += c != glm::vec4(0.0f);
+            continue;
+        }
+        ++either;
+        if (gpu != cpu) continue;
+        ++agree;
+        partial += c.a != 1.0f;
+        multi += o.count > 1;
+        const glm::dvec3 want = useMax ? o.max : o.sum / double(o.count);
+        for (int k = 0; k < 3; ++k) {
+            const double err = std::abs(double(c[k]) - want[k]);
+            v.recordError(err / (std::abs(want[k]) + kAbsTolerance / kRelTolerance));
+            v.expect(err <= kRelTolerance * want[k] + kAbsTolerance,
+                     "voxel " + std::to_string(i) + " channel " + std::to_string(k) + ": gpu " + std::to_string(c[k]) +
+                         ", oracle " + std::to_string(want[k]));
+        }
+        ++compared;
+    }
+    const double agreement = either ? double(agree) / double(either) : 0.0;
+    v.expect(agreement >= 0.995, "occupancy agrees on " + std::to_string(100.0 * agreement) + "% of the voxels (>= 99.5%)");
+    v.expectEq(nonZeroEmpty, size_t(0), "empty voxels that are not zero");
+    v.expectEq(partial, size_t(0), "occupied voxels whose coverage is not 1");
+    v.expect(compared > 10000, "the scene should cover many voxels (" + std::to_string(compared) + ")");
+    v.expect(multi > 50, "the thin pair should put two fragments in some voxels (" + std::to_string(multi) + ")");
+    v.expect(ambiguous < either / 100, "the scene is meant to avoid ties (" + std::to_string(ambiguous) + ")");
+}
+
+void voxelizeOnRung(CheckEnv& env, Verdict& v) {
+    const VoxelScene t = makeVoxelScene();
+    onRung(env, v, "vxgi-atomics", *env.rung, [&](vk::Context& ctx, vk::ShaderLibrary& shaders) {
+        expectMatchesOracle(v, voxelize(ctx, shaders, t, frame::VoxelRaster::Centre), t, env.rung == vk::Rung::Fallback);
+    });
+}
+
+void rungsAgree(CheckEnv& env, Verdict& v) {
+    bool native = false;
+    for (const vk::RungOption& o : env.ctx.ladder("vxgi-atomics").options) native |= o.rung == vk::Rung::Native && o.available;
+    if (!native) {
+        v.skip("device lacks float image atomics: only the fallback rung runs");
+        return;
+    }
+    const VoxelScene t = makeVoxelScene();
+    Grid grids[2];
+    const vk::Rung rungs[2] = {vk::Rung::Native, vk::Rung::Fallback};
+    for (int r = 0; r < 2; ++r)
+        onRung(env, v, "vxgi-atomics", rungs[r], [&](vk::Context& ctx, vk::ShaderLibrary& shaders) {
+            grids[r] = voxelize(ctx, shaders, t, frame::VoxelRaster::Centre);
+        });
+    if (!v.expect(grids[0].voxels.size() == grids[1].voxels.size() && !grids[0].voxels.empty(), "the grids differ in size"))
+        return;
+    const std::vector<OracleVoxel> oracle = voxelizeOnCpu(t.quads, t.emissive, {t.light}, grids[0].box);
+    size_t single = 0;
+    for (size_t i = 0; i < oracle.size(); ++i) {
+        if (oracle[i].count != 1 || oracle[i].ambiguous) continue;
+        ++single;
+        const glm::vec4 &a = grids[0].voxels[i], &b = grids[1].voxels[i];
+        for (int c = 0; c < 4; ++c) {  // the two fragment shaders are compiled apart: allow one fp16 rounding step
+            v.recordError(std::abs(a[c] - b[c]) / std::max(std::abs(b[c]), 1e-6f));
+            v.expect(std::abs(a[c] - b[c]) <= 1e-3f * std::abs(b[c]), "voxel " + std::to_string(i) + " channel " +
+                                                                           std::to_string(c) + ": native " + std::to_string(a[c]) +
+                                                                           ", fallback " + std::to_string(b[c]));
+        }
+    }
+    v.expect(single > 1000, "too few one-fragment voxels to compare (" + std::to_string(single) + ")");
+}
+
+// Over the voxel columns along x (inner ones, away from the box's walls): those the wall's rectangle touches at all,
+// those of them holding a wall voxel (the wall's x layer or a neighbour), and untouched ones holding one.
+struct Columns {
+    size_t touched = 0, covered = 0, outside = 0;
+};
+
+Columns wallColumns(const Grid& g, const PlacedQuad& wall) {
+    Columns c;
+    const scene::Aabb wallBounds = makePlacedQuadScene({wall}).bounds;  // the quad's extent in y and z
+    const glm::dvec3 vmin(wallBounds.min), vmax(wallBounds.max);
+    const int layer = int(std::floor((double(wall.centre.x) - g.box.gridMin.x) / g.box.voxelSize));
+    for (int z = 1; z + 1 < int(kVoxels); ++z)
+        for (int y = 1; y + 1 < int(kVoxels); ++y) {
+            const double y0 = g.box.gridMin.y + y * double(g.box.voxelSize), y1 = y0 + g.box.voxelSize;
+            const double z0 = g.box.gridMin.z + z * double(g.box.voxelSize), z1 = z0 + g.box.voxelSize;
+            const bool touches = y1 > vmin.y && y0 < vmax.y && z1 > vmin.z && z0 < vmax.z;
+            bool holds = false;
+            for (int x = layer - 1; x <= layer + 1; ++x)
+                holds = holds || g.voxels[(size_t(z) * kVoxels + y) * kVoxels + x].a > 0.0f;
+            c.touched += touches;
+            c.covered += touches && holds;
+            c.outside += !touches && holds;
+        }
+    return c;
+}
+
+void thinWall(CheckEnv& env, Verdict& v) {
+    VoxelScene t = makeVoxelScene();
+    t.quads.resize(6);  // the open box's walls only, and a wall (normal +x) one voxel thin inside
+    t.quads.push_back(quad({0.013f, -0.012f, 0.021f}, {1, 0, 0}, {0.803f, 0.689f}, {0.8f, 0.8f, 0.8f}, true));
+    t.emissive.assign(t.quads.size(), glm::vec3(0.0f));
+    onRung(env, v, "conservative-raster", *env.rung, [&](vk::Context& ctx, vk::ShaderLibrary& shaders) {
+        for (frame::VoxelRaster raster : {frame::VoxelRaster::Centre, frame::VoxelRaster::Conservative}) {
+            const std::string what = raster == frame::VoxelRaster::Centre ? "centre raster" : "conservative raster";
+            const Grid g = voxelize(ctx, shaders, t, raster);
+            if (!v.expectEq(g.voxels.size(), size_t(kVoxels) * kVoxels * kVoxels, what + ": voxel count")) return;
+            const Columns c = wallColumns(g, t.quads.back());
+            v.expectEq(c.outside, size_t(0), what + ": untouched columns holding a wall voxel");
+            if (raster == frame::VoxelRaster::Conservative)
+                v.expectEq(c.covered, c.touched, what + ": touched columns holding a wall voxel (no holes)");
+            else
+                v.expect(c.covered < c.touched, what + ": covers all " + std::to_string(c.touched) +
+                                                    " touched columns: the wall must have edge columns it misses");
+        }
+    });
+}
+
+}  // namespace
+
+std::vector<Check> vxgiChecks() {
+    return {
+        {"vxgi/voxelize", "vxgi-atomics", "occupancy >= 99.5%; rgb within 0.2% (+1e-5) of the oracle's mean or max",
+         voxelizeOnRung},
+        {"vxgi/rungs agree", "", "one-fragment voxels within 1e-3 relative", rungsAgree},
+        {"vxgi/thin wall", "conservative-raster", "no holes, nothing outside the wall's columns", thinWall},
+    };
+}
+
+}  // namespace idk::conformance

@@ -2,7 +2,7 @@
 // occluder scene (a wall, hundreds of boxes behind it, some peeking over its edge, some behind the camera) and on
 // shared glTF scenes (instanced, skinned), along a camera path that moves and cuts, the culled image equals the
 // --culling off image byte for byte (zero false culls), and the GPU counters read back equal the CPU oracle's
-// counts (render::cullOracle) and really cull. Both rungs of the "mesh-shading" ladder run: the mesh-shader rung
+// counts (render::cullOracle) and really cull. DamagedHelmet and ToyCar run a path that moves and cuts too. Both rungs of the "mesh-shading" ladder run: the mesh-shader rung
 // (task shader culling meshlets) on the shared context, the multi-draw-indirect rung on a --fallback context; their
 // images are identical too.
 #include <gtest/gtest.h>
@@ -62,7 +62,7 @@ scene::CameraView lookAt(glm::vec3 eye, glm::vec3 target, float zfar = 0.0f) {
 
 struct PathStats {
     std::vector<uint32_t> frustumDrawn, hizDrawn, tested;
-    std::vector<std::vector<uint8_t>> images;  // the hiz frames
+    std::vector<std::vector<uint8_t>> images, frustumImages;  // the hiz frames, the frustum frames
 };
 
 class CullingFrameTest : public GpuTest {
@@ -74,12 +74,16 @@ protected:
                      PathStats& stats) {
         comparePathOn(ctx(), shaders(), scene, cameras, what, stats);
     }
+    // `geometry`: the culled G-buffer's path (--geometry); `allowedDiffering`: bytes a culled frame may differ from
+    // the unculled one (0 but for the mesh path's triangle order, see HelmetAndToyCar... below).
     static void comparePathOn(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene::Scene& scene,
-                              const std::vector<scene::CameraView>& cameras, const char* what, PathStats& stats) {
+                              const std::vector<scene::CameraView>& cameras, const char* what, PathStats& stats,
+                              frame::GeometryPath geometry = frame::GeometryPath::Auto, size_t allowedDiffering = 0) {
         render::Renderer off(ctx, shaders), frustum(ctx, shaders), hiz(ctx, shaders);
         off.settings().culling.mode = frame::CullingMode::Off;  // hiz is the default
         frustum.settings().culling.mode = frame::CullingMode::Frustum;
         hiz.settings().culling.mode = frame::CullingMode::Hiz;
+        frustum.settings().culling.geometry = hiz.settings().culling.geometry = geometry;
         off.setScene(scene);
         frustum.setScene(scene);
         hiz.setScene(scene);
@@ -103,7 +107,8 @@ protected:
                 ASSERT_EQ(a.display.size(), b.display.size());
                 size_t differing = 0;
                 for (size_t i = 0; i < a.display.size(); ++i) differing += a.display[i] != b.display[i];
-                EXPECT_EQ(differing, 0u) << what << " camera " << c << " " << mode << ": culling changed the image";
+                EXPECT_LE(differing, allowedDiffering) << what << " camera " << c << " " << mode
+                                                       << ": culling changed the image";
                 ASSERT_FALSE(b.culling.empty());  // the camera first, then any point-shadow cube faces
                 const passes::CullingViewStats& s = b.culling[0];
                 EXPECT_EQ(s.view, "camera");
@@ -119,6 +124,7 @@ protected:
                         EXPECT_EQ(s.trianglesDrawn, triangles) << what << " camera " << c;
                     }
                     stats.frustumDrawn.push_back(s.instancesDrawn);
+                    stats.frustumImages.push_back(b.display);
                 } else {
                     stats.images.push_back(b.display);
                     EXPECT_LE(s.instancesDrawn, drawn) << what << " camera " << c << ": occlusion drew more than the frustum";
@@ -169,6 +175,47 @@ TEST_F(CullingFrameTest, SharedScenesAreUnchanged) {
         const scene::Scene s = scene::loadGltf(root + "BrainStem/glTF-Binary/BrainStem.glb");
         PathStats stats;
         comparePath(s, {scene::defaultCamera(s), scene::defaultCamera(s)}, "BrainStem", stats);
+    }
+}
+
+// A path around the scene's default view: the view, a step to the side (moving), a cut to the far side looking
+// back, a cut to a view that sees nothing (the frustum culls everything), and a cut back to the view.
+std::vector<scene::CameraView> movingAndCuttingPath(const scene::Scene& s) {
+    const scene::CameraView base = scene::defaultCamera(s);
+    const glm::vec3 target = s.bounds.centre();
+    const float distance = std::max(glm::length(base.position - target), 1e-3f);
+    const glm::vec3 side = glm::normalize(glm::cross(base.forward, base.up));
+    scene::CameraView moved = lookAt(base.position + 0.15f * distance * side, target);
+    scene::CameraView behind = lookAt(2.0f * target - base.position + 0.3f * distance * side, target);
+    scene::CameraView away = lookAt(base.position, base.position - base.forward * distance);
+    for (scene::CameraView* c : {&moved, &behind, &away}) c->yfov = base.yfov, c->znear = base.znear, c->zfar = base.zfar;
+    return {base, moved, behind, away, base, base};
+}
+
+// Zero false culls on the MDI path: identical pixels. The mesh path draws each draw's triangles in meshlet order
+// (vertex-cache optimised, not the index buffer's), so where two triangles of one draw tie exactly in depth the
+// other one may win: measured on ToyCar (the moved camera), 1 byte of 36864 differs from the vertex path even with
+// every meshlet drawn (task-shader culling disabled), so that is not a cull. There the culled frames must equal
+// each other (frustum vs two-phase Hi-Z, both drawing meshlets) and stay within 16 bytes of the unculled frame.
+TEST_F(CullingFrameTest, HelmetAndToyCarAlongMovingAndCuttingPathsAreUnchanged) {
+    const std::string root = std::string(IDK_SHARED_DIR) + "/scenes/";
+    const bool mesh = ctx().capabilities().meshShaderExt;
+    for (const char* file : {"DamagedHelmet/glTF-Binary/DamagedHelmet.glb", "ToyCar/glTF/ToyCar.gltf"}) {
+        const scene::Scene s = scene::loadGltf(root + file);
+        const std::vector<scene::CameraView> path = movingAndCuttingPath(s);
+        PathStats mdi;
+        comparePathOn(ctx(), shaders(), s, path, file, mdi, frame::GeometryPath::Mdi);
+        ASSERT_EQ(mdi.frustumDrawn.size(), path.size());
+        EXPECT_GT(mdi.frustumDrawn[0], 0u) << file << ": the default view sees the scene";
+        EXPECT_EQ(mdi.frustumDrawn[3], 0u) << file << ": the view away from the scene culls every draw";
+        if (!mesh) continue;
+        PathStats meshlets;
+        comparePathOn(ctx(), shaders(), s, path, file, meshlets, frame::GeometryPath::Mesh, 16);
+        ASSERT_EQ(meshlets.images.size(), path.size());
+        for (size_t c = 0; c < path.size(); ++c)
+            EXPECT_TRUE(meshlets.images[c] == meshlets.frustumImages[c]) << file << " camera " << c
+                                                                         << ": mesh path, hiz and frustum differ";
+        EXPECT_EQ(meshlets.hizDrawn, mdi.hizDrawn) << file << ": both paths cull the same instances";
     }
 }
 

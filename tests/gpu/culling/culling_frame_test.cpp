@@ -219,6 +219,65 @@ TEST_F(CullingFrameTest, HelmetAndToyCarAlongMovingAndCuttingPathsAreUnchanged) 
     }
 }
 
+// The benchmarks' ground truth (bench/culling_bench.cpp): the surface-ID buffer of the unculled frame names the
+// visible draws. On the occluder scene facing the wall: every visible draw is in the CPU frustum oracle's set, the
+// wall is visible, most boxes in the frustum are not; and two-phase culling, warm, draws every visible draw (its
+// drawn set follows from the visibility bits before and after the frame and the frustum oracle).
+TEST_F(CullingFrameTest, SurfaceIdsNameVisibleDrawsAndHizDrawsThemAll) {
+    const scene::Scene scene = occluderScene();
+    const scene::CameraView camera = lookAt({0, 4, 12}, {0, 3, 0});
+    render::Renderer off(ctx(), shaders()), hiz(ctx(), shaders());
+    off.settings().culling.mode = frame::CullingMode::Off;
+    hiz.settings().culling.mode = frame::CullingMode::Hiz;
+    off.setScene(scene);
+    hiz.setScene(scene);
+    const std::vector<glm::uvec2> ids = off.renderSurfaceIds(camera, kSize, kSize);
+    const render::GpuSceneData& data = off.gpuScene()->data();
+    const std::vector<gpu::GpuCullDraw> records = render::packCullDraws(data);
+    const std::vector<bool> inFrustum = render::cullOracle(
+        records, data.instances, render::frustumView(scene::projectionMatrix(camera, 1.0f) * scene::viewMatrix(camera)));
+    std::vector<bool> visible(records.size(), false);
+    size_t background = 0;
+    for (const glm::uvec2& id : ids) {
+        if (id.x == UINT32_MAX) {
+            ++background;
+            continue;
+        }
+        ASSERT_LT(id.x, records.size());
+        ASSERT_LT(id.y, data.draws[id.x].indexCount / 3) << "triangle id past the draw's triangles";
+        visible[id.x] = true;
+    }
+    EXPECT_GT(background, 0u) << "the sky above the wall";
+    EXPECT_TRUE(visible[0]) << "the wall (the scene's first quad)";
+    size_t visibleCount = 0, frustumCount = 0;
+    for (size_t i = 0; i < records.size(); ++i) {
+        if (visible[i]) {
+            EXPECT_TRUE(inFrustum[i]) << "draw " << i << " is visible outside the frustum";
+        }
+        visibleCount += visible[i];
+        frustumCount += inFrustum[i];
+    }
+    EXPECT_LT(4 * visibleCount, frustumCount) << "the wall hides most boxes in the frustum";
+    hiz.renderOffscreen(camera, kSize, kSize);
+    hiz.renderOffscreen(camera, kSize, kSize);
+    const std::vector<uint32_t> before = hiz.cullingVisibility();
+    const render::FrameResult frame = hiz.renderOffscreen(camera, kSize, kSize);
+    const std::vector<uint32_t> after = hiz.cullingVisibility();
+    ASSERT_EQ(before.size(), records.size());
+    ASSERT_EQ(after.size(), records.size());
+    size_t drawn = 0;
+    for (size_t i = 0; i < records.size(); ++i) {
+        const bool drawnNow = before[i] != 0 ? bool(inFrustum[i]) : after[i] != 0;
+        if (visible[i]) {
+            EXPECT_TRUE(drawnNow) << "visible draw " << i << " was culled";
+        }
+        drawn += drawnNow;
+    }
+    ASSERT_FALSE(frame.culling.empty());
+    EXPECT_EQ(frame.culling[0].instancesDrawn, drawn) << "the drawn set derived from the bits matches the counter";
+    EXPECT_LT(drawn, frustumCount);
+}
+
 // --cull-freeze: culling keeps the frustum of the frame it was turned on while the camera moves on, and follows
 // the camera again once it is turned off (counts against the CPU oracle of each view).
 TEST_F(CullingFrameTest, FreezeKeepsTheFrozenFrustum) {

@@ -13,6 +13,7 @@
 #include "render/culling_math.hpp"
 #include "render/meshlets.hpp"
 #include "render/renderer.hpp"
+#include "render/vk_graph_backend.hpp"
 #include "scene/camera.hpp"
 #include "scene/gltf_loader.hpp"
 #include "support/gpu_fixture.hpp"
@@ -277,6 +278,41 @@ TEST_F(CullingFrameTest, SurfaceIdsNameVisibleDrawsAndHizDrawsThemAll) {
     ASSERT_FALSE(frame.culling.empty());
     EXPECT_EQ(frame.culling[0].instancesDrawn, drawn) << "the drawn set derived from the bits matches the counter";
     EXPECT_LT(drawn, frustumCount);
+}
+
+// The viewer's path (Renderer::renderFrame): each frame's FrameInfo carries the previous frame's counters per view
+// (the Frame panel's culling table) and geometry path; they equal the CPU oracle's frustum counts.
+TEST_F(CullingFrameTest, RenderFrameCarriesThePreviousFramesCounters) {
+    const scene::Scene scene = occluderScene();
+    const scene::CameraView camera = lookAt({0, 4, 12}, {0, 3, 0});
+    const render::GpuSceneData data = render::packGpuScene(scene, {});
+    const std::vector<bool> visible = render::cullOracle(
+        render::packCullDraws(data), data.instances,
+        render::frustumView(scene::projectionMatrix(camera, 1.0f) * scene::viewMatrix(camera)));
+    vk::ImageDesc desc;
+    desc.format = VK_FORMAT_R8G8B8A8_UNORM;
+    desc.extent = {kSize, kSize, 1};
+    desc.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;  // as a swapchain image (transfer usage is implied)
+    desc.name = "viewer target";
+    vk::Image image = ctx().createImage(desc);
+    {
+        render::Renderer r(ctx(), shaders());
+        r.settings().culling.mode = frame::CullingMode::Frustum;
+        r.settings().culling.geometry = frame::GeometryPath::Mdi;
+        r.setScene(scene);
+        render::FrameTarget target;
+        target.image = render::physicalOf(image);
+        target.finalUse = graph::FinalUse{graph::Access::TransferSrc};
+        const render::FrameInfo first = r.renderFrame(camera, target);
+        EXPECT_TRUE(first.culling.empty()) << "no frame before the first";
+        const render::FrameInfo second = r.renderFrame(camera, target);
+        ASSERT_EQ(second.culling.size(), 7u) << "the camera, then the point light's six cube faces";
+        EXPECT_EQ(second.culling[0].view, "camera");
+        EXPECT_EQ(second.culling[0].instancesDrawn, uint32_t(std::count(visible.begin(), visible.end(), true)));
+        EXPECT_EQ(second.geometryPath, "mdi");
+        ctx().waitIdle();
+    }
+    ctx().destroy(image);
 }
 
 // --cull-freeze: culling keeps the frustum of the frame it was turned on while the camera moves on, and follows

@@ -4,12 +4,20 @@
 // (a wall in front of a grid of DamagedHelmets, a few peeking over its top edge, a few behind the camera) and
 // ToyCar. Each iteration renders one frame through a warm Renderer (two frames first, so the hiz rows run with
 // last frame's visibility); the GPU counters of the last frame go into the row's settings.
+// Ground truth: the unculled frame's surface-ID buffer (Renderer::renderSurfaceIds: the draw and triangle of every
+// pixel) says which draws and triangles are visible; the rest are hidden. Counters: hidden_culled_fraction (the
+// hidden triangles that culling did not draw / all hidden triangles), false_culls (visible draws the culler dropped:
+// the drawn set follows from the visibility bits before and after the last frame and the CPU frustum oracle) and
+// mismatches (pixels that differ from the unculled frame: catches meshlets the task shader dropped wrongly).
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "bench_support.hpp"
+#include "render/culling_math.hpp"
 #include "render/renderer.hpp"
 #include "scene/camera.hpp"
 #include "scene/gltf_loader.hpp"
@@ -75,6 +83,33 @@ FallbackDevice& fallbackDevice() {  // `idk render --fallback`: the MDI rung of 
     return d;
 }
 
+// What the unculled frame shows: per draw, its visible triangles (0: hidden), and the image.
+struct GroundTruth {
+    std::vector<uint32_t> visibleTriangles;  // per GpuScene draw
+    uint64_t totalVisibleTriangles = 0;
+    std::vector<uint8_t> image;
+};
+
+GroundTruth groundTruth(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene::Scene& scene,
+                        const scene::CameraView& camera) {
+    render::Renderer renderer(ctx, shaders);
+    renderer.settings().culling.mode = frame::CullingMode::Off;
+    renderer.setScene(scene);
+    const std::vector<glm::uvec2> ids = renderer.renderSurfaceIds(camera, kWidth, kHeight);
+    GroundTruth t;
+    t.image = renderer.renderOffscreen(camera, kWidth, kHeight).display;
+    t.visibleTriangles.assign(renderer.gpuScene()->data().draws.size(), 0u);
+    std::vector<uint64_t> keys;  // (draw, triangle) of every covered pixel
+    keys.reserve(ids.size());
+    for (const glm::uvec2& id : ids)
+        if (id.x < t.visibleTriangles.size()) keys.push_back(uint64_t(id.x) << 32 | id.y);
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    for (uint64_t k : keys) ++t.visibleTriangles[size_t(k >> 32)];
+    t.totalVisibleTriangles = keys.size();
+    return t;
+}
+
 // Args: scene (0 occluder, 1 ToyCar), mode (frame::CullingMode), rung (0 native mesh shaders, 1 fallback MDI).
 void BM_Culling(benchmark::State& state) {
     if (!requireDevice(state)) return;
@@ -94,16 +129,19 @@ void BM_Culling(benchmark::State& state) {
         camera.znear = 0.1f;  // the default camera fits the helmet's own bounds
         camera.zfar = 0.0f;
     }
+    const GroundTruth truth = groundTruth(ctx, shaders, scene, camera);
     ctx.clearConsultedLadders();
     double gpuMs = 0.0;
     passes::CullingViewStats last;
     uint64_t sceneTriangles = 0;
+    std::vector<bool> drawnDraws;  // per draw: drawn in the last frame
+    size_t mismatches = 0;
     {
         render::Renderer renderer(ctx, shaders);
         renderer.settings().culling.mode = mode;
         renderer.setScene(scene);
-        for (const VkDrawIndexedIndirectCommand& d : renderer.gpuScene()->data().draws)
-            sceneTriangles += d.instanceCount * (d.indexCount / 3);
+        const render::GpuSceneData& data = renderer.gpuScene()->data();
+        for (const VkDrawIndexedIndirectCommand& d : data.draws) sceneTriangles += d.instanceCount * (d.indexCount / 3);
         renderer.renderOffscreen(camera, kWidth, kHeight);  // warm-up: pipelines, meshlets, visibility bits
         renderer.renderOffscreen(camera, kWidth, kHeight);
         for (auto _ : state) {
@@ -111,13 +149,36 @@ void BM_Culling(benchmark::State& state) {
             for (const vk::ScopeTiming& t : frame.passTimes) gpuMs += t.milliseconds;
             if (!frame.culling.empty()) last = frame.culling[0];
         }
+        // One more frame, untimed, between two readbacks of the visibility bits: hiz draws in its early phase the
+        // draws visible before it that are in the frustum, in its late phase those newly found visible.
+        const std::vector<uint32_t> before = renderer.cullingVisibility();
+        const render::FrameResult checked = renderer.renderOffscreen(camera, kWidth, kHeight);
+        const std::vector<uint32_t> after = renderer.cullingVisibility();
+        for (size_t i = 0; i < checked.display.size(); ++i) mismatches += checked.display[i] != truth.image[i];
+        const glm::mat4 viewProjection =
+            scene::projectionMatrix(camera, float(kWidth) / float(kHeight)) * scene::viewMatrix(camera);
+        const std::vector<gpu::GpuCullDraw> records = render::packCullDraws(data);
+        const std::vector<bool> inFrustum = render::cullOracle(records, data.instances, render::frustumView(viewProjection));
+        drawnDraws.assign(records.size(), mode == frame::CullingMode::Off);
+        for (size_t i = 0; i < records.size() && mode != frame::CullingMode::Off; ++i)
+            drawnDraws[i] = mode == frame::CullingMode::Frustum || before.at(i) != 0 ? bool(inFrustum[i]) : after.at(i) != 0;
     }
     const uint64_t drawn = mode == frame::CullingMode::Off ? sceneTriangles : last.trianglesDrawn;
+    uint32_t falseCulls = 0;
+    uint64_t visibleNotDrawn = 0;  // visible triangles of the falsely culled draws
+    for (size_t i = 0; i < drawnDraws.size(); ++i)
+        if (truth.visibleTriangles[i] > 0 && !drawnDraws[i]) ++falseCulls, visibleNotDrawn += truth.visibleTriangles[i];
+    const uint64_t hidden = sceneTriangles - truth.totalVisibleTriangles;
+    const uint64_t hiddenCulled = sceneTriangles - drawn - visibleNotDrawn;
     state.counters["gpu_ms"] = gpuMs / double(state.iterations());
     state.counters["triangles_drawn"] = double(drawn);
+    state.counters["hidden_culled_fraction"] = hidden > 0 ? double(hiddenCulled) / double(hidden) : 1.0;
+    state.counters["false_culls"] = double(falseCulls);
+    if (mode != frame::CullingMode::Off) state.counters["mismatches"] = double(mismatches);
     static const char* kModes[] = {"off", "frustum", "hiz"};
     std::string settings = std::to_string(kWidth) + "x" + std::to_string(kHeight) + ", --culling " + kModes[int(mode)] +
-                           ", triangles drawn " + std::to_string(drawn) + " of " + std::to_string(sceneTriangles);
+                           ", triangles drawn " + std::to_string(drawn) + " of " + std::to_string(sceneTriangles) +
+                           " (" + std::to_string(truth.totalVisibleTriangles) + " visible)";
     if (mode != frame::CullingMode::Off)
         settings += ", instances " + std::to_string(last.instancesDrawn) + " of " + std::to_string(last.instancesTested) +
                     (last.meshlets ? ", meshlets " + std::to_string(last.meshletsDrawn) + " of " +

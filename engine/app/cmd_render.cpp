@@ -25,6 +25,7 @@
 #include "app/scene_options.hpp"
 #include "core/atomic_file.hpp"
 #include "core/cli.hpp"
+#include "frame/culling_feature.hpp"
 #include "frame/settings_table.hpp"
 #include "render/renderer.hpp"
 #include "render/scene_textures.hpp"
@@ -100,6 +101,7 @@ nlohmann::json statsJson(const render::FrameResult& frame, const vk::Context& ct
         draws[e.pass] = {{"indirectCalls", e.calls}, {"draws", e.draws}};
     j["indirectDraws"] = draws;
     if (settings.shading == render::Shading::Pbr) j["shadingInvocations"] = frame.shadingInvocations;  // lighting + sky
+    if (!frame.geometryPath.empty()) j["geometryPath"] = frame.geometryPath;  // mesh, mdi or indirect (culling off)
     if (!frame.culling.empty()) {
         nlohmann::json views = nlohmann::json::object();
         for (const passes::CullingViewStats& v : frame.culling)
@@ -212,6 +214,9 @@ int runRender(const std::vector<std::string>& argv, std::vector<vk::Ladder>* run
     if (args.has("--pathtrace")) return runRenderPathTrace(args, scene, settings, width, height, views, fps);
 
     std::unique_ptr<vk::Context> ctx = createContext(contextDescFromCli(args));
+    if (settings.shading == render::Shading::Pbr)  // --geometry mesh needs the device's mesh shaders
+        if (std::string e = frame::CullingFeature::geometryError(*ctx, settings.culling); !e.empty())
+            throw core::CliError(e);
     vk::ShaderLibrary shaders(*ctx);
     render::FrameResult frame;
     vk::MemoryStats memory;
@@ -258,6 +263,15 @@ int runRender(const std::vector<std::string>& argv, std::vector<vk::Ladder>* run
         for (const vk::ScopeTiming& t : frame.passTimes) std::printf("  %-24s %8.3f ms\n", t.name.c_str(), t.milliseconds);
         for (const passes::IndirectDrawLog::Entry& e : frame.indirectDraws)
             std::printf("  %-24s %u indirect call(s), %u draws\n", e.pass.c_str(), e.calls, e.draws);
+        if (!frame.culling.empty()) {
+            std::printf("culling (GPU counters per view, %s, geometry path %s):\n",
+                        frame::toString(settings.culling.mode), frame.geometryPath.c_str());
+            for (const passes::CullingViewStats& v : frame.culling) {
+                std::printf("  %-24s %u of %u instances drawn", v.view.c_str(), v.instancesDrawn, v.instancesTested);
+                if (v.meshlets) std::printf(", %u of %u meshlets", v.meshletsDrawn, v.meshletsTested);
+                std::printf(", %u triangles\n", v.trianglesDrawn);
+            }
+        }
         std::printf("GPU memory by category:\n");
         for (const auto& [category, bytes] : memory.bytesByCategory)
             std::printf("  %-24s %10.1f KiB\n", category.c_str(), double(bytes) / 1024.0);

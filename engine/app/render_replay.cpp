@@ -19,7 +19,9 @@
 #include "app/camera_spec.hpp"
 #include "app/cli_context.hpp"
 #include "app/render_pathtrace.hpp"
+#include "core/cli.hpp"
 #include "core/image_file.hpp"
+#include "frame/culling_feature.hpp"
 #include "render/path_tracer.hpp"
 #include "render/scene_textures.hpp"
 #include "scene/animation.hpp"
@@ -172,6 +174,7 @@ int runRenderReplay(const core::CliArgs& args, scene::Scene& scene, render::Rend
 
     std::unique_ptr<vk::Context> context = createContext(contextDescFromCli(args));
     vk::Context& ctx = *context;
+    if (std::string e = frame::CullingFeature::geometryError(ctx, settings.culling); !e.empty()) throw core::CliError(e);
     vk::ShaderLibrary shaders(ctx);
     {
         render::Renderer renderer(ctx, shaders, settings);

@@ -49,9 +49,34 @@ void CullingFeature::release() {
 
 void CullingFeature::setScene() { release(); }
 
-void CullingFeature::createResources(const render::GpuScene& scene, uint32_t framesInFlight) {
+bool CullingFeature::usesMeshShaders(const vk::Context& ctx, const CullingSettings& settings) {
+    switch (settings.geometry) {
+    case GeometryPath::Mesh: return ctx.capabilities().meshShaderExt;
+    case GeometryPath::Mdi: return false;
+    case GeometryPath::Auto: break;
+    }
+    return ctx.ladder("mesh-shading").chosen == vk::Rung::Native;
+}
+
+std::string CullingFeature::geometryError(const vk::Context& ctx, const CullingSettings& settings) {
+    if (settings.geometry == GeometryPath::Auto) return {};
+    const char* name = settings.geometry == GeometryPath::Mesh ? "mesh" : "mdi";
+    if (settings.mode == CullingMode::Off)
+        return std::string("--geometry ") + name + ": it draws the culled commands; use --culling frustum or hiz "
+               "(--culling off draws every instance with one vkCmdDrawIndexedIndirect)";
+    if (settings.geometry == GeometryPath::Mesh && !ctx.capabilities().meshShaderExt)
+        return "--geometry mesh: the device lacks VK_EXT_mesh_shader (task and mesh shaders); use --geometry mdi";
+    return {};
+}
+
+void CullingFeature::createResources(const render::GpuScene& scene, uint32_t framesInFlight, bool meshRung) {
+    if (draws_ && meshRung != meshRung_) {  // --geometry changed: records (and meshlets) for the other path
+        for (vk::Buffer* b : {&draws_, &visibility_, &meshlets_, &meshletVertices_, &meshletTriangles_})
+            if (*b) ctx_.destroyDeferred(*b);
+        draws_ = visibility_ = meshlets_ = meshletVertices_ = meshletTriangles_ = {};
+    }
     if (!draws_) {
-        meshRung_ = ctx_.ladder("mesh-shading").chosen == vk::Rung::Native;
+        meshRung_ = meshRung;
         render::MeshletData meshlets;
         if (meshRung_) {
             meshlets = render::buildMeshlets(scene.data());
@@ -70,6 +95,7 @@ void CullingFeature::createResources(const render::GpuScene& scene, uint32_t fra
         draws_ = createBuffer(ctx_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::GpuOnly, "cull draws");
         vk::uploadBuffer(ctx_, draws_, records.data(), bytes);
         // Nothing was drawn before the first frame: its early phase draws nothing, its late phase everything visible.
+        drawCount_ = uint32_t(records.size());
         const std::vector<uint32_t> zeros(records.size(), 0u);
         visibility_ = createBuffer(ctx_, zeros.size() * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                    vk::MemoryUsage::GpuOnly, "cull visibility");
@@ -93,8 +119,10 @@ passes::GBufferOutputs CullingFeature::addGBuffer(FrameContext& f, const render:
                                                                                      : f.settings.culling.mode;
     if (mode == CullingMode::Off || scene.drawCount() == 0) {
         f.gbuffer = passes::addGBufferPass(f.graph, f.ctx, f.shaders, f.scene, f.frameConstants, &f.log);
+        lastGeometry_ = "indirect";
     } else {
-        createResources(scene, f.framesInFlight);
+        createResources(scene, f.framesInFlight, usesMeshShaders(ctx_, f.settings.culling));
+        lastGeometry_ = meshRung_ ? "mesh" : "mdi";
         // This slot's buffers: the frame ring has waited until the GPU finished the slot's previous frame.
         const gpu::GpuCullView camera =
             frozen ? *frozen_ : render::frustumView(f.viewProjection, {f.width, f.height});
@@ -150,6 +178,11 @@ passes::GBufferOutputs CullingFeature::addGBuffer(FrameContext& f, const render:
     f.depthPyramid = passes::addDepthPyramidPass(f.graph, f.ctx, f.shaders, f.gbuffer.depth, {f.width, f.height},
                                                  "depth_pyramid", minmax);
     return f.gbuffer;
+}
+
+std::vector<uint32_t> CullingFeature::visibilityBits() const {
+    if (!visibility_) return {};
+    return vk::downloadBuffer<uint32_t>(ctx_, visibility_, drawCount_);
 }
 
 std::vector<passes::CullingViewStats> CullingFeature::lastStats() const {

@@ -11,9 +11,11 @@
 // normal cone, Hi-Z in the late phase); the MDI rung draws whole instances. Ports IDKEngine's GPU culling
 // (reference 2.6, 2.7) without its single-phase previous-frame Hi-Z (which could drop newly visible objects).
 // The Hi-Z pyramid is reduced by a MAX sampler where the ladder "hiz-reduction" allows it, else in compute.
+// --geometry mesh|mdi picks the rung instead of the ladder; meshlets exist only while the mesh path is used.
 #pragma once
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "frame/frame_context.hpp"
@@ -36,9 +38,23 @@ public:
     // The counters of the last frame that culled, per view (empty when it did not cull); with Hiz the two phases
     // are summed (instancesTested counts each draw once). Valid once that frame's GPU work has finished.
     std::vector<passes::CullingViewStats> lastStats() const;
+    // The geometry path the last frame's camera G-buffer took: "mesh" (task + mesh shaders), "mdi"
+    // (vkCmdDrawIndexedIndirectCount of the culled instances) or "indirect" (culling off: every instance).
+    const char* lastGeometryPath() const noexcept { return lastGeometry_; }
+    // The per-draw visibility bits (uint per scene draw: what the last late phase found visible; empty before the
+    // first culled frame). Valid once that frame's GPU work has finished (tests and benchmarks read them).
+    std::vector<uint32_t> visibilityBits() const;
+
+    // Whether the culled G-buffer draws meshlets with mesh shaders under `settings` (--geometry; auto: the
+    // "mesh-shading" ladder). --geometry mesh on a device without VK_EXT_mesh_shader draws MDI: callers that take
+    // the setting from a user check geometryError first.
+    static bool usesMeshShaders(const vk::Context& ctx, const CullingSettings& settings);
+    // Why `settings` cannot run as asked on this device (empty when it can): --geometry mesh without
+    // VK_EXT_mesh_shader, or --geometry mesh|mdi with culling off (both paths draw culled commands).
+    static std::string geometryError(const vk::Context& ctx, const CullingSettings& settings);
 
 private:
-    void createResources(const render::GpuScene& scene, uint32_t framesInFlight);
+    void createResources(const render::GpuScene& scene, uint32_t framesInFlight, bool meshRung);
     void release();
     vk::Context& ctx_;
     vk::Buffer draws_;                       // GpuCullDraw per scene draw (static)
@@ -48,6 +64,8 @@ private:
     std::vector<vk::Buffer> views_, stats_;  // per frame slot, host-visible: GpuCullView[], GpuCullCounters[]
     uint32_t lastSlot_ = 0;
     uint32_t lastPhases_ = 0;                // counters the last culled frame wrote (0: it did not cull)
+    const char* lastGeometry_ = "indirect";
+    uint32_t drawCount_ = 0;                 // records in draws_ / visibility_
     std::optional<gpu::GpuCullView> frozen_;  // CullingSettings::freeze: the view culling keeps using
     HizLevels hizLevels_{ctx_};  // the sampler rung of the ladder "hiz-reduction" (empty on the compute rung)
 };

@@ -78,4 +78,19 @@ graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Fe
     return finish(f);                                                 // tonemap (Display) into f.output
 }
 
+void recordCullingWarmup(FrameContext& f, render::GpuScene& scene, Features& x) {
+    x.environment.addPasses(f);
+    x.inputs.addPasses(f, scene, x.environment.current(f.settings));
+    f.gbuffer = x.culling.addGBuffer(f, scene);
+    f.graph.markOutput(f.gbuffer.depth);
+}
+
+void recordSurfaceIds(FrameContext& f, render::GpuScene& scene, Features& x, graph::TextureHandle ids) {
+    x.environment.addPasses(f);
+    x.inputs.addPasses(f, scene, x.environment.current(f.settings));
+    f.gbuffer = passes::addGBufferPass(f.graph, f.ctx, f.shaders, f.scene, f.frameConstants, &f.log, nullptr, nullptr,
+                                       ids);
+    f.graph.markOutput(f.gbuffer.ids);
+}
+
 }  // namespace idk::frame

@@ -50,4 +50,14 @@ struct Features {
 // graph's output.
 graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Features& features);
 
+// The first steps of the frame up to the culled G-buffer, its depth marked as the graph's output: a still image's
+// warm-up frames for --culling hiz, which leave the visibility bits that the real frame's early phase draws
+// (without them a single frame's early phase draws nothing and occlusion culls nothing).
+void recordCullingWarmup(FrameContext& f, render::GpuScene& scene, Features& features);
+
+// The first steps of the frame and an unculled G-buffer that also writes the surface-ID buffer into `ids` (RG32UI:
+// draw, triangle; marked as the graph's output): which draws and triangles contribute a pixel, the ground truth
+// of culling's benchmarks.
+void recordSurfaceIds(FrameContext& f, render::GpuScene& scene, Features& features, graph::TextureHandle ids);
+
 }  // namespace idk::frame

@@ -69,6 +69,12 @@ std::vector<SettingOption> buildTable() {
                  OptionKind::Choice, 0.0, 0.0, {"off", "frustum", "hiz"},
                  [](const RenderSettings& s) { return double(s.culling.mode); },
                  [](RenderSettings& s, double v) { s.culling.mode = frame::CullingMode(v); }});
+    t.push_back({"--geometry", "Culling", "geometry path",
+                 "how the culled G-buffer draws: mesh (task + mesh shaders cull meshlets, needs VK_EXT_mesh_shader), "
+                 "mdi (vkCmdDrawIndexedIndirectCount of whole instances) or auto (the mesh-shading ladder's rung)",
+                 OptionKind::Choice, 0.0, 0.0, {"auto", "mesh", "mdi"},
+                 [](const RenderSettings& s) { return double(s.culling.geometry); },
+                 [](RenderSettings& s, double v) { s.culling.geometry = frame::GeometryPath(v); }});
     t.push_back({"--cull-freeze", "Culling", "freeze culling camera",
                  "keep culling with the camera of the frame this was turned on (occlusion pauses)", OptionKind::Toggle,
                  0.0, 1.0, {}, [](const RenderSettings& s) { return s.culling.freeze ? 1.0 : 0.0; },

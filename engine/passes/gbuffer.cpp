@@ -9,6 +9,8 @@
 #include "passes/rendering.hpp"
 
 #include <memory>
+#include <stdexcept>
+#include <vector>
 
 #include "shared/deferred_types.h"
 
@@ -34,6 +36,7 @@ constexpr VkFormat kMaterialFormat = VK_FORMAT_R8G8B8A8_UNORM;
 constexpr VkFormat kEmissiveFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kDepthCopyFormat = VK_FORMAT_R32_SFLOAT;  // gl_FragCoord.z of the kept fragment
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;      // attachment only, not stored
+constexpr VkFormat kIdFormat = VK_FORMAT_R32G32_UINT;        // surface IDs (optional): draw, triangle
 
 VkRenderingAttachmentInfo colorAttachment(VkImageView view) {
     VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -54,7 +57,11 @@ graph::TextureHandle target(graph::PassBuilder& b, const char* name, VkFormat fo
 
 GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                               const SceneBuffers& scene, graph::BufferHandle frame, IndirectDrawLog* log,
-                              const CulledDraws* culled, const GBufferOutputs* drawOver) {
+                              const CulledDraws* culled, const GBufferOutputs* drawOver, graph::TextureHandle ids) {
+    if (ids.valid() && (culled || drawOver))
+        throw std::logic_error("addGBufferPass: the surface-ID buffer is drawn on the unculled vertex path only");
+    if (ids.valid() && !ctx.capabilities().geometryShader)
+        throw std::runtime_error("surface-ID buffer: the device lacks the geometryShader feature (gl_PrimitiveID)");
     auto out = std::make_shared<GBufferOutputs>();
     const SceneBuffers s = scene;
     const CulledDraws c = culled ? *culled : CulledDraws{};
@@ -80,6 +87,7 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
                 out->emissive = target(b, "gbuffer emissive", kEmissiveFormat, graph::Access::ColorWrite);
                 out->depth = target(b, "gbuffer depth", kDepthCopyFormat, graph::Access::ColorWrite);
                 out->depthAttachment = target(b, "gbuffer depth attachment", kDepthFormat, graph::Access::DepthWrite);
+                if (ids.valid()) out->ids = b.write(ids, graph::Access::ColorWrite);
             }
             b.read(frame, graph::Access::StorageRead, kVs);
             if (s.drawCount == 0) return;
@@ -101,12 +109,17 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
         [&ctx, &shaders, s, c, load, frame, out, log](graph::PassContext& pc) {
             VkCommandBuffer cmd = pc.commandBuffer();
             VkExtent2D extent = pc.outputExtent();
+            const bool writeIds = out->ids.valid();
 
-            VkRenderingAttachmentInfo colors[5] = {
+            std::vector<VkRenderingAttachmentInfo> colors = {
                 colorAttachment(pc.view(out->albedo)), colorAttachment(pc.view(out->normal)),
                 colorAttachment(pc.view(out->material)), colorAttachment(pc.view(out->emissive)),
                 colorAttachment(pc.view(out->depth))};
             colors[4].clearValue.color = {{1.0f, 0.0f, 0.0f, 0.0f}};  // background depth
+            if (writeIds) {
+                colors.push_back(colorAttachment(pc.view(out->ids)));
+                colors[5].clearValue.color.uint32[0] = colors[5].clearValue.color.uint32[1] = UINT32_MAX;
+            }
             if (load)
                 for (VkRenderingAttachmentInfo& a : colors) a.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
             VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -121,8 +134,9 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
                 vk::GraphicsPipelineDesc desc;
                 desc.vertex = c.commands.valid() ? vk::ShaderId::gbuffer_gbuffer_culled_vert
                                                  : vk::ShaderId::gbuffer_gbuffer_vert;
-                desc.fragment = vk::ShaderId::gbuffer_gbuffer_frag;
+                desc.fragment = writeIds ? vk::ShaderId::gbuffer_gbuffer_ids_frag : vk::ShaderId::gbuffer_gbuffer_frag;
                 desc.colorFormats = {kAlbedoFormat, kNormalFormat, kMaterialFormat, kEmissiveFormat, kDepthCopyFormat};
+                if (writeIds) desc.colorFormats.push_back(kIdFormat);
                 desc.depthFormat = kDepthFormat;
                 desc.depthCompare = VK_COMPARE_OP_LESS;  // scene::camera convention: depth 0 near, 1 far
                 desc.cull = VK_CULL_MODE_NONE;           // facing is decided per material in the fragment shader

@@ -90,6 +90,7 @@ struct GBufferOutputs {
     graph::TextureHandle emissive;  // RGBA16F
     graph::TextureHandle depth;     // R32F copy of the depth, 0 near .. 1 far (cleared to 1)
     graph::TextureHandle depthAttachment;  // D32 (transient, not stored)
+    graph::TextureHandle ids;  // RG32UI (draw, triangle) of each kept fragment, ~0u background (only when asked)
 };
 // `culled` (passes/culling.hpp, optional): draw the culling pass's compacted commands with
 // vkCmdDrawIndexedIndirectCount instead of every scene draw. `drawOver` (optional, with `culled`): load and keep
@@ -98,7 +99,10 @@ struct CulledDraws;
 struct ShadowCulledDraws;  // passes/culling.hpp
 GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                               const SceneBuffers& scene, graph::BufferHandle frame, IndirectDrawLog* log,
-                              const CulledDraws* culled = nullptr, const GBufferOutputs* drawOver = nullptr);
+                              const CulledDraws* culled = nullptr, const GBufferOutputs* drawOver = nullptr,
+                              graph::TextureHandle ids = {});
+// `ids` (optional, only without `culled`): also write the surface-ID buffer GBufferOutputs::ids into this RG32UI
+// colour attachment (gbuffer_ids.frag; needs the geometryShader feature for gl_PrimitiveID).
 
 // point_shadows.cpp: one depth cube per cube-casting light (render/point_shadow_maps.hpp), one instanced indirect
 // draw per light (native rung) or six (fallback). light_shadow_maps.cpp: every cascade / spot-map layer, and the

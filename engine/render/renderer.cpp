@@ -48,8 +48,8 @@ void Renderer::setPose(const scene::Scene& scene) {
     if (gpuScene_ && gpuScene_->animation()) gpuScene_->animation()->setPose(scene);
 }
 
-graph::TextureHandle Renderer::renderPbr(graph::RenderGraph& graph, const scene::CameraView& camera, uint32_t width,
-                                         uint32_t height, const vk::Image& target, passes::IndirectDrawLog& log) {
+frame::FrameContext Renderer::frameContext(graph::RenderGraph& graph, const scene::CameraView& camera, uint32_t width,
+                                           uint32_t height, passes::IndirectDrawLog& log) {
     frame::FrameContext f{ctx_, shaders_, graph, log, settings_};
     f.camera = camera;
     f.width = width;
@@ -57,6 +57,12 @@ graph::TextureHandle Renderer::renderPbr(graph::RenderGraph& graph, const scene:
     f.slot = frames_.slotIndex();  // begin() has waited until the GPU finished the slot's previous frame
     f.framesInFlight = frames_.framesInFlight();
     f.viewProjection = scene::projectionMatrix(camera, float(width) / float(height)) * scene::viewMatrix(camera);
+    return f;
+}
+
+graph::TextureHandle Renderer::renderPbr(graph::RenderGraph& graph, const scene::CameraView& camera, uint32_t width,
+                                         uint32_t height, const vk::Image& target, passes::IndirectDrawLog& log) {
+    frame::FrameContext f = frameContext(graph, camera, width, height, log);
     graph::PhysicalTexture output = physicalOf(target);
     output.storageIndex = outputStorage_.value;
     // Its first layout transition waits on every earlier stage: the validation layer counts each compute
@@ -128,9 +134,8 @@ FrameResult Renderer::renderOffscreen(const scene::CameraView& camera, uint32_t 
     result.passTimes = backend_.passTimings();
     result.indirectDraws = log.entries;
     if (pbr) result.shadingInvocations = features_.vrs.lastShadingInvocations();
-    if (pbr) result.culling = features_.culling.lastStats();
-    if (pbr)  // then each point-shadow cube face's counters (frame/shadow_culling.hpp)
-        for (passes::CullingViewStats& v : features_.pointShadows.cullStats()) result.culling.push_back(std::move(v));
+    if (pbr) result.culling = cullingStats();
+    if (pbr) result.geometryPath = features_.culling.lastGeometryPath();
 
     std::vector<uint8_t> bytes = vk::readbackImage(ctx_, target, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
     result.image.width = width;
@@ -149,6 +154,13 @@ FrameResult Renderer::renderOffscreen(const scene::CameraView& camera, uint32_t 
     return result;
 }
 
+std::vector<passes::CullingViewStats> Renderer::cullingStats() const {
+    std::vector<passes::CullingViewStats> views = features_.culling.lastStats();
+    // then each point-shadow cube face's counters (frame/shadow_culling.hpp)
+    for (passes::CullingViewStats& v : features_.pointShadows.cullStats()) views.push_back(std::move(v));
+    return views;
+}
+
 FrameResult Renderer::renderStill(const scene::CameraView& camera, uint32_t width, uint32_t height) {
     uint32_t frames = settings_.shading == Shading::Pbr ? frame::TemporalFeature::stillFrames(settings_) : 1;
     // VRS shades at the rates the previous frame classified: a first frame classifies, as the viewer's would.
@@ -157,12 +169,75 @@ FrameResult Renderer::renderStill(const scene::CameraView& camera, uint32_t widt
     if (settings_.shading == Shading::Pbr && settings_.ssr.enabled) frames = std::max(frames, 2u);
     if (frames > 1) features_.temporal.resetHistory();
     for (uint32_t i = 1; i < frames; ++i) renderOffscreen(camera, width, height);
+    // Two-phase occlusion draws early what the frame before found visible. From cold it takes two frames: the
+    // first one's early phase draws nothing, so its late phase tests against an empty pyramid and marks everything
+    // in the frustum visible; the second draws all that early, and its late phase marks only what is really
+    // visible, which the third (the returned frame) draws early. Frames rendered above count towards the two.
+    if (settings_.shading == Shading::Pbr && settings_.culling.mode == frame::CullingMode::Hiz && !settings_.culling.freeze)
+        for (uint32_t i = frames - 1; i < 2; ++i) warmUpCulling(camera, width, height);
     FrameResult result = renderOffscreen(camera, width, height);
     // VXGI's gl-interop rung drops the fragments past its record buffer in a frame that overflows it and grows the
     // buffer to hold them (passes/vxgi_gl_accumulate.hpp): a still renders that frame again, whole.
     if (const passes::VxgiGlAccumulator* gl = features_.vxgi.glAccumulator(); gl && gl->lastStats().dropped)
         result = renderOffscreen(camera, width, height);
     return result;
+}
+
+std::vector<glm::uvec2> Renderer::renderSurfaceIds(const scene::CameraView& camera, uint32_t width, uint32_t height) {
+    if (settings_.shading != Shading::Pbr || !gpuScene_)
+        throw std::logic_error("Renderer::renderSurfaceIds: needs PBR shading and a scene");
+    vk::ImageDesc desc;
+    desc.format = VK_FORMAT_R32G32_UINT;
+    desc.extent = {width, height, 1};
+    desc.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;  // readback source (TRANSFER_SRC is implied)
+    desc.name = "surface ids";
+    desc.category = "render targets";
+    vk::Image target = ctx_.createImage(desc);
+    struct DestroyOnExit {
+        vk::Context& ctx;
+        vk::Image& image;
+        ~DestroyOnExit() { ctx.destroyDeferred(image); }
+    } guard{ctx_, target};
+    VkCommandBuffer cmd = frames_.begin();
+    graph::RenderGraph graph(pool_, {width, height});
+    passes::IndirectDrawLog log;
+    try {
+        if (beforeFrame_) beforeFrame_(cmd);
+        frame::FrameContext f = frameContext(graph, camera, width, height, log);
+        graph::TextureHandle ids = graph.importTexture("surface ids", physicalOf(target), graph::ResourceState{},
+                                                       graph::FinalUse{graph::Access::TransferSrc});
+        frame::recordSurfaceIds(f, *gpuScene_, features_, ids);
+        graph.compile();
+        graph.execute(cmd);
+    } catch (...) {
+        if (!ctx_.deviceLost()) ctx_.waitFor(frames_.end());  // the frame slot stays usable (see renderOffscreen)
+        throw;
+    }
+    ctx_.waitFor(frames_.end());
+    hasTimings_ = false;
+    const std::vector<uint8_t> bytes = vk::readbackImage(ctx_, target, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    std::vector<glm::uvec2> ids(size_t(width) * height);
+    std::memcpy(ids.data(), bytes.data(), std::min(bytes.size(), ids.size() * sizeof(glm::uvec2)));
+    return ids;
+}
+
+void Renderer::warmUpCulling(const scene::CameraView& camera, uint32_t width, uint32_t height) {
+    if (!gpuScene_) throw std::logic_error("Renderer::renderStill: call setScene first");
+    VkCommandBuffer cmd = frames_.begin();
+    graph::RenderGraph graph(pool_, {width, height});
+    passes::IndirectDrawLog log;
+    try {
+        if (beforeFrame_) beforeFrame_(cmd);
+        frame::FrameContext f = frameContext(graph, camera, width, height, log);
+        frame::recordCullingWarmup(f, *gpuScene_, features_);
+        graph.compile();
+        graph.execute(cmd);
+    } catch (...) {
+        if (!ctx_.deviceLost()) ctx_.waitFor(frames_.end());  // the frame slot stays usable (see renderOffscreen)
+        throw;
+    }
+    ctx_.waitFor(frames_.end());
+    hasTimings_ = false;  // the next frame's timestamps replace these
 }
 
 // ---- renderFrame: the viewer's path (same frame graph, no readback, caller's passes after it) ----
@@ -178,7 +253,11 @@ FrameInfo Renderer::renderFrame(const scene::CameraView& camera, const FrameTarg
     // before this frame resets them (the viewer trades CPU/GPU overlap for per-pass timings every frame).
     FrameInfo info;
     ctx_.waitFor(lastFrameValue_);
-    if (hasTimings_) info.passTimes = backend_.passTimings();
+    if (hasTimings_) {
+        info.passTimes = backend_.passTimings();
+        info.culling = cullingStats();  // read before this frame's culling passes are recorded
+        info.geometryPath = features_.culling.lastGeometryPath();
+    }
 
     if (!sceneImage_ || sceneImage_.extent.width != width || sceneImage_.extent.height != height) {
         if (sceneImage_) ctx_.destroyDeferred(sceneImage_);

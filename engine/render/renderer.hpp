@@ -42,6 +42,7 @@ struct FrameResult {
     // the coarse cells' anchors with VRS on (frame/vrs_feature.hpp), whatever the rung. 0 for Lambert.
     uint64_t shadingInvocations = 0;
     std::vector<passes::CullingViewStats> culling;  // GPU culling's counters per view (empty: culling off)
+    std::string geometryPath;  // PBR: the camera G-buffer's path, frame::CullingFeature::lastGeometryPath()
 };
 
 // renderFrame's target: the caller's colour image (e.g. a swapchain image). The frame is rendered exactly as
@@ -61,6 +62,10 @@ struct FrameInfo {
     std::vector<std::string> passesRun;      // this frame's execution order after culling
     std::vector<vk::ScopeTiming> passTimes;  // GPU time per pass of the PREVIOUS frame (empty for the first)
     uint64_t timelineValue = 0;              // signalled when this frame's commands completed
+    // GPU culling's counters per view of the PREVIOUS frame (empty for the first, or when it did not cull) and
+    // the geometry path its camera G-buffer took (FrameResult's fields, one frame later).
+    std::vector<passes::CullingViewStats> culling;
+    std::string geometryPath;
 };
 
 class Renderer {
@@ -76,8 +81,18 @@ public:
     void setPose(const scene::Scene& scene);
     FrameResult renderOffscreen(const scene::CameraView& camera, uint32_t width, uint32_t height);
     // A still image: with temporal anti-aliasing, a fresh history and settings.temporal.frames jittered frames of
-    // the unmoving camera (the last one is returned); otherwise one renderOffscreen.
+    // the unmoving camera (the last one is returned); otherwise one renderOffscreen. With --culling hiz the frame
+    // is preceded by warm-up frames up to the G-buffer (two frames in all before it), so its early phase draws
+    // what is visible (the image is the same either way; the counters show two-phase occlusion, as in the
+    // viewer's steady state).
     FrameResult renderStill(const scene::CameraView& camera, uint32_t width, uint32_t height);
+    // The surface-ID buffer of the unculled G-buffer (PBR): per pixel, row-major from the top, the GpuScene draw and
+    // its triangle (gl_PrimitiveID) that the depth test kept, {~0u, ~0u} for the background. The ground truth of
+    // which draws and triangles are visible (culling benchmarks). Needs the geometryShader feature.
+    std::vector<glm::uvec2> renderSurfaceIds(const scene::CameraView& camera, uint32_t width, uint32_t height);
+    // GPU culling's per-draw visibility bits (two-phase occlusion: what the last late phase found visible; empty
+    // before a culled frame). Valid once that frame has finished.
+    std::vector<uint32_t> cullingVisibility() const { return features_.culling.visibilityBits(); }
     // Renders into target.image (size = its extent) and submits without waiting for the GPU (PBR shading,
     // Display output; throws std::logic_error otherwise). Before recording it waits for this renderer's previous
     // frame, so that frame's pass timings can be read and its resources reused.
@@ -114,6 +129,12 @@ private:
     // (already marked as the graph's output).
     graph::TextureHandle renderPbr(graph::RenderGraph& graph, const scene::CameraView& camera, uint32_t width,
                                    uint32_t height, const vk::Image& target, passes::IndirectDrawLog& log);
+    frame::FrameContext frameContext(graph::RenderGraph& graph, const scene::CameraView& camera, uint32_t width,
+                                     uint32_t height, passes::IndirectDrawLog& log);
+    // renderStill's warm-up for --culling hiz: the frame up to the G-buffer (frame::recordCullingWarmup).
+    // The culling counters of the last frame (camera, then point-shadow faces); valid once it has finished.
+    std::vector<passes::CullingViewStats> cullingStats() const;
+    void warmUpCulling(const scene::CameraView& camera, uint32_t width, uint32_t height);
 
     vk::Context& ctx_;
     vk::ShaderLibrary& shaders_;

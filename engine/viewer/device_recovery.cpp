@@ -16,7 +16,9 @@
 #include <cstdio>
 
 #include "app/cli_context.hpp"
+#include "core/cli.hpp"
 #include "core/log.hpp"
+#include "frame/culling_feature.hpp"
 #include "vk/check.hpp"
 
 namespace idk::viewer {
@@ -30,6 +32,8 @@ void Viewer::createDevice() {
     desc.presentation = true;
     ctx = std::make_unique<vk::Context>(desc);
     app::checkForcedRungs(*ctx);  // a rung this device cannot run: exit 2
+    if (std::string e = frame::CullingFeature::geometryError(*ctx, options.settings.culling); !e.empty())
+        throw core::CliError(e);  // --geometry mesh without mesh shaders: exit 2 too
     surface = window->createSurface(ctx->instance());
     vk::SwapchainDesc sc;
     sc.surface = surface;

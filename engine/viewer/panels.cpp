@@ -80,6 +80,34 @@ void rendererPanel(Viewer& v) {
     ImGui::Text("present mode %s, %ux%u", mode, v.swapchain->extent().width, v.swapchain->extent().height);
 }
 
+// GPU culling's counters of the previous frame, one row per view (the camera, then point-shadow cube faces).
+void cullingTable(const render::FrameInfo& frame) {
+    if (frame.culling.empty()) {
+        ImGui::TextDisabled("culling: off (geometry path %s)", frame.geometryPath.empty() ? "-" : frame.geometryPath.c_str());
+        return;
+    }
+    ImGui::Text("culling (previous frame), camera geometry path: %s", frame.geometryPath.c_str());
+    if (!ImGui::BeginTable("culling", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) return;
+    ImGui::TableSetupColumn("view");
+    ImGui::TableSetupColumn("instances drawn/tested");
+    ImGui::TableSetupColumn("meshlets drawn/tested");
+    ImGui::TableSetupColumn("triangles");
+    ImGui::TableHeadersRow();
+    for (const passes::CullingViewStats& c : frame.culling) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(c.view.c_str());
+        ImGui::TableNextColumn();
+        ImGui::Text("%u / %u", c.instancesDrawn, c.instancesTested);
+        ImGui::TableNextColumn();
+        if (c.meshlets) ImGui::Text("%u / %u", c.meshletsDrawn, c.meshletsTested);
+        else ImGui::TextDisabled("-");
+        ImGui::TableNextColumn();
+        ImGui::Text("%u", c.trianglesDrawn);
+    }
+    ImGui::EndTable();
+}
+
 void framePanel(Viewer& v) {
     if (!ImGui::CollapsingHeader("Frame", ImGuiTreeNodeFlags_DefaultOpen)) return;
     std::vector<float> ms(v.state.frameMs.begin(), v.state.frameMs.end());
@@ -104,6 +132,7 @@ void framePanel(Viewer& v) {
         ImGui::EndTable();
     }
     ImGui::Text("GPU total %.3f ms (previous frame)", total);
+    cullingTable(v.state.lastFrame);
     const ui::UiFrameStats& u = v.ui->lastFrame();
     ImGui::Text("UI: %u draws, %u vertices", u.drawCalls, u.vertices);
 }

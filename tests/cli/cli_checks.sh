@@ -557,6 +557,85 @@ PY
     "$idk" render --size 8x8 --out "$tmp/x.png" --culling sometimes 2>"$tmp/err"; [ $? -eq 2 ] \
       || fail "--culling sometimes should exit 2"
     grep -q -- "off|frustum|hiz" "$tmp/err" || fail "error does not list the modes: $(cat "$tmp/err")"
+    # --stats (text) lists the counters per view.
+    "$idk" render "$scene" --size 48x32 --out "$tmp/st.png" --culling frustum --camera eye=3,2,6:target=-2,0,0 \
+      --stats >"$tmp/stats.txt" || fail "--stats failed"
+    grep -q "^culling (GPU counters per view, frustum" "$tmp/stats.txt" || fail "--stats lacks the culling block"
+    grep -q "camera .* of 125 instances drawn" "$tmp/stats.txt" || fail "--stats lacks the camera's counters: $(cat "$tmp/stats.txt")"
+    # A still with hiz renders two warm-ups up to the G-buffer first, so its early phase draws the visible set and
+    # occlusion culls: a wall filling the view with 36 cubes behind it (a glTF written here), hiz draws the wall
+    # only, the frustum all 37; the image equals --culling off.
+    python3 - "$tmp/wall.gltf" <<'PY' || fail "could not write the wall scene"
+import base64, json, struct, sys
+# A unit cube (24 vertices with face normals, 36 indices); a wall node (scaled cube) at z = 0 and a 6 x 6 grid of
+# cubes behind it (z < 0), all hidden from a camera at +z looking at the wall.
+pos, nrm, idx = [], [], []
+for axis in range(3):
+    for sign in (-1.0, 1.0):
+        n = [0.0, 0.0, 0.0]; n[axis] = sign
+        u, v = [(axis + 1) % 3, (axis + 2) % 3]
+        base = len(pos)
+        for a, b in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
+            p = [0.0, 0.0, 0.0]; p[axis] = 0.5 * sign; p[u] = 0.5 * a; p[v] = 0.5 * b
+            pos.append(p); nrm.append(n)
+        quad = [0, 1, 2, 0, 2, 3] if sign > 0 else [0, 2, 1, 0, 3, 2]
+        idx += [base + q for q in quad]
+blob = b"".join(struct.pack("<3f", *p) for p in pos) + b"".join(struct.pack("<3f", *n) for n in nrm) + \
+       b"".join(struct.pack("<H", i) for i in idx)
+nodes = [{"mesh": 0, "translation": [0, 0, 0], "scale": [12, 12, 0.2]}]
+nodes += [{"mesh": 0, "translation": [-4 + 1.6 * i, -4 + 1.6 * k, -3.0 - 0.5 * (i + k)]} for i in range(6) for k in range(6)]
+g = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": list(range(len(nodes)))}], "nodes": nodes,
+     "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2}]}],
+     "buffers": [{"byteLength": len(blob), "uri": "data:application/octet-stream;base64," + base64.b64encode(blob).decode()}],
+     "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 288}, {"buffer": 0, "byteOffset": 288, "byteLength": 288},
+                     {"buffer": 0, "byteOffset": 576, "byteLength": 72}],
+     "accessors": [{"bufferView": 0, "componentType": 5126, "count": 24, "type": "VEC3", "min": [-0.5] * 3, "max": [0.5] * 3},
+                   {"bufferView": 1, "componentType": 5126, "count": 24, "type": "VEC3"},
+                   {"bufferView": 2, "componentType": 5123, "count": 36, "type": "SCALAR"}]}
+json.dump(g, open(sys.argv[1], "w"))
+PY
+    for mode in off frustum hiz; do
+      "$idk" render "$tmp/wall.gltf" --size 64x64 --out "$tmp/wall_$mode.png" --culling $mode \
+        --camera eye=0,0,10:target=0,0,0 --json >"$tmp/wall_$mode.json" || fail "wall render $mode failed"
+    done
+    cmp -s "$tmp/wall_off.png" "$tmp/wall_hiz.png" || fail "hiz culling changed the image of the wall"
+    python3 - "$tmp/wall_frustum.json" "$tmp/wall_hiz.json" <<'PY' || fail "hiz did not cull the cubes behind the wall"
+import json, sys
+f, h = (json.load(open(p))["culling"]["camera"] for p in sys.argv[1:3])
+assert f["instancesTested"] == h["instancesTested"] == 37 and f["instancesDrawn"] == 37, f
+assert h["instancesDrawn"] == 1 and h["trianglesDrawn"] < f["trianglesDrawn"], (h, f)
+PY
+    # --geometry mesh|mdi: the task/mesh-shader path and vkCmdDrawIndexedIndirectCount give the same image; --json
+    # records the path that ran (auto: the ladder's rung; culling off: one indirect draw of every instance).
+    "$idk" render "$scene" --size 48x32 --out "$tmp/mdi.png" --culling hiz --geometry mdi \
+      --camera eye=3,2,6:target=-2,0,0 --json >"$tmp/mdi.json" || fail "--geometry mdi failed"
+    grep -q '"geometryPath": "mdi"' "$tmp/mdi.json" || fail "--geometry mdi: --json lacks geometryPath mdi"
+    grep -q '"geometry": "mdi"' "$tmp/mdi.json" || fail "--geometry mdi: settings lack geometry mdi"
+    grep -q '"meshletsDrawn"' "$tmp/mdi.json" && fail "--geometry mdi reports meshlet counters"
+    cmp -s "$tmp/off.png" "$tmp/mdi.png" || fail "--geometry mdi changed the image"
+    grep -q '"geometryPath": "indirect"' "$tmp/off.json" || fail "--culling off: geometryPath is not indirect"
+    if "$idk" render "$scene" --size 48x32 --out "$tmp/mesh.png" --culling hiz --geometry mesh \
+        --camera eye=3,2,6:target=-2,0,0 --json >"$tmp/mesh.json" 2>"$tmp/err"; then
+      grep -q '"geometryPath": "mesh"' "$tmp/mesh.json" || fail "--geometry mesh: --json lacks geometryPath mesh"
+      grep -q '"meshletsDrawn"' "$tmp/mesh.json" || fail "--geometry mesh: no meshlet counters"
+      cmp -s "$tmp/mdi.png" "$tmp/mesh.png" || fail "--geometry mesh and mdi give different images"
+      # --fallback takes the MDI rung for auto; an explicit --geometry mesh still runs the mesh path.
+      "$idk" render "$scene" --size 48x32 --out "$tmp/meshfb.png" --fallback --geometry mesh \
+        --camera eye=3,2,6:target=-2,0,0 --json >"$tmp/meshfb.json" || fail "--fallback --geometry mesh failed"
+      grep -q '"geometryPath": "mesh"' "$tmp/meshfb.json" || fail "--fallback --geometry mesh did not run the mesh path"
+    else
+      [ $? -eq 2 ] && grep -q -- "--geometry mesh.*VK_EXT_mesh_shader" "$tmp/err" \
+        || fail "--geometry mesh failed without naming the missing extension: $(cat "$tmp/err")"
+    fi
+    "$idk" render "$scene" --size 48x32 --out "$tmp/auto.png" --fallback --camera eye=3,2,6:target=-2,0,0 --json \
+      >"$tmp/auto.json" || fail "--fallback render failed"
+    grep -q '"geometryPath": "mdi"' "$tmp/auto.json" || fail "--fallback with --geometry auto did not take MDI"
+    "$idk" render --size 8x8 --out "$tmp/x.png" --culling off --geometry mesh 2>"$tmp/err"; [ $? -eq 2 ] \
+      || fail "--geometry mesh with --culling off should exit 2"
+    grep -q -- "--geometry mesh" "$tmp/err" || fail "error does not name --geometry: $(cat "$tmp/err")"
+    "$idk" render --size 8x8 --out "$tmp/x.png" --geometry triangles 2>"$tmp/err"; [ $? -eq 2 ] \
+      || fail "--geometry triangles should exit 2"
+    grep -q -- "auto|mesh|mdi" "$tmp/err" || fail "error does not list the geometry paths: $(cat "$tmp/err")"
     ;;
   temporal_flags)
     # Issue 12: --aa taa runs --temporal-frames jittered frames for a still (TAA passes listed), --bloom adds the

@@ -1,0 +1,70 @@
+// gbuffer_fragment.glsl: the G-buffer fragment shader's body (gbuffer/gbuffer.frag.glsl), shared with its
+// surface-ID variant (gbuffer/gbuffer_ids.frag.glsl, GBUFFER_IDS defined) so that both keep exactly the same
+// fragments: same material sampling, alpha MASK and single-sided facing discards.
+#include "scene_buffers.glsl"
+#include "bindless.glsl"
+#include "octahedral.glsl"
+#include "color.glsl"
+#include "material_eval.glsl"
+
+layout(push_constant, scalar) uniform Push { GBufferPush p; };
+
+layout(location = 0) in vec3 inWorldPosition;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec4 inTangent;
+layout(location = 3) in vec2 inUv;
+layout(location = 4) flat in uint inDraw;
+layout(location = 5) in vec4 inColor;
+layout(location = 6) in vec2 inUv1;
+
+layout(location = 0) out vec4 outAlbedo;    // RGBA8: sRGB-encoded base colour, alpha
+layout(location = 1) out uint outNormal;    // R32UI: octahedral world normal (facing the viewer's side)
+layout(location = 2) out vec4 outMaterial;  // RGBA8: metallic, roughness, occlusion, lit (0: unlit)
+layout(location = 3) out vec4 outEmissive;  // RGBA16F: emitted radiance, alpha: layered material index + 1
+layout(location = 4) out float outDepth;    // R32F: the fragment's depth (what the depth test kept)
+#ifdef GBUFFER_IDS
+layout(location = 5) out uvec2 outIds;      // RG32UI: the draw and its triangle (gl_PrimitiveID) of the kept fragment
+#endif
+
+vec4 sampleSlot(GpuTextureSlot slot) { return sampleMaterialSlot(slot, inUv, inUv1); }
+
+void main() {
+    GpuInstance instance = InstanceBuffer(p.instances).data[inDraw];
+    uint materialIndex = MeshBuffer(p.meshes).data[instance.mesh].material;
+    GpuMaterial m = MaterialBuffer(p.materials).data[nonuniformEXT(materialIndex)];
+
+    // Every sample happens before any discard so implicit derivatives stay defined for the whole quad.
+    vec4 baseColor = m.baseColorFactor * sampleSlot(m.slots[kSlotBaseColor]) * inColor;
+    vec4 mr = sampleSlot(m.slots[kSlotMetallicRoughness]);
+    vec4 nt = sampleSlot(m.slots[kSlotNormal]);
+    float ao = sampleSlot(m.slots[kSlotOcclusion]).r;
+    vec3 emissive = m.emissiveFactor * sampleSlot(m.slots[kSlotEmissive]).rgb;
+
+    vec3 n = normalize(inNormal);
+    vec3 t, b;
+    bool haveFrame = materialTangentFrame(n, inTangent, inWorldPosition, inUv, t, b);
+    vec2 xy = nt.xy * 2.0 - 1.0;                          // remap first, then reconstruct z from it
+    vec3 tn = vec3(xy * m.normalScale, sqrt(max(1.0 - dot(xy, xy), 0.0)));
+    if (haveFrame) n = normalize(t * tn.x + b * tn.y + n * tn.z);
+
+    // Single-sided materials reject back faces here rather than with the pipeline's cull mode, so that one
+    // indirect draw covers single- and double-sided materials (and mirrored instances flip the test).
+    bool front = gl_FrontFacing != ((instance.flags & kInstanceMirrored) != 0u);
+    bool doubleSided = (m.flags & kMaterialDoubleSided) != 0u;
+    if ((!front && !doubleSided) || (m.alphaMode == kAlphaMask && baseColor.a < m.alphaCutoff)) discard;
+    if (!front) n = -n;
+
+    outAlbedo = vec4(srgbEncode(baseColor.rgb), m.alphaMode == kAlphaOpaque ? 1.0 : baseColor.a);
+    outNormal = packSnorm2x16(octEncode(n));
+    outMaterial = vec4(clamp(m.metallicFactor * mr.b, 0.0, 1.0), clamp(m.roughnessFactor * mr.g, 0.0, 1.0),
+                       1.0 + m.occlusionStrength * (ao - 1.0), (m.flags & kMaterialUnlit) != 0u ? 0.0 : 1.0);
+    // Emissive alpha: 1 + the material index when the material uses a BSDF extension (the lighting pass reads its
+    // factors from the material buffer), else 0. RGBA16F holds integers exactly up to 2048; a material past that
+    // is shaded without its extensions (a real renderer with more would add an R16UI target).
+    bool layered = (m.flags & kMaterialLayers) != 0u && materialIndex < 2047u;
+    outEmissive = vec4(emissive, layered ? float(materialIndex + 1u) : 0.0);
+    outDepth = gl_FragCoord.z;
+#ifdef GBUFFER_IDS
+    outIds = uvec2(inDraw, uint(gl_PrimitiveID));
+#endif
+}

@@ -13,7 +13,7 @@ passes::VoxelGridBox fitVoxelGrid(const scene::Aabb& bounds, uint32_t n) {
     box.size = n;
     if (bounds.empty()) return box;
     const glm::vec3 extent = bounds.max - bounds.min;
-    const float side = std::max({extent.x, extent.y, extent.z, 1e-3f}) * float(n) / float(n - 1);
+    const float side = std::max({extent.x, extent.y, extent.z, 1e-3f}) * float(n) / float(n - 2 * kVoxelGridMargin);
     box.voxelSize = side / float(n);
     box.gridMin = (bounds.min + bounds.max) * 0.5f - glm::vec3(side * 0.5f);
     return box;

@@ -16,8 +16,11 @@
 
 namespace idk::frame {
 
-// The grid's cube around `bounds`: centred on it, side = its largest extent * n / (n - 1), i.e. half a voxel of
-// margin on each side so that surfaces on the bounds lie on voxel centres, not on voxel faces.
+// The grid's cube around `bounds`: centred on it, side = its largest extent * n / (n - 5), i.e. 2.5 voxels of
+// margin on each side: surfaces on the bounds lie on voxel centres (not on voxel faces), and a cone's coarse cells
+// around a wall on the bounds still lie inside the grid (the border reads transparent black, so a wall whose cell
+// half leaves the grid would fade by half).
+inline constexpr float kVoxelGridMargin = 2.5f;
 passes::VoxelGridBox fitVoxelGrid(const scene::Aabb& bounds, uint32_t n);
 
 class VxgiFeature {
@@ -33,6 +36,9 @@ public:
     // The grid of the last frame (RGBA16F, size^3; left in GENERAL layout) or nullptr: tests read it back.
     const vk::Image* grid() const noexcept { return grid_.image.image ? &grid_.image : nullptr; }
     const passes::VoxelGridBox& box() const noexcept { return box_; }
+    // The six directional mip volumes (+x -x +y -y +z -z; left where the cone tracer sampled them): tests read
+    // them back for the CPU cone tracer.
+    const std::array<VoxelVolume, 6>& directions() const noexcept { return directions_; }
 
 private:
     void release();

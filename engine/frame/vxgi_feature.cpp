@@ -13,7 +13,7 @@ passes::VoxelGridBox fitVoxelGrid(const scene::Aabb& bounds, uint32_t n) {
     box.size = n;
     if (bounds.empty()) return box;
     const glm::vec3 extent = bounds.max - bounds.min;
-    const float side = std::max({extent.x, extent.y, extent.z, 1e-3f}) * float(n) / float(n - 2 * kVoxelGridMargin);
+    const float side = std::max({extent.x, extent.y, extent.z, 1e-3f}) * float(n) / float(n - 1);
     box.voxelSize = side / float(n);
     box.gridMin = (bounds.min + bounds.max) * 0.5f - glm::vec3(side * 0.5f);
     return box;
@@ -48,7 +48,9 @@ void VxgiFeature::addPasses(FrameContext& f) {
                                 "vxgi mips -z"};
         for (uint32_t d = 0; d < 6; ++d) directions_[d].create(ctx_, names[d], half, levels);
         vk::SamplerDesc sampler;
-        sampler.address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;  // transparent black: outside = empty
+        // Clamp to edge: a coarse cell holding a wall on the grid's bounds reads as that wall up to the march's end
+        // (one cell outside), where a transparent border would blend it away by up to half.
+        sampler.address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
         sampler_ = ctx_.bindless().addSampler(sampler);
     }
     box_ = fitVoxelGrid(bounds_, s.voxels);

@@ -16,11 +16,9 @@
 
 namespace idk::frame {
 
-// The grid's cube around `bounds`: centred on it, side = its largest extent * n / (n - 5), i.e. 2.5 voxels of
-// margin on each side: surfaces on the bounds lie on voxel centres (not on voxel faces), and a cone's coarse cells
-// around a wall on the bounds still lie inside the grid (the border reads transparent black, so a wall whose cell
-// half leaves the grid would fade by half).
-inline constexpr float kVoxelGridMargin = 2.5f;
+// The grid's cube around `bounds`: centred on it, side = its largest extent * n / (n - 1), i.e. half a voxel of
+// margin on each side so that surfaces on the bounds lie on voxel centres, not on voxel faces. (The cone tracer
+// samples with clamp-to-edge, so a wall on the bounds does not fade into the border at coarse levels.)
 passes::VoxelGridBox fitVoxelGrid(const scene::Aabb& bounds, uint32_t n);
 
 class VxgiFeature {

@@ -128,7 +128,7 @@ IDK_INLINE bool vxgiMarchNext(IDK_INOUT(VxgiMarch) m, vec3 gridMin, float voxelS
     float gridWorld = voxelSize * float(gridSize);
     vec3 x = m.origin + m.dir * m.dist;
     m.uvw = (x - gridMin) / gridWorld;
-    float margin = m.cell / gridWorld;  // a sample within one cell of the grid still reads its border cells
+    float margin = m.cell / gridWorld;  // a sample within one cell of the grid still reads its edge cells
     return m.uvw.x >= -margin && m.uvw.y >= -margin && m.uvw.z >= -margin && m.uvw.x <= 1.0f + margin &&
            m.uvw.y <= 1.0f + margin && m.uvw.z <= 1.0f + margin;
 }

@@ -3,6 +3,7 @@
 
 #include <glm/gtc/packing.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #include "graph/barrier_planner.hpp"
@@ -56,7 +57,9 @@ VoxelVolumeData readVoxelVolume(vk::Context& ctx, const vk::Image& image, uint32
 namespace {
 
 glm::vec4 texel(const std::vector<glm::vec4>& level, int s, int x, int y, int z) {
-    if (x < 0 || y < 0 || z < 0 || x >= s || y >= s || z >= s) return glm::vec4(0.0f);  // transparent black border
+    x = std::clamp(x, 0, s - 1);  // clamp to edge
+    y = std::clamp(y, 0, s - 1);
+    z = std::clamp(z, 0, s - 1);
     return level[(size_t(z) * s + y) * s + x];
 }
 

@@ -1,7 +1,7 @@
 // vxgi_cone_oracle.hpp: a CPU voxel cone tracer over a grid and mip chain read back from the GPU: the oracle of
 // the cone-tracing pass (passes/vxgi_cone_trace.cpp). The cone set, the march and the compositing are the shader's
-// own source (shared/vxgi_cone.h compiled as C++); what this file adds is Vulkan's trilinear fetch (clamp to a
-// transparent-black border, linear between mip levels) over the read-back volumes, and a constant sky. Test
+// own source (shared/vxgi_cone.h compiled as C++); what this file adds is Vulkan's trilinear fetch (clamp to edge,
+// linear between mip levels) over the read-back volumes, and a constant sky. Test
 // support, no IDKEngine counterpart.
 #pragma once
 #include <glm/glm.hpp>
@@ -34,7 +34,7 @@ struct ConeGridData {
 // Reads `levels` mip levels of an RGBA16F 3D image left in `layout` (it is left there again).
 VoxelVolumeData readVoxelVolume(vk::Context& ctx, const vk::Image& image, uint32_t levels, VkImageLayout layout);
 
-// Vulkan's linear-mipmap trilinear fetch at normalized `uvw`, level `lod`, border transparent black.
+// Vulkan's linear-mipmap trilinear fetch at normalized `uvw`, level `lod`, clamp to edge.
 glm::vec4 sampleVolumeOnCpu(const VoxelVolumeData& v, glm::vec3 uvw, float lod);
 
 // The cone from receiver `origin` (geometric normal `plane`) along unit `dir`: the radiance it gathers, the rest

@@ -1,12 +1,22 @@
-// vxgi_bench.cpp: voxel global illumination on the embedded Cornell box and two shared scenes at 128x128, next to --gi none and the path
-// tracer. Error: relative L1 of the whole HDR frame (sum |a - b| / sum b over RGB) against the path tracer's image
-// of the same camera at 1024 spp (computed once per process, not timed).
+// vxgi_bench.cpp: voxel global illumination on the embedded Cornell box and two shared scenes at 128x128, next to
+// --gi none and the path tracer. Errors are relative L1 (sum |a - b| / sum b over RGB) against a depth-matched
+// path-traced reference of the same camera (1024 spp, computed once per process, not timed): VXGI carries one
+// bounce, so the reference traces maxDepth 2 (camera segment + one bounce of emission and sky), 3 where the scene
+// has punctual lights (their light then also bounces once).
+//  * rel_error: the whole HDR frame against that reference.
+//  * rel_error_indirect: the indirect term: the frame minus the direct frame (--gi none with the environment off:
+//    emission and punctual lights with their shadows), against the reference minus the path tracer's direct frame
+//    (maxDepth one less, environment off, 1024 spp).
+//  * pt_ms_same_error (VXGI rows): the path tracer's time to reach the frame's indirect error at the same depth,
+//    interpolated log-log between runs at 1, 2, 4, ... 64 spp (beyond 64: extrapolated as error ~ 1/sqrt(spp),
+//    pt_extrapolated = 1); pt_time_ratio = that time / the frame's time.
 // BM_VxgiCornell/N: one rasterized frame with --gi vxgi at N^3 voxels (warm renderer: the voxelization, mips and
 // cone tracing run every frame), GPU pass times as counters. BM_VxgiCornellOff: the same frame with --gi none.
-// BM_VxgiPathTraced/S: the path tracer at S spp (the peer: the time it takes for its own error).
+// BM_VxgiPathTraced/S: the path tracer at S spp and the reference's depth (the peer: the time for its own error).
 // BM_VxgiShared/K/N, BM_VxgiSharedOff/K, BM_VxgiSharedPathTraced/K/S: the same three on shared scene K
 // (../shared/scenes, default camera, no texture streaming in either renderer): 0 EmissiveStrengthTest (emitters
-// lighting their neighbours), 1 SimpleInstancing (instanced cubes under the sky); reference 1024 spp.
+// lighting their neighbours), 1 SimpleInstancing (instanced cubes under the sky).
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <string>
@@ -33,12 +43,17 @@ double relativeL1(const core::ImageRgba32f& a, const core::ImageRgba32f& b) {
     return diff / sum;
 }
 
-core::ImageRgba32f pathTrace(const scene::Scene& scene, uint32_t spp) {
-    render::PathTracer tracer(*context(), *shaders(), scene);
-    render::PathTraceSettings settings;
-    settings.spp = spp;
-    settings.seed = 7;
-    return tracer.render(scene::defaultCamera(scene), kSize, kSize, settings).image;
+// Relative L1 of (a - aBase) against (b - bBase): the error of an indirect term.
+double indirectL1(const core::ImageRgba32f& a, const core::ImageRgba32f& aBase, const core::ImageRgba32f& b,
+                  const core::ImageRgba32f& bBase) {
+    double diff = 0.0, sum = 0.0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        if (i % 4 == 3) continue;
+        const double x = double(a.pixels[i]) - aBase.pixels[i], y = double(b.pixels[i]) - bBase.pixels[i];
+        diff += std::abs(x - y);
+        sum += std::abs(y);
+    }
+    return diff / sum;
 }
 
 // Scene K: -1 the embedded Cornell box, else kSharedScenes[K].
@@ -52,29 +67,93 @@ std::string sceneLabel(int k) {
     return (k < 0 ? std::string("Cornell box (embedded)") : std::string(kSharedScenes[k])) + ", 128x128";
 }
 
-const core::ImageRgba32f& reference(int k, const scene::Scene& scene) {
-    static std::map<int, core::ImageRgba32f> images;
-    auto it = images.find(k);
-    if (it == images.end()) it = images.emplace(k, pathTrace(scene, 1024)).first;
-    return it->second;
+uint32_t matchedDepth(const scene::Scene& scene) { return scene.lights.empty() ? 2u : 3u; }
+
+// One path-traced image and its wall time (ms); environment on or off.
+core::ImageRgba32f pathTrace(const scene::Scene& scene, uint32_t spp, uint32_t depth, uint32_t seed, bool environment,
+                             double* ms = nullptr) {
+    render::PathTracerOptions options;
+    options.environmentIntensity = environment ? 1.0f : 0.0f;
+    render::PathTracer tracer(*context(), *shaders(), scene, options);
+    render::PathTraceSettings settings;
+    settings.spp = spp;
+    settings.maxDepth = depth;
+    settings.seed = seed;
+    if (ms) tracer.render(scene::defaultCamera(scene), kSize, kSize, settings);  // warm-up: pipelines, tables
+    const auto t0 = std::chrono::steady_clock::now();
+    core::ImageRgba32f image = tracer.render(scene::defaultCamera(scene), kSize, kSize, settings).image;
+    if (ms) *ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return image;
+}
+
+struct Reference {
+    core::ImageRgba32f full, direct;  // depth-matched frame; its direct part (one segment less, environment off)
+    uint32_t depth = 2;
+    std::vector<std::pair<double, double>> ptCurve;  // (ms, indirect error) of the path tracer at 1..64 spp
+};
+
+const Reference& reference(int k, const scene::Scene& scene) {
+    static std::map<int, Reference> refs;
+    auto it = refs.find(k);
+    if (it != refs.end()) return it->second;
+    Reference r;
+    r.depth = matchedDepth(scene);
+    r.full = pathTrace(scene, 1024, r.depth, 7, true);
+    r.direct = pathTrace(scene, 1024, r.depth - 1, 7, false);
+    for (uint32_t spp = 1; spp <= 64; spp *= 2) {
+        double ms = 0.0;
+        const core::ImageRgba32f img = pathTrace(scene, spp, r.depth, 1, true, &ms);
+        r.ptCurve.push_back({ms, indirectL1(img, r.direct, r.full, r.direct)});
+    }
+    return refs.emplace(k, std::move(r)).first->second;
+}
+
+// The path tracer's time to reach indirect error `e` on its (ms, error) curve; `extrapolated` when below its end.
+double ptTimeForError(const std::vector<std::pair<double, double>>& curve, double e, bool& extrapolated) {
+    extrapolated = false;
+    if (e >= curve.front().second) return curve.front().first;
+    for (size_t i = 1; i < curve.size(); ++i) {
+        const auto [t0, e0] = curve[i - 1];
+        const auto [t1, e1] = curve[i];
+        if (e >= e1) {
+            const double f = std::log(e0 / e) / std::log(e0 / e1);  // log-log interpolation
+            return std::exp(std::log(t0) + f * (std::log(t1) - std::log(t0)));
+        }
+    }
+    extrapolated = true;  // error ~ 1/sqrt(spp), time ~ spp
+    const auto [t, last] = curve.back();
+    return t * (last / e) * (last / e);
+}
+
+core::ImageRgba32f rasterDirect(const scene::Scene& scene) {
+    render::RenderSettings settings;
+    settings.output = render::OutputKind::Hdr;
+    settings.environmentIntensity = 0.0f;
+    render::Renderer renderer(*context(), *shaders(), settings);
+    renderer.setScene(scene);
+    return renderer.renderOffscreen(scene::defaultCamera(scene), kSize, kSize).image;
 }
 
 void rasterFrames(benchmark::State& state, int k, frame::GiMode gi, uint32_t voxels, const char* settingsText,
                   const std::string& peer) {
     if (!requireDevice(state)) return;
     scene::Scene scene = loadScene(k);
-    const core::ImageRgba32f& ref = reference(k, scene);
+    const Reference& ref = reference(k, scene);
+    const core::ImageRgba32f direct = rasterDirect(scene);
     render::RenderSettings settings;
     settings.output = render::OutputKind::Hdr;
     settings.vxgi.mode = gi;
     settings.vxgi.voxels = voxels;
     context()->clearConsultedLadders();
-    double gpuMs = 0.0, error = 0.0;
+    double gpuMs = 0.0, error = 0.0, indirect = 0.0, wallMs = 0.0;
     std::map<std::string, double> passMs;
     {
         render::Renderer renderer(*context(), *shaders(), settings);
         renderer.setScene(scene);
-        error = relativeL1(renderer.renderOffscreen(scene::defaultCamera(scene), kSize, kSize).image, ref);
+        const core::ImageRgba32f first = renderer.renderOffscreen(scene::defaultCamera(scene), kSize, kSize).image;
+        error = relativeL1(first, ref.full);
+        indirect = indirectL1(first, direct, ref.full, ref.direct);
+        const auto t0 = std::chrono::steady_clock::now();
         for (auto _ : state) {
             render::FrameResult frame = renderer.renderOffscreen(scene::defaultCamera(scene), kSize, kSize);
             for (const vk::ScopeTiming& t : frame.passTimes) {
@@ -83,10 +162,20 @@ void rasterFrames(benchmark::State& state, int k, frame::GiMode gi, uint32_t vox
             }
             benchmark::DoNotOptimize(frame.image.pixels.data());
         }
+        wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     }
     const double iterations = double(state.iterations());
     state.counters["gpu_ms"] = gpuMs / iterations;
     state.counters["rel_error"] = error;
+    state.counters["rel_error_indirect"] = indirect;
+    state.counters["reference_depth"] = double(ref.depth);
+    if (gi == frame::GiMode::Vxgi) {
+        bool extrapolated = false;
+        const double ptMs = ptTimeForError(ref.ptCurve, indirect, extrapolated);
+        state.counters["pt_ms_same_error"] = ptMs;
+        state.counters["pt_extrapolated"] = extrapolated ? 1.0 : 0.0;
+        state.counters["pt_time_ratio"] = ptMs / (wallMs / iterations);  // against the frame's wall time
+    }
     for (const auto& [name, ms] : passMs) state.counters["pass_ms." + name] = ms / iterations;
     setRow(state, {"vxgi", sceneLabel(k), settingsText, rungsThatRan(context()->consultedLadders()), peer, "ours",
                    "real"});
@@ -108,22 +197,27 @@ BENCHMARK(BM_VxgiCornellOff)->UseRealTime()->MinTime(0.5)->Unit(benchmark::kMill
 void pathTracedFrames(benchmark::State& state, int k, uint32_t spp) {
     if (!requireDevice(state)) return;
     scene::Scene scene = loadScene(k);
-    const core::ImageRgba32f& ref = reference(k, scene);
+    const Reference& ref = reference(k, scene);
     context()->clearConsultedLadders();
-    double error = 0.0;
+    double error = 0.0, indirect = 0.0;
     {
         render::PathTracer tracer(*context(), *shaders(), scene);
         render::PathTraceSettings settings;
         settings.spp = spp;
+        settings.maxDepth = ref.depth;
         settings.seed = 1;  // another sequence than the reference's
         for (auto _ : state) {
             render::PathTraceResult r = tracer.render(scene::defaultCamera(scene), kSize, kSize, settings);
-            error = relativeL1(r.image, ref);
+            error = relativeL1(r.image, ref.full);
+            indirect = indirectL1(r.image, ref.direct, ref.full, ref.direct);
             benchmark::DoNotOptimize(r.image.pixels.data());
         }
     }
     state.counters["rel_error"] = error;
-    setRow(state, {"vxgi", sceneLabel(k), std::to_string(spp) + " spp path tracer, warm",
+    state.counters["rel_error_indirect"] = indirect;
+    state.counters["reference_depth"] = double(ref.depth);
+    setRow(state, {"vxgi", sceneLabel(k),
+                   std::to_string(spp) + " spp path tracer, maxDepth " + std::to_string(ref.depth) + ", warm",
                    rungsThatRan(context()->consultedLadders()), "", "peer", "real"});
 }
 

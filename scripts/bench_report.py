@@ -7,7 +7,7 @@ usage: scripts/bench_report.py [--compact] RESULTS.json OUT.md
 Each benchmark carries its row metadata in its label (bench/bench_support.hpp, setRow): group, input,
 settings, rung, role (ours|peer), time (cpu|real|manual: which time the median is read from) and peer (the
 names of the peer benchmarks, comma-separated). Rows are built from the "median" aggregates only; one row per
-(ours, peer) pair, with the ratio ours / peer. Counters named "mismatches", "rel_error", "psnr_db" and "flip" fill the error
+(ours, peer) pair, with the ratio ours / peer. Counters named "mismatches", "rel_error", "rel_error_indirect", "psnr_db" and "flip" fill the error
 column; "pass_ms.<pass>" counters become one row per GPU pass; other counters are listed with the settings.
 
 --compact rewrites RESULTS.json keeping only the median and cv aggregates (NaN written as null), so the
@@ -22,7 +22,7 @@ import re
 import sys
 
 GROUP_ORDER = ["compute", "render graph", "render", "scene loading", "scenes", "bvh"]
-ERROR_COUNTERS = {"mismatches", "rel_error", "psnr_db", "flip"}
+ERROR_COUNTERS = {"mismatches", "rel_error", "rel_error_indirect", "psnr_db", "flip"}
 HIDDEN_COUNTERS = {"items_per_second", "bytes_per_second", "gpu_ms"}
 SUFFIX = re.compile(r"/(iterations:\d+|min_time:[0-9.]+|manual_time|real_time|repeats:\d+|threads:\d+)")
 
@@ -104,6 +104,8 @@ class Result:
             parts.append(f"{fmt_number(self.counters['mismatches'])} mismatches")
         if "rel_error" in self.counters:
             parts.append(f"{self.counters['rel_error']:.2g} relative")
+        if "rel_error_indirect" in self.counters:  # the indirect term alone (e.g. VXGI vs a depth-matched reference)
+            parts.append(f"{self.counters['rel_error_indirect']:.2g} indirect")
         if "psnr_db" in self.counters:  # image error against an exact reference (e.g. 16x supersampling)
             parts.append(f"PSNR {self.counters['psnr_db']:.2f} dB")
         if "flip" in self.counters:

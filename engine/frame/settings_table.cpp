@@ -123,7 +123,7 @@ std::vector<SettingOption> buildTable() {
                  "VXGI diffuse cones around the normal's cone (cosine-weighted set of 1 + N)", OptionKind::Integer,
                  3.0, 16.0, {}, [](const RenderSettings& s) { return double(s.vxgi.ringCones); },
                  [](RenderSettings& s, double v) { s.vxgi.ringCones = uint32_t(v); }});
-    t.push_back({"--gi-step", "Global illumination", "cone step", "VXGI cone march step in sample diameters",
+    t.push_back({"--gi-step", "Global illumination", "cone step", "VXGI cone march step in sampled cells",
                  OptionKind::Number, 0.1, 1.0, {}, [](const RenderSettings& s) { return double(s.vxgi.stepFactor); },
                  [](RenderSettings& s, double v) { s.vxgi.stepFactor = float(v); }});
     t.push_back({"--gi-raster", "Global illumination", "voxel raster",

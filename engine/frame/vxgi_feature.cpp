@@ -49,7 +49,9 @@ void VxgiFeature::addPasses(FrameContext& f) {
                                 "vxgi mips -z"};
         for (uint32_t d = 0; d < 6; ++d) directions_[d].create(ctx_, names[d], half, levels);
         vk::SamplerDesc sampler;
-        sampler.address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;  // transparent black: outside = empty
+        // Clamp to edge: a coarse cell holding a wall on the grid's bounds reads as that wall up to the march's end
+        // (one cell outside), where a transparent border would blend it away by up to half.
+        sampler.address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
         sampler_ = ctx_.bindless().addSampler(sampler);
     }
     box_ = fitVoxelGrid(bounds_, s.voxels);

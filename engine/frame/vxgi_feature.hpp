@@ -19,7 +19,8 @@
 namespace idk::frame {
 
 // The grid's cube around `bounds`: centred on it, side = its largest extent * n / (n - 1), i.e. half a voxel of
-// margin on each side so that surfaces on the bounds lie on voxel centres, not on voxel faces.
+// margin on each side so that surfaces on the bounds lie on voxel centres, not on voxel faces. (The cone tracer
+// samples with clamp-to-edge, so a wall on the bounds does not fade into the border at coarse levels.)
 passes::VoxelGridBox fitVoxelGrid(const scene::Aabb& bounds, uint32_t n);
 
 class VxgiFeature {
@@ -37,6 +38,9 @@ public:
     const passes::VoxelGridBox& box() const noexcept { return box_; }
     // The gl-interop rung's state (record capacity, last frame's overflow) or nullptr on the other rungs.
     passes::VxgiGlAccumulator* glAccumulator() const noexcept { return gl_.get(); }
+    // The six directional mip volumes (+x -x +y -y +z -z; left where the cone tracer sampled them): tests read
+    // them back for the CPU cone tracer.
+    const std::array<VoxelVolume, 6>& directions() const noexcept { return directions_; }
 
 private:
     void release();

@@ -16,7 +16,7 @@ struct VxgiSettings {
     GiMode mode = GiMode::None;  // None: nothing allocated, compiled or dispatched
     uint32_t voxels = 128;       // grid size per side (64..512)
     uint32_t ringCones = 5;      // diffuse cones around the normal's cap cone (cosine-weighted set of 1 + ring)
-    float stepFactor = 0.5f;     // cone march step in sample diameters (sampling only: opacity is step-corrected)
+    float stepFactor = 0.5f;     // cone march step in sampled cells (sampling only: opacity is step-corrected)
     VoxelRaster raster = VoxelRaster::Conservative;
 };
 

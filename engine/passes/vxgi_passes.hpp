@@ -53,7 +53,7 @@ struct ConeTraceInputs {
     std::array<graph::TextureHandle, 6> directions;
     std::array<uint32_t, 6> directionSampled{};
     std::vector<std::array<uint32_t, 6>> directionLevels;
-    uint32_t gridSampler = 0;            // bindless sampler: trilinear, transparent-black border
+    uint32_t gridSampler = 0;            // bindless sampler: trilinear, clamp to edge
     VoxelGridBox box;
     uint32_t ringCones = 5;
     float stepFactor = 0.5f;

@@ -42,7 +42,7 @@ bool deferredLightingPixel(LightingPush p, GpuFrame f, ivec2 pixel, out vec4 res
     gShadowPixel = pixel;  // ray-traced shadows read their mask here (include/rt_shadows.glsl)
     radiance += shadeSurface(f, p.pointShadows, position, n, v, baseColor, metallic, roughness, occlusion, layers);
     radiance += vxgiAmbientDelta(f, p.vxgiDiffuse, p.vxgiSpecular, pixel, n, v, baseColor, metallic, roughness,
-                                 occlusion);  // inside the VXGI grid: traced light replaces the SH ambient
+                                 occlusion, layers);  // inside the VXGI grid: traced light replaces the SH ambient
     radiance += ssrSpecularDelta(f, p.ssr, p.vxgiDiffuse, p.vxgiSpecular, pixel, n, v, baseColor, metallic, roughness,
                                  occlusion, layers);  // --ssr: on-screen reflections replace the specular ambient
     result = vec4(radiance, 1.0);

@@ -11,6 +11,35 @@
 #include "light_shadows.glsl"
 #include "rt_shadows.glsl"
 
+// The ambient light reflected towards v (before occlusion), from the irradiance E on n and the radiance arriving
+// along the reflection at the base layer's roughness (specular) and at the clearcoat's (coat). Specular: split-sum,
+// the radiance times the directional albedo E_s = f0 A + f90 B with the multiple-scattering factor
+// (material_layers.glsl). Diffuse: c_diff / pi * E, weighted by (1 - E_s) as the direct term's (1 - F), so a white
+// surface in a constant environment reflects exactly the environment (the furnace test checks it). Sheen and
+// clearcoat: their albedo at n.v times E / pi (sheen) or the coat radiance (coat), the layers beneath scaled as in
+// direct light. Linear in (E, specular, coat): shadeSurface feeds it the environment's light, VXGI
+// (vxgi_ambient.glsl) the difference of its cone-traced light to that, so swapping the two cancels exactly.
+vec3 ambientReflected(SurfaceLayers layers, vec3 n, vec3 v, vec3 baseColor, float metallic, float roughness,
+                      vec3 irradiance, vec3 specularRadiance, vec3 coatRadiance) {
+    float NdotV = max(dot(n, v), 1e-4);
+    float r = clamp(roughness, kMinRoughness, 1.0);
+    vec3 specularAlbedo = ambientSpecularAlbedo(layers, baseColor, metallic, r, NdotV);
+    vec3 diffuse = (1.0 - clamp(specularAlbedo, 0.0, 1.0)) * baseColor * (1.0 - metallic) / kPi * irradiance;
+    vec3 ambient = diffuse + specularRadiance * specularAlbedo;
+    if ((layers.flags & kMaterialSheen) != 0u) {
+        float sheenAlbedo = ptAlbedoSheen(NdotV, layers.sheenRoughness);
+        ambient = ambient * max(1.0 - maxOf(layers.sheenColor) * sheenAlbedo, 0.0) +
+                  layers.sheenColor * sheenAlbedo * irradiance / kPi;
+    }
+    if ((layers.flags & kMaterialClearcoat) != 0u) {
+        float cr = clamp(layers.clearcoatRoughness, kMinRoughness, 1.0);
+        float coat = layers.clearcoat * fresnelSchlick(vec3(0.04), NdotV).x;
+        vec3 coatAlbedo = layers.clearcoat * environmentBrdfApprox(vec3(0.04), cr, NdotV);
+        ambient = ambient * (1.0 - coat) + coatRadiance * coatAlbedo;
+    }
+    return ambient;
+}
+
 // n: unit shading normal on the viewer's side; v: unit direction to the eye. pointShadows: GpuPointShadow[] per
 // light, or 0 when no light casts a shadow. layers: the material's extensions (noLayers() for none).
 vec3 shadeSurface(GpuFrame f, uint64_t pointShadows, vec3 position, vec3 n, vec3 v, vec3 baseColor, float metallic,
@@ -30,29 +59,11 @@ vec3 shadeSurface(GpuFrame f, uint64_t pointShadows, vec3 position, vec3 n, vec3
         radiance += direct;
     }
 
-    // Ambient. Specular: split-sum, radiance from a box-filtered environment lookup times the directional albedo
-    // E_s = f0 A + f90 B with the multiple-scattering factor (material_layers.glsl). Diffuse: c_diff / pi * E(n),
-    // weighted by (1 - E_s) as the direct term's (1 - F), so a white surface in a constant environment reflects
-    // exactly the environment (the furnace test checks it). Sheen and clearcoat: their albedo at n.v times the
-    // irradiance / pi (sheen) or the coat-roughness radiance (coat), the layers beneath scaled as in direct light.
-    float NdotV = max(dot(n, v), 1e-4);
-    float r = clamp(roughness, kMinRoughness, 1.0);
-    vec3 specularAlbedo = ambientSpecularAlbedo(layers, baseColor, metallic, r, NdotV);
-    vec3 irradiance = shIrradiance(f, n);
-    vec3 diffuse = (1.0 - clamp(specularAlbedo, 0.0, 1.0)) * baseColor * (1.0 - metallic) / kPi * irradiance;
-    vec3 specular = environmentRadiance(f, reflect(-v, n), environmentLod(f, r)) * specularAlbedo;
-    vec3 ambient = diffuse + specular;
-    if ((layers.flags & kMaterialSheen) != 0u) {
-        float sheenAlbedo = ptAlbedoSheen(NdotV, layers.sheenRoughness);
-        ambient = ambient * max(1.0 - maxOf(layers.sheenColor) * sheenAlbedo, 0.0) +
-                  layers.sheenColor * sheenAlbedo * irradiance / kPi;
-    }
-    if ((layers.flags & kMaterialClearcoat) != 0u) {
-        float cr = clamp(layers.clearcoatRoughness, kMinRoughness, 1.0);
-        float coat = layers.clearcoat * fresnelSchlick(vec3(0.04), NdotV).x;
-        vec3 coatAlbedo = layers.clearcoat * environmentBrdfApprox(vec3(0.04), cr, NdotV);
-        ambient = ambient * (1.0 - coat) + environmentRadiance(f, reflect(-v, n), environmentLod(f, cr)) * coatAlbedo;
-    }
+    float cr = clamp(layers.clearcoatRoughness, kMinRoughness, 1.0);
+    vec3 r = reflect(-v, n);
+    vec3 ambient = ambientReflected(layers, n, v, baseColor, metallic, roughness, shIrradiance(f, n),
+                                    environmentRadiance(f, r, environmentLod(f, clamp(roughness, kMinRoughness, 1.0))),
+                                    environmentRadiance(f, r, environmentLod(f, cr)));
     return radiance + ambient * occlusion;
 }
 

@@ -1,8 +1,8 @@
 // voxelize_fragment.glsl: the fragment side of voxelization shared by the atomic rungs (voxelize_float.frag,
 // voxelize_uint.frag): keeps a fragment only in the draw of its triangle's dominant axis (so each triangle is
 // rasterized once, in the projection where it covers the most voxels), evaluates the material and the radiance
-// the surface leaves diffusely (every punctual light times its cube shadow, times albedo / pi, plus emission), and
-// finds its voxel. Ports IDKEngine's VXGI/Voxelize fragment shader, without its fudge terms (0.02 albedo ambient):
+// the surface leaves diffusely (every punctual light times its shadow: cube, cascades or spot map; times
+// albedo / pi, plus emission), and finds its voxel. Ports IDKEngine's VXGI/Voxelize fragment shader, without its fudge terms (0.02 albedo ambient):
 // the voxel holds exactly the outgoing diffuse radiance of first-bounce light, which the cone tracer gathers.
 #ifndef IDK_VOXELIZE_FRAGMENT_GLSL
 #define IDK_VOXELIZE_FRAGMENT_GLSL
@@ -12,6 +12,8 @@
 #include "material_eval.glsl"
 #include "pbr.glsl"
 #include "shadows.glsl"
+#include "light_shadows.glsl"
+#include "rt_shadow_types.h"
 #include "vxgi_types.h"
 #include "voxel_images.glsl"
 
@@ -74,7 +76,11 @@ bool voxelFragment(out ivec3 voxel, out vec3 radiance) {
             float visibility = 1.0;
             if (p.pointShadows != 0) {
                 GpuPointShadow s = PointShadowBuffer(p.pointShadows).data[i];
-                if (s.cube != kNoShadow) visibility = pointShadowVisibility(s, inWorldPosition, side, l);
+                // As shadeSurface: a light with maps (directional cascades, spot) stores its 2D-array index in
+                // `cube`; ray-traced masks are per screen pixel and mean nothing here (such lights stay unshadowed).
+                if (s.mapCount != 0u) visibility = mapShadowVisibility(p.pointShadows, s, inWorldPosition, side, l);
+                else if (s.cube != kNoShadow && s.cube != kRayTracedShadow)
+                    visibility = pointShadowVisibility(s, inWorldPosition, side, l);
             }
             radiance += diffuseAlbedo * incident * (cosine * visibility);
         }

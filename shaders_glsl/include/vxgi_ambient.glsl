@@ -1,26 +1,26 @@
 // vxgi_ambient.glsl: deferred lighting's use of the VXGI cone-traced light (passes/vxgi_cone_trace.cpp). Inside
 // the grid the traced irradiance and reflection radiance replace the environment's SH irradiance and radiance
-// lookup in shadeSurface's ambient term: this returns the difference to add to shadeSurface's result (the same
-// formula, (1 - E_s) c_diff / pi E + L E_s, times occlusion), so shadeSurface itself stays shared with the
-// transparency pass unchanged.
+// lookups in shadeSurface's ambient term: this returns the difference to add to shadeSurface's result, through the
+// same ambientReflected (surface_lighting.glsl; linear in the light, so the environment's part cancels exactly),
+// so shadeSurface itself stays shared with the transparency pass unchanged. The clearcoat reflects the traced
+// specular cone (there is no separate cone at the coat's roughness).
 #ifndef IDK_VXGI_AMBIENT_GLSL
 #define IDK_VXGI_AMBIENT_GLSL
-#include "pbr.glsl"
-#include "environment.glsl"
+#include "surface_lighting.glsl"
 #include "vxgi_types.h"
 
 vec3 vxgiAmbientDelta(GpuFrame f, uint diffuseImage, uint specularImage, ivec2 pixel, vec3 n, vec3 v,
-                      vec3 baseColor, float metallic, float roughness, float occlusion) {
+                      vec3 baseColor, float metallic, float roughness, float occlusion, SurfaceLayers layers) {
     if (diffuseImage == kNoVxgi) return vec3(0.0);
     vec4 traced = imageLoad(gImagesRgba16f[diffuseImage], pixel);
     if (traced.a <= 0.0) return vec3(0.0);  // outside the grid
     vec3 tracedSpecular = imageLoad(gImagesRgba16f[specularImage], pixel).rgb;
-    float NdotV = max(dot(n, v), 1e-4);
-    float r = clamp(roughness, kMinRoughness, 1.0);
-    vec3 specularAlbedo = environmentBrdfApprox(specularF0(baseColor, metallic), r, NdotV);
-    vec3 diffuseWeight = (1.0 - clamp(specularAlbedo, 0.0, 1.0)) * baseColor * (1.0 - metallic) / kPi;
-    vec3 environmentSpecular = environmentRadiance(f, reflect(-v, n), environmentLod(f, r));
-    return ((traced.rgb - shIrradiance(f, n)) * diffuseWeight + (tracedSpecular - environmentSpecular) * specularAlbedo) *
+    vec3 r = reflect(-v, n);
+    float cr = clamp(layers.clearcoatRoughness, kMinRoughness, 1.0);
+    vec3 environmentSpecular = environmentRadiance(f, r, environmentLod(f, clamp(roughness, kMinRoughness, 1.0)));
+    vec3 environmentCoat = environmentRadiance(f, r, environmentLod(f, cr));
+    return ambientReflected(layers, n, v, baseColor, metallic, roughness, traced.rgb - shIrradiance(f, n),
+                            tracedSpecular - environmentSpecular, tracedSpecular - environmentCoat) *
            occlusion;
 }
 

@@ -80,7 +80,7 @@ struct ConeTracePush {
     uint specular;         // RGBA16F out: radiance along the reflection cone (rgb)
     uint grid;             // sampled index of the grid (level 0)
     uint directions[6];    // sampled indices of the directional mips (+x -x +y -y +z -z)
-    uint gridSampler;      // trilinear, clamp to transparent-black border
+    uint gridSampler;      // trilinear, clamp to edge
     uint ringCones;        // diffuse cones around the normal's cap cone
     vec3 gridMin;
     float voxelSize;

@@ -5,11 +5,15 @@
 //    area lights; emission reaches other surfaces only through GI).
 //  * --gi vxgi (64^3 voxels, 1 + 8 diffuse cones, step 0.5): the walls receive the panel's light through the
 //    cones. The reference is the GPU path tracer with maxDepth 2 (camera segment + one bounce: exactly the light
-//    VXGI carries, emission seen by the diffuse and specular cones; 256 spp). Asserted over the pixels that do
-//    not see the panel: mean radiance within 35% of the path tracer's (measured 30.3%, VXGI darker), and RMSE
-//    relative to the reference mean below 3.5 (measured 2.79: dominated by the ceiling around the panel, which glows in VXGI
-//    because an isotropic voxel of the panel radiates sideways into its coplanar neighbours' cones, while the
-//    path tracer gives them nothing).
+//    VXGI carries, emission seen by the diffuse and specular cones; 256 spp). Every wall pixel's light is indirect,
+//    so the wall radiance is the indirect term. Asserted over the pixels that do not see the panel: mean radiance
+//    within 35% of the path tracer's (measured 32.0%, VXGI brighter; it was 30.3% darker before the receiver-plane
+//    clamp and the cell-based step opacity of shared/vxgi_cone.h), and RMSE relative to the reference mean below
+//    3.5 (measured 3.27: dominated by the ceiling around the panel). Where the excess comes from: the conservative
+//    voxelization dilates the panel by up to a voxel into its coplanar ceiling (with centre raster: 21.5%), and
+//    the panel, voxelized one voxel thick and radiating equally in all directions, still shows area seen edge-on
+//    in the directional mips (a one-voxel slab covers 2^-L of a level-L cell seen along its plane), which a true
+//    panel does not. Anisotropic level-0 radiance and opacity (by the surface normal) would remove the second.
 //  The images are written to <build>/vxgi_frame_test/room_{vxgi,pt_one_bounce,pt_full}.exr.
 //  * The full path-traced image (maxDepth 8, all bounces) is also measured and printed: the gap is the light of
 //    further bounces, which single-bounce VXGI leaves out by design.
@@ -25,6 +29,7 @@
 #include "render/renderer.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/placed_quads.hpp"
+#include "support/vxgi_cone_oracle.hpp"
 
 namespace idk::test {
 namespace {
@@ -163,10 +168,8 @@ TEST_F(VxgiFrameTest, ClosedRoomLitByPanelMatchesOneBouncePathTracer) {
 // every cone must see the sky unoccluded; the floor's own voxels must not shadow its cones (self-occlusion darkens
 // it). The reference is the same frame with --gi none, whose SH9 irradiance of the constant sky is exact since the
 // projection integrates over texel areas (it reflects exactly L = 0.5, tests/gpu/pbr/ambient_furnace_test.cpp).
-// This test was first calibrated against the old 1x1-texel SH projection, which put the whole sky on the horizon
-// and rendered the floor at 0.2976; against the true 0.5 VXGI is 40..43% dark (measured 0.2839 .. 0.3005): the
-// ring cones still see the floor's own coarse cells (an open VXGI defect). Asserted: never brighter than the sky,
-// and at least 55% of it, so the self-occlusion cannot grow unnoticed.
+// Asserted: VXGI's floor within 1% of it everywhere (measured 0.4998). The cones' receiver-plane clamp
+// (shared/vxgi_cone.h) makes it so; before it the ring cones saw the floor's own coarse cells (0.28 .. 0.30).
 TEST_F(VxgiFrameTest, WhiteFloorUnderUniformSkyReflectsTheSky) {
     PlacedQuad floor = wall({0, 0, 0}, {0, 1, 0}, {2, 2});
     floor.baseColor = glm::vec3(1.0f);
@@ -201,22 +204,26 @@ TEST_F(VxgiFrameTest, WhiteFloorUnderUniformSkyReflectsTheSky) {
             EXPECT_NEAR(lo, 0.5, 0.005) << "albedo 1 under the split-sum ambient reflects exactly the sky";
             none = lo;
         } else {
-            EXPECT_GT(lo, 0.55 * none);
-            EXPECT_LE(hi, 1.02 * none);
+            EXPECT_NEAR(lo, none, 0.01 * none);
+            EXPECT_NEAR(hi, none, 0.01 * none);
         }
     }
 }
 
-// Thin walls never leak: the closed room split at x = 0.013 by a one-voxel-thin double-sided wall (its plane inside
-// a voxel), the emissive panel over the lit half (x > 0) only, no sky, 64^3 voxels. A camera in each half looking
-// down -z; every surface the dark camera sees is in the dark half, whose true radiance is 0 (the path tracer's).
-// Asserted with conservative voxelization: the dark view's mean radiance is below 1% of the lit view's.
-// DISABLED: it fails today. Measured: dark/lit 0.4853 with conservative raster (0.00765 vs 0.01577), 0.4934 with
-// centre raster: the voxelized wall has no holes (VoxelizeTest.ThinWallHasNoHolesWithConservativeRaster), the
-// light crosses it in the cone march (suspected, not yet isolated): the trilinear tent at level >= 1 spans two
-// cells, one on each side of the wall, and the wall is opaque only in the +-x directional volumes, which the
-// mostly vertical cones of the dark floor weight by |dir.x| alone. Open VXGI defect; enable this test with its fix.
-TEST_F(VxgiFrameTest, DISABLED_ThinWallKeepsTheDarkHalfDark) {
+// Thin walls: the closed room split at x = 0.013 by a one-voxel-thin double-sided wall (its plane inside a voxel),
+// the emissive panel over the lit half (x > 0) only, no sky, 64^3 voxels, conservative voxelization (the voxelized
+// wall has no holes: VoxelizeTest.ThinWallHasNoHolesWithConservativeRaster). A camera in each half looking down
+// -z; every surface the dark camera sees is in the dark half, whose true radiance is 0 (the path tracer's). No
+// specular layers, so every wall pixel is albedo / pi * E and the CPU cone tracer (support/vxgi_cone_oracle.hpp)
+// predicts it from the read-back grid.
+// The aim (dark below 1% of lit) is out of reach by construction: a cone's sample holds one scalar opacity
+// per direction for a cell as wide as the cone, so a 30-degree cone that crosses the wall's plane obliquely sees
+// the wall as partial coverage in each of the several cells its axis crosses (|dir.x| of a cell's silhouette in
+// each), composited as a Beer-Lambert medium, where the true wall blocks every ray that crosses it. The CPU cone
+// tracer on the same grid gives this inherent leak: measured dark / lit 0.0505 (the GPU frame 0.0505; before the
+// receiver-plane clamp and the cell-based step opacity of shared/vxgi_cone.h the GPU leaked 0.4853). Asserted: the
+// GPU's dark / lit ratio within 5% of the CPU cone tracer's over the same pixels, and below 0.07.
+TEST_F(VxgiFrameTest, ThinWallLeaksNoMoreThanTheConeTracerInherently) {
     std::vector<PlacedQuad> q;
     q.push_back(wall({0, -1, 0}, {0, 1, 0}, {1, 1}));
     q.push_back(wall({-1, 0, 0}, {1, 0, 0}, {1, 1}));
@@ -243,29 +250,34 @@ TEST_F(VxgiFrameTest, DISABLED_ThinWallKeepsTheDarkHalfDark) {
         c.znear = 0.01f;
         return c;
     };
-    for (frame::VoxelRaster raster : {frame::VoxelRaster::Centre, frame::VoxelRaster::Conservative}) {
-        render::RenderSettings settings;
-        settings.output = render::OutputKind::Hdr;
-        settings.environmentIntensity = 0.0f;
-        settings.vxgi.mode = frame::GiMode::Vxgi;
-        settings.vxgi.voxels = 64;
-        settings.vxgi.raster = raster;
-        render::Renderer renderer(ctx(), shaders(), settings);
-        renderer.setScene(s);
-        double mean[2] = {0.0, 0.0};
-        for (int side = 0; side < 2; ++side) {
-            const core::ImageRgba32f img = renderer.renderOffscreen(view(side == 0 ? -0.5f : 0.5f), kSize, kSize).image;
-            for (size_t i = 0; i < size_t(kSize) * kSize; ++i) mean[side] += luminance(img, i);
-            mean[side] /= double(kSize) * kSize;
-        }
-        std::printf("thin wall, %s raster: mean radiance dark half %.5f, lit half %.5f (ratio %.4f)\n",
-                    raster == frame::VoxelRaster::Centre ? "centre" : "conservative", mean[0], mean[1],
-                    mean[0] / mean[1]);
-        EXPECT_GT(mean[1], 0.0) << "the lit half is lit";
-        if (raster == frame::VoxelRaster::Conservative) {
-            EXPECT_LT(mean[0], 0.01 * mean[1]);
+    for (scene::Material& m : s.materials) m.specular = 0.0f;  // wall pixels: albedo / pi * E
+    render::RenderSettings settings;
+    settings.output = render::OutputKind::Hdr;
+    settings.environmentIntensity = 0.0f;
+    settings.vxgi.mode = frame::GiMode::Vxgi;
+    settings.vxgi.voxels = 64;
+    settings.vxgi.ringCones = 8;
+    settings.vxgi.raster = frame::VoxelRaster::Conservative;
+    render::Renderer renderer(ctx(), shaders(), settings);
+    renderer.setScene(s);
+    double gpu[2] = {0.0, 0.0}, cpu[2] = {0.0, 0.0};
+    for (int side = 0; side < 2; ++side) {
+        const scene::CameraView c = view(side == 0 ? -0.5f : 0.5f);
+        const core::ImageRgba32f img = renderer.renderOffscreen(c, kSize, kSize).image;
+        const ConeGridData grid = readConeGrid(ctx(), renderer.vxgi());
+        const std::vector<PredictedPixel> predicted =
+            predictDiffuseFrame(q, 5, c, kSize, grid, conePush(renderer.vxgi(), settings.vxgi), glm::vec3(0.0f));
+        ASSERT_GT(predicted.size(), size_t(kSize) * kSize / 2);
+        for (const PredictedPixel& px : predicted) {
+            gpu[side] += luminance(img, size_t(px.y) * kSize + px.x);
+            cpu[side] += (double(px.radiance.r) + px.radiance.g + px.radiance.b) / 3.0;
         }
     }
+    const double gpuRatio = gpu[0] / gpu[1], cpuRatio = cpu[0] / cpu[1];
+    std::printf("thin wall: dark / lit mean radiance, GPU %.4f, CPU cone tracer %.4f\n", gpuRatio, cpuRatio);
+    EXPECT_GT(gpu[1], 0.0) << "the lit half is lit";
+    EXPECT_NEAR(gpuRatio, cpuRatio, 0.05 * cpuRatio);
+    EXPECT_LT(gpuRatio, 0.07);
 }
 
 }  // namespace

@@ -1,0 +1,166 @@
+// vxgi_cone.h: the voxel cone tracer's maths, ONE source compiled as GLSL (include/cone_trace.glsl,
+// vxgi/cone_trace.comp) and as C++ (the CPU cone tracer tests/support/vxgi_cone_oracle.cpp): the diffuse cone set,
+// the specular aperture, the march (level choice, receiver-plane clamp, step, grid bounds), front-to-back
+// compositing and the rule that combines the directional volumes. Only the texture fetches differ between the
+// two sides. Ports the loop of IDKEngine's include/TraceCone.glsl, without its GIBoost / GISkyBoxBoost factors.
+//
+// The march, for a cone from the receiver point P (geometric normal g) along `dir` with half-angle tangent t:
+//  * a sample at distance d has diameter D = 2 t d; its level is lod = log2(D / v) (v the voxel size), so the
+//    sampled cell c = 2^lod v matches the cone's width;
+//  * receiver-plane clamp: a trilinear fetch at level L reads cells whose centres lie within c of the sample, and
+//    the receiver's own cell reaches c / 2 above its plane, so a sample at height h = (x - P).g above the plane
+//    sees the receiver unless h >= 1.5 c. The level is clamped to that (for fractional levels the upper level's
+//    cell, twice as big, counts: lod <= log2(h / 3v); level 0 alone down to h = 1.5 v, where the march starts).
+//    Without it the ring cones at 52 degrees, whose width grows faster than their height, see the surface they
+//    start from (a white floor under a uniform sky rendered 0.28 instead of 0.5);
+//  * the level is also capped at kVxgiMaxLodBelowRoot under the root (coarser cells blur a room into one cell
+//    and carry light through walls); past the cap the cone keeps its cell and marches on;
+//  * a sample's alpha is the coverage of one cell of size c along the march, so a step of length s takes
+//    1 - (1 - alpha)^(s / c) (Beer-Lambert over the cell), with s = c * stepFactor;
+//  * the march ends when opacity reaches 0.99 or the sample's cell leaves the grid; the sky fills the rest.
+//
+// Common-subset rules as pt_sampling.h: no swizzles longer than one component, IDK_OUT / IDK_INOUT, float
+// literals with f, no overloading.
+#ifndef IDK_VXGI_CONE_H
+#define IDK_VXGI_CONE_H
+#include "interop.h"
+
+#ifdef __cplusplus
+#include <cmath>
+#endif
+
+IDK_GPU_BEGIN
+
+#ifdef __cplusplus
+using glm::abs;
+using glm::clamp;
+using glm::cross;
+using glm::dot;
+using glm::exp2;
+using glm::log2;
+using glm::max;
+using glm::min;
+using glm::normalize;
+using glm::pow;
+using std::atan;
+using std::cos;
+using std::sin;
+using std::tan;
+#endif
+
+IDK_CONST(float, kVxgiCapTan, 0.57735027f);   // the cap cone: polar angles 0..30 degrees (1/4 of cos-weighted)
+IDK_CONST(float, kVxgiRingSin, 0.79056942f);  // ring cones at sin^2 = 0.625: the 30..90 ring's cos-weighted median
+IDK_CONST(float, kVxgiRingCos, 0.61237244f);
+IDK_CONST(float, kVxgiMaxSpecularAngle, 0.5f);    // widest specular cone half-angle (radians), see vxgiSpecularCone
+IDK_CONST(float, kVxgiMaxLodBelowRoot, 3.0f);     // lod <= log2(N) - 3: cells of at most N / 8 voxels
+IDK_CONST(float, kVxgiOpaque, 0.99f);
+
+// An orthonormal tangent frame around n (the cone set's azimuth origin).
+IDK_INLINE void vxgiTangents(vec3 n, IDK_OUT(vec3) t, IDK_OUT(vec3) b) {
+    t = normalize(abs(n.y) < 0.9f ? cross(n, vec3(0.0f, 1.0f, 0.0f)) : cross(n, vec3(1.0f, 0.0f, 0.0f)));
+    b = cross(n, t);
+}
+
+// Ring cone half-angle tangent: each of `ringCones` cones spans its azimuth sector (half the sector's width at
+// the ring's polar angle), at most the cap's.
+IDK_INLINE float vxgiRingTan(uint ringCones) {
+    return min(tan(0.5f * 6.28318530717959f * kVxgiRingSin / float(ringCones)), kVxgiCapTan);
+}
+
+// Axis of ring cone i of `ringCones` around n; its weight in the irradiance sum is 0.75 / ringCones (the cap's 0.25).
+IDK_INLINE vec3 vxgiRingDirection(uint i, uint ringCones, vec3 n, vec3 t, vec3 b) {
+    float phi = 6.28318530717959f * (float(i) + 0.5f) / float(ringCones);
+    return kVxgiRingSin * (cos(phi) * t + sin(phi) * b) + kVxgiRingCos * n;
+}
+
+// The specular cone of a GGX lobe of roughness r (alpha = r^2): half-angle 2 atan(0.64 alpha) as environmentLod,
+// clamped to kVxgiMaxSpecularAngle; returns the weight of the diffuse irradiance / pi that replaces the cone's
+// radiance for lobes wider than the clamp (0 below it, 1 at a 1.2 radian lobe): a wide cone's samples grow coarse
+// at once and see the receiver's neighbourhood as one blur, which the cosine-weighted diffuse set resolves better.
+IDK_INLINE float vxgiSpecularCone(float roughness, IDK_OUT(float) tanHalf) {
+    float alpha = max(roughness * roughness, 1e-3f);
+    float angle = 2.0f * atan(0.64f * alpha);
+    tanHalf = tan(min(angle, kVxgiMaxSpecularAngle));
+    return clamp((angle - kVxgiMaxSpecularAngle) / (1.2f - kVxgiMaxSpecularAngle), 0.0f, 1.0f);
+}
+
+struct VxgiMarch {
+    vec3 origin;    // the receiver point P
+    vec3 plane;     // its geometric normal
+    vec3 dir;       // the cone's unit axis
+    float tanHalf;  // tangent of its half-angle
+    float dist;     // distance of the next sample along dir
+    vec3 radiance;  // gathered so far (premultiplied)
+    float opacity;
+    // Set by vxgiMarchNext for the current sample:
+    vec3 uvw;   // grid coordinates [0, 1]^3
+    float lod;  // grid level (0: voxels; level L >= 1 is directional mip L - 1)
+    float cell; // world size of the level's cell
+};
+
+IDK_INLINE VxgiMarch vxgiMarchBegin(vec3 origin, vec3 plane, vec3 dir, float tanHalf, float voxelSize) {
+    VxgiMarch m;
+    m.origin = origin;
+    m.plane = plane;
+    m.dir = dir;
+    m.tanHalf = tanHalf;
+    // The first sample at height 1.5 v (the level-0 fetch then misses the receiver's voxels); grazing cones are
+    // started no farther than 6 v.
+    m.dist = 1.5f * voxelSize / max(dot(dir, plane), 0.25f);
+    m.radiance = vec3(0.0f);
+    m.opacity = 0.0f;
+    m.uvw = vec3(0.0f);
+    m.lod = 0.0f;
+    m.cell = voxelSize;
+    return m;
+}
+
+// Places the next sample; false when the march is over (opaque, or the sample's cell is outside the grid).
+IDK_INLINE bool vxgiMarchNext(IDK_INOUT(VxgiMarch) m, vec3 gridMin, float voxelSize, uint gridSize, float maxLod) {
+    if (m.opacity >= kVxgiOpaque) return false;
+    float diameter = max(voxelSize, 2.0f * m.tanHalf * m.dist);
+    float lod = log2(diameter / voxelSize);
+    float h = m.dist * dot(m.dir, m.plane);
+    float clampLod = h < 3.0f * voxelSize ? 0.0f : log2(h / (3.0f * voxelSize));
+    lod = clamp(min(lod, clampLod), 0.0f, max(maxLod - kVxgiMaxLodBelowRoot, 0.0f));
+    m.lod = lod;
+    m.cell = voxelSize * exp2(lod);
+    float gridWorld = voxelSize * float(gridSize);
+    vec3 x = m.origin + m.dir * m.dist;
+    m.uvw = (x - gridMin) / gridWorld;
+    float margin = m.cell / gridWorld;  // a sample within one cell of the grid still reads its edge cells
+    return m.uvw.x >= -margin && m.uvw.y >= -margin && m.uvw.z >= -margin && m.uvw.x <= 1.0f + margin &&
+           m.uvw.y <= 1.0f + margin && m.uvw.z <= 1.0f + margin;
+}
+
+// Composites the current sample (premultiplied rgb, coverage a) and advances the march.
+IDK_INLINE void vxgiMarchTake(IDK_INOUT(VxgiMarch) m, vec4 s, float stepFactor) {
+    float step = m.cell * stepFactor;
+    if (s.w > 0.0f) {
+        float a = 1.0f - pow(max(1.0f - min(s.w, 1.0f), 0.0f), stepFactor);
+        m.radiance = m.radiance + (1.0f - m.opacity) * vec3(s.x, s.y, s.z) * (a / s.w);
+        m.opacity = m.opacity + (1.0f - m.opacity) * a;
+    }
+    m.dist = m.dist + step;
+}
+
+// The directional volume (0..5: +x -x +y -y +z -z) seen travelling along `dir` on `axis`.
+IDK_INLINE uint vxgiDirectionIndex(vec3 dir, uint axis) {
+    float d = axis == 0u ? dir.x : (axis == 1u ? dir.y : dir.z);
+    return 2u * axis + (d >= 0.0f ? 0u : 1u);
+}
+
+// Combines the three directional fetches (sx from the x volume facing the travel, ...) weighted by |dir|: a thin
+// surface facing axis a covers |dir_a| of what it covers seen straight along a (its projected area); where the
+// weights add up to more than full coverage (solid blocks) the sample is scaled back to opacity 1. Below level 1
+// the grid itself (level 0) is blended in.
+IDK_INLINE vec4 vxgiCombine(vec3 dir, vec4 sx, vec4 sy, vec4 sz, vec4 level0, float lod) {
+    vec4 d = abs(dir.x) * sx + abs(dir.y) * sy + abs(dir.z) * sz;
+    if (d.w > 1.0f) d = d / d.w;
+    if (lod >= 1.0f) return d;
+    return level0 * (1.0f - lod) + d * lod;
+}
+
+IDK_GPU_END
+
+#endif

@@ -129,6 +129,7 @@ FrameResult Renderer::renderOffscreen(const scene::CameraView& camera, uint32_t 
     result.indirectDraws = log.entries;
     if (pbr) result.shadingInvocations = features_.vrs.lastShadingInvocations();
     if (pbr) result.culling = features_.culling.lastStats();
+    if (pbr) result.skyBakes = features_.environment.skyBakes();
     if (pbr)  // then each point-shadow cube face's counters (frame/shadow_culling.hpp)
         for (passes::CullingViewStats& v : features_.pointShadows.cullStats()) result.culling.push_back(std::move(v));
 

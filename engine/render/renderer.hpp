@@ -42,6 +42,9 @@ struct FrameResult {
     // the coarse cells' anchors with VRS on (frame/vrs_feature.hpp), whatever the rung. 0 for Lambert.
     uint64_t shadingInvocations = 0;
     std::vector<passes::CullingViewStats> culling;  // GPU culling's counters per view (empty: culling off)
+    // `--sky atmosphere`: sky bakes so far by this renderer (once per sun move). The bake is one immediate submission
+    // outside the frame's graph (its map is read back for the CPU's SH and mip tables), so it is not in passesRun.
+    uint32_t skyBakes = 0;
 };
 
 // renderFrame's target: the caller's colour image (e.g. a swapchain image). The frame is rendered exactly as
@@ -102,6 +105,8 @@ public:
     frame::SsaoFeature& ssao() noexcept { return features_.ssao; }  // tests capture its inputs and output
     // The VXGI voxel grid of the last frame and its features (nullptr with --gi none): tests read it back.
     const frame::VxgiFeature& vxgi() const noexcept { return features_.vxgi; }
+    // The frame's environment map (tests count the atmosphere's sky bakes: once per sun move).
+    const frame::EnvironmentFeature& environment() const noexcept { return features_.environment; }
     // The directional cascades and spot maps of the last frame (nullptr when no light rendered one).
     const LightShadowMaps* lightShadowMaps() const noexcept { return features_.pointShadows.lightMaps(); }
     // Runs inside each frame's command buffer before the frame's graph is built (TextureStreamer::pump goes

@@ -44,6 +44,10 @@ void Renderer::setScene(const scene::Scene& scene) {
     features_.setSourceScene(ctx_, scene, *gpuScene_, settings_);
 }
 
+void Renderer::prepareSourceScene(const scene::Scene& scene) {
+    if (gpuScene_) features_.rtShadows.ensureGeometry(ctx_, scene, *gpuScene_, settings_);
+}
+
 void Renderer::setPose(const scene::Scene& scene) {
     if (gpuScene_ && gpuScene_->animation()) gpuScene_->animation()->setPose(scene);
 }

@@ -77,6 +77,10 @@ public:
     // The scene as posed now (after scene::evaluateAnimations): instance transforms, joint matrices and morph
     // weights reach the next frame (pose_upload and skinning passes, only when something changed).
     void setPose(const scene::Scene& scene);
+    // Builds what needs the source scene and was off at setScene (the ray-traced shadows' geometry, once that mode is
+    // switched on; frame/rt_shadow_feature.hpp); a cheap no-op otherwise. Callers that change settings between
+    // frames (the viewer) call it before each frame with the scene given to setScene.
+    void prepareSourceScene(const scene::Scene& scene);
     FrameResult renderOffscreen(const scene::CameraView& camera, uint32_t width, uint32_t height);
     // A still image: with temporal anti-aliasing, a fresh history and settings.temporal.frames jittered frames of
     // the unmoving camera (the last one is returned); otherwise one renderOffscreen.

@@ -145,7 +145,7 @@ void BM_Oit(benchmark::State& state, const Variant& v) {
 
 // ---- Shadows ----------------------------------------------------------------------------------------------------
 const Variant kShadows[] = {
-    {"raytraced", "--shadows raytraced (exact hard shadows; reference, peer)",
+    {"raytraced", "--shadows raytraced (exact hard shadows, reference, peer)",
      [](render::RenderSettings& s) { s.lightShadows.rayTraced = true; }},
     {"maps", "--shadows maps (cubes 512, cascades/spot 1024, PCF)", [](render::RenderSettings&) {}},
 };
@@ -236,7 +236,7 @@ void BM_ShadowVisibility(benchmark::State& state, const VisibilityVariant& v) {
     const VisibilityCase& c = visibilityCase();
     const std::string peerName = v.soft ? "BM_ShadowVisibility/cpu_soft" : "BM_ShadowVisibility/cpu_hard";
     const std::string input =
-        "floor + square occluder + point light (soft: radius 0.3), 128x128 HDR; error: mean |s - CPU oracle|";
+        "floor + square occluder + point light (soft: radius 0.3), 128x128 HDR, error: mean |s - CPU oracle|";
     if (!v.gpu) {
         for (auto _ : state) benchmark::DoNotOptimize(cpuVisibility(c, v.soft).data());
         setRow(state, {"lights", input, v.settings, "-", "", "peer", "real"});
@@ -278,7 +278,7 @@ void BM_ShadowVisibility(benchmark::State& state, const VisibilityVariant& v) {
 
 // ---- Volumetrics ------------------------------------------------------------------------------------------------
 const Variant kVolumetrics[] = {
-    {"off", "volumetrics off (peer; error: the medium ignored)", [](render::RenderSettings&) {}},
+    {"off", "volumetrics off (peer, error: the medium ignored)", [](render::RenderSettings&) {}},
     {"half", "--volumetrics --volumetrics-scale 2", [](render::RenderSettings& s) {
          s.volumetrics.enabled = true;
          s.volumetrics.scale = 2;
@@ -303,7 +303,7 @@ void BM_Volumetrics(benchmark::State& state, const Variant& v) {
     state.counters["rel_error"] = e.mean;
     state.counters["p95_rel_error"] = e.p95;
     setRow(state, {"lights",
-                   "floor, box, point light, density 0.3, g 0.3: time 640x360 HDR; error 128x128 vs CPU ray march "
+                   "floor, box, point light, density 0.3, g 0.3: time 640x360 HDR, error 128x128 vs CPU ray march "
                    "(512 steps, shadowed)",
                    v.settings, "-", peer ? "" : "BM_Volumetrics/off", peer ? "peer" : "ours", "real"});
 }

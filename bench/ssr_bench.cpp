@@ -106,7 +106,7 @@ void BM_SsrFrame(benchmark::State& state, bool ssr) {
         if (name.rfind("ssr_", 0) == 0) state.counters["pass_ms." + name] = ms / iterations;
     setRow(state, {"screen-space reflections",
                    "embedded Cornell box with a mirror floor, 1280x720 (error: 320x180 vs path tracer 64 spp)",
-                   ssr ? "--ssr (64 steps, thickness 0.1); error over up-facing pixels"
+                   ssr ? "--ssr (64 steps, thickness 0.1), error over up-facing pixels"
                        : "--ssr off (peer): the environment specular term only",
                    "-", ssr ? "BM_SsrFrame/off" : "", ssr ? "ours" : "peer", "real"});
 }

@@ -306,7 +306,82 @@ def plot(results, out_dir):
         fig.savefig(path, dpi=100)
         plt.close(fig)
         written.append(path)
+    written += upscale_plot(results, out_dir, plt)
+    written += pass_error_plot(results, out_dir, plt)
     return "Plots: " + ", ".join(f"`{os.path.relpath(p)}`" for p in written) + "." if written else ""
+
+
+def upscale_plot(results, out_dir, plt):
+    """Issue 12: the upscaler's PSNR and FLIP against the render scale S (BM_Upscale/s<S>), with TAA at full
+    resolution (BM_Upscale/taa), the no-AA frame (BM_Upscale/full) and bilinear upscaling of the same S x frames
+    (the rows' bilinear_* counters) as references."""
+    rows = sorted(((float(r.name.rsplit("/s", 1)[1]), r) for r in results
+                   if r.name.startswith("BM_Upscale/s") and "psnr_db" in r.counters), key=lambda p: p[0])
+    if not rows:
+        return []
+    by_name = {r.name: r for r in results}
+    scales = [s for s, _ in rows]
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    for ax, key, label in ((axes[0], "psnr_db", "PSNR (dB, higher is better)"),
+                           (axes[1], "flip", "mean FLIP (lower is better)")):
+        ours = [(s, r.counters[key]) for s, r in rows if r.counters.get(key) is not None]
+        if ours:
+            ax.plot([s for s, _ in ours], [v for _, v in ours], "o-", color="tab:blue", label="temporal upscaler")
+        bilinear = [(s, r.counters["bilinear_" + key]) for s, r in rows
+                    if r.counters.get("bilinear_" + key) is not None]
+        if bilinear:
+            ax.plot([s for s, _ in bilinear], [v for _, v in bilinear], "s--", color="tab:gray",
+                    label="bilinear upscaling (no AA)")
+        for name, style, text in (("BM_Upscale/taa", "tab:green", "TAA at full resolution"),
+                                  ("BM_Upscale/full", "tab:red", "no AA at full resolution")):
+            r = by_name.get(name)
+            if r and r.counters.get(key) is not None:
+                ax.axhline(r.counters[key], color=style, linestyle=":", label=text)
+        ax.set_xlabel("render scale S (each axis)")
+        ax.set_ylabel(label)
+        ax.set_xticks(scales)
+        ax.grid(alpha=0.3)
+    axes[0].legend(fontsize=8)
+    fig.suptitle("temporal upscaler vs 16x supersampled truth (replayed camera path)")
+    fig.tight_layout()
+    path = os.path.join(out_dir, "upscale_error_vs_scale.png")
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return [path]
+
+
+ISSUE_12_13_GROUPS = ("temporal", "upscale", "screen-space reflections", "lights")
+
+
+def pass_error_plot(results, out_dir, plt):
+    """Issues 12 and 13: time against error for each pass's rows, PSNR (dB) where a row has it, else its relative
+    error, one panel each."""
+    rows = [r for r in results if r.info.get("group") in ISSUE_12_13_GROUPS]
+    psnr = [r for r in rows if r.counters.get("psnr_db") is not None]
+    rel = [r for r in rows if r.counters.get("psnr_db") is None and r.counters.get("rel_error")]
+    if not psnr and not rel:
+        return []
+    fig, axes = plt.subplots(1, 2, figsize=(12, 5))
+    colors = {g: c for g, c in zip(ISSUE_12_13_GROUPS, ("tab:blue", "tab:orange", "tab:green", "tab:purple"))}
+    for ax, points, key in ((axes[0], psnr, "psnr_db"), (axes[1], rel, "rel_error")):
+        for r in points:
+            ax.scatter(r.ms, r.counters[key], color=colors[r.info["group"]])
+            ax.annotate(r.name[3:] if r.name.startswith("BM_") else r.name, (r.ms, r.counters[key]), fontsize=7)
+        ax.set_xscale("log")
+        ax.set_xlabel("median time (ms, log scale)")
+        ax.grid(alpha=0.3)
+    axes[0].set_ylabel("PSNR vs exact reference (dB, higher is better)")
+    axes[1].set_ylabel("relative error vs exact reference (log, lower is better)")
+    axes[1].set_yscale("log")
+    for group, color in colors.items():
+        axes[0].scatter([], [], color=color, label=group)
+    axes[0].legend(fontsize=8)
+    fig.suptitle("issue 12/13 passes: time vs error")
+    fig.tight_layout()
+    path = os.path.join(out_dir, "passes_time_vs_error.png")
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return [path]
 
 
 # ---- BVH section (bench/bvh_bench.cpp) ------------------------------------------------------------------------

@@ -5,7 +5,7 @@
 // (app/camera_spec.hpp), --orbit-frames N renders a turntable (N images, or one video with --video), --background
 // transparent gives the PNG an alpha channel = geometry coverage (the EXR's alpha). --stats lists the passes that
 // ran, their GPU times, their indirect draws and GPU memory by category; --json also the camera and the capability
-// rungs the frame ran (the objects `idk info --json` prints).
+// rungs the frame ran (the objects `idk info --json` prints), and with --sky atmosphere the sky bakes (skyBakes).
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -102,6 +102,7 @@ nlohmann::json statsJson(const render::FrameResult& frame, const vk::Context& ct
     j["indirectDraws"] = draws;
     if (settings.shading == render::Shading::Pbr) j["shadingInvocations"] = frame.shadingInvocations;  // lighting + sky
     if (!frame.geometryPath.empty()) j["geometryPath"] = frame.geometryPath;  // mesh, mdi or indirect (culling off)
+    if (settings.atmosphere.enabled) j["skyBakes"] = frame.skyBakes;  // outside the graph: not among "passes"
     if (!frame.culling.empty()) {
         nlohmann::json views = nlohmann::json::object();
         for (const passes::CullingViewStats& v : frame.culling)

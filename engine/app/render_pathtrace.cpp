@@ -42,6 +42,9 @@ const char* const kPathTraceHelp =
     "  --sample-range a:b  render only sample indices a..b-1 of the --seed's sequence and write the raw accumulation\n"
     "                   to --out F.exr (RGB = radiance sum, A = sample count) for `idk merge` (render farms)\n"
     "  --denoise        also run the edge-aware denoiser (albedo/normal/depth guided) and write its output\n"
+    "  --sky hdr|atmosphere  the environment: the --environment file (default) or the single-scattering sky of\n"
+    "                   --sun-elevation and --sun-azimuth, baked as the raster bakes it (lights with and\n"
+    "                   importance-samples that map)\n"
     "  --camera, --orbit, --camera-index, --environment, --env-intensity, --exposure (.png only), --size, --json,\n"
     "  --no-validation, --fallback, --rung as above; --json adds the camera and the rungs that ran\n";
 
@@ -144,6 +147,7 @@ PathTraceCli pathTraceFromCli(const core::CliArgs& args, const render::RenderSet
     }
     p.options.environment = settings.environment;
     p.options.environmentIntensity = settings.environmentIntensity;
+    p.options.atmosphere = settings.atmosphere;  // `--sky atmosphere`: path-trace under the raster's baked sky
     return p;
 }
 

@@ -1,5 +1,6 @@
 // bloom_settings.hpp: the options of the bloom (frame/bloom_feature.hpp); rows in frame/settings_table.cpp expose
-// them as --bloom, --bloom-strength and --bloom-karis.
+// them as --bloom and --bloom-strength. `karis` has no flag (always on for frames): the bloom tests set
+// passes::BloomParams::karis directly (energy conservation is measured without it, the loss with it).
 #pragma once
 
 namespace idk::frame {

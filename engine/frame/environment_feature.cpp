@@ -40,10 +40,7 @@ void EnvironmentFeature::bakeSky(FrameContext& f) {
     const render::AtmosphereSettings& a = f.settings.atmosphere;
     const glm::vec4 key(a.sunElevation, a.sunAzimuth, a.sunIntensity, float(a.width));
     if (environment_ && atmosphere_ && key == skyKey_) return;  // the sun has not moved
-    const uint32_t width = std::max(a.width, 2u);
-    core::ImageRgba32f sky = render::bakeAtmosphere(
-        ctx_, f.shaders,
-        render::earthAtmosphere(render::sunDirection(a.sunElevation, a.sunAzimuth), a.sunIntensity, width, width / 2));
+    core::ImageRgba32f sky = render::bakeSky(ctx_, f.shaders, a);
     if (environment_) render::destroyEnvironment(ctx_, *environment_);
     environment_ = render::createEnvironment(ctx_, std::move(sky), "atmosphere");
     loaded_ = atmosphere_ = true;

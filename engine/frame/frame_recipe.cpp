@@ -41,7 +41,7 @@ void Features::setSourceScene(vk::Context& ctx, const scene::Scene& source, cons
 }
 
 graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Features& x) {
-    x.upscale.beginFrame(f);                                          // --aa upscale: render size until its resolve
+    x.upscale.beginFrame(f);                                          // --upscale S < 1: render size until its resolve
     x.temporal.beginFrame(f);                                         // jitters f.viewProjection (--aa taa)
     x.environment.addPasses(f);                                       // f.environment
     x.inputs.addPasses(f, scene, x.environment.current(f.settings));  // f.frameConstants, f.scene, f.lights

@@ -44,7 +44,15 @@ void RtShadowFeature::setScene(vk::Context& ctx, const scene::Scene& source, con
                                const render::RenderSettings& settings) {
     geometry_.reset();
     warned_ = false;
-    if (!settings.lightShadows.rayTraced || source.lights.empty() || scene.drawCount() == 0) return;
+    ensureGeometry(ctx, source, scene, settings);
+}
+
+void RtShadowFeature::ensureGeometry(vk::Context& ctx, const scene::Scene& source, const render::GpuScene& scene,
+                                     const render::RenderSettings& settings) {
+    // Built once per scene, only while the mode is on (nothing is allocated for it otherwise): a switch to ray-traced
+    // shadows after setScene builds it here, before the frame that needs it. The uploads are immediate submissions
+    // that only create resources, so frames in flight are unaffected.
+    if (geometry_ || !settings.lightShadows.rayTraced || source.lights.empty() || scene.drawCount() == 0) return;
     // Lights are not needed for visibility: no environment, no light tables worth the name.
     const pathtrace::PathTraceScene pts = pathtrace::buildPathTraceScene(source, nullptr, 0.0f);
     auto g = std::make_unique<Geometry>(ctx);
@@ -78,7 +86,9 @@ void RtShadowFeature::addPasses(FrameContext& f, const render::GpuScene&) {
     if (casters.size() > gpu::kRtShadowMaxLights) casters.resize(gpu::kRtShadowMaxLights);
     if (casters.empty()) return;
     if (!geometry_) {
-        if (!warned_) core::logWarning("ray-traced shadows: the scene was loaded with them off; reload it");
+        if (!warned_)
+            core::logWarning("ray-traced shadows: switched on after the scene was loaded, and the geometry was not built "
+                             "(Renderer::prepareSourceScene)");
         warned_ = true;
         return;
     }

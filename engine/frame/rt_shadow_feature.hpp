@@ -3,8 +3,8 @@
 // traversal" ladder takes its native rung, VK_KHR_ray_query), and after the G-buffer one shadow ray per pixel and
 // shadow-casting light (passes/rt_shadows.cpp); fills FrameContext::pointShadows with the mask and its table, in
 // place of cubes and maps (frame/point_shadow_feature.cpp adds none in this mode). The geometry is built by
-// setScene while the mode is on; a scene loaded with the mode off gets no ray-traced shadows (one warning) until it
-// is loaded again. Static geometry: animated meshes keep their bind pose in the BVH. Ports IDKEngine's
+// setScene while the mode is on, or by ensureGeometry when the mode is switched on later (the viewer's shadow mode:
+// Renderer::prepareSourceScene before each frame); without either a frame gets no ray-traced shadows (one warning). Static geometry: animated meshes keep their bind pose in the BVH. Ports IDKEngine's
 // ShadowMode.RayTraced (reference 2.12).
 #pragma once
 #include <memory>
@@ -24,6 +24,9 @@ public:
 
     void setScene(vk::Context& ctx, const scene::Scene& source, const render::GpuScene& scene,
                   const render::RenderSettings& settings);
+    // Builds the geometry if the mode is on and it is not built yet for this scene (a no-op otherwise).
+    void ensureGeometry(vk::Context& ctx, const scene::Scene& source, const render::GpuScene& scene,
+                        const render::RenderSettings& settings);
     void addPasses(FrameContext& f, const render::GpuScene& scene);
     bool rayQuery() const noexcept;  // the rung the geometry was built for (false: our BVH)
 

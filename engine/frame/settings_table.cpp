@@ -81,7 +81,8 @@ std::vector<SettingOption> buildTable() {
                  [](RenderSettings& s, double v) { s.culling.freeze = v != 0.0; }});
     // Temporal anti-aliasing (frame/temporal_feature.hpp).
     t.push_back({"--aa", "Temporal", "anti-aliasing",
-                 "anti-aliasing: none, taa (jittered frames + history), or upscale (temporal upscaler)",
+                 "anti-aliasing: none, taa (jittered frames + history; with --upscale S < 1 the temporal upscaler), "
+                 "or upscale (the upscaler at any S, 1 included)",
                  OptionKind::Choice, 0.0, 0.0, {"none", "taa", "upscale"},
                  [](const RenderSettings& s) { return double(s.temporal.aa); },
                  [](RenderSettings& s, double v) { s.temporal.aa = AntiAliasing(int(v)); }});
@@ -90,7 +91,8 @@ std::vector<SettingOption> buildTable() {
                  1.0, 64.0, {}, [](const RenderSettings& s) { return double(s.temporal.frames); },
                  [](RenderSettings& s, double v) { s.temporal.frames = uint32_t(v); }});
     t.push_back({"--upscale", "Temporal", "upscale scale",
-                 "render scale S of --aa upscale: render at S x output size, reconstruct at output size",
+                 "render scale S of the temporal upscaler (--aa taa with S < 1, or --aa upscale): render at S x "
+                 "output size, reconstruct at output size (1 = no upscaling; needs --aa taa or upscale)",
                  OptionKind::Number, 0.5, 1.0, {}, [](const RenderSettings& s) { return double(s.temporal.upscale); },
                  [](RenderSettings& s, double v) { s.temporal.upscale = float(v); }});
     // Bloom (frame/bloom_feature.hpp).
@@ -258,6 +260,11 @@ void applySettingOptions(const core::CliArgs& args, render::RenderSettings& sett
                                  formatNumber(o.min) + ", " + formatNumber(o.max) + "]");
         o.set(settings, v);
     }
+    // The upscaler reconstructs from jittered frames and their history: with --aa none there is none, and a
+    // render scale that silently did nothing would mislead.
+    if (const std::optional<std::string> scale = args.get("--upscale"); scale && settings.temporal.aa == AntiAliasing::None)
+        throw core::CliError("--upscale '" + *scale + "': the temporal upscaler needs --aa taa (or --aa upscale); "
+                             "with --aa none nothing is upscaled");
 }
 
 std::string optionValueText(const SettingOption& o, const render::RenderSettings& settings) {

@@ -102,7 +102,7 @@ bool TemporalFeature::enabled(const render::RenderSettings& s) {
 
 uint32_t TemporalFeature::jitterPhases(const render::RenderSettings& s) {
     const uint32_t frames = std::max(s.temporal.frames, 1u);
-    if (s.temporal.aa != AntiAliasing::Upscale) return frames;
+    if (!upscalerRuns(s.temporal)) return frames;
     // The upscaler: 1 / S^2 times as many phases, so each output pixel gets `frames` samples near its centre
     // (FSR2 scales its Halton length by the same ratio).
     const float scale = std::clamp(s.temporal.upscale, 0.5f, 1.0f);
@@ -203,7 +203,8 @@ void TemporalFeature::addMotionVectors(FrameContext& f, render::GpuScene& scene)
 }
 
 void TemporalFeature::addResolve(FrameContext& f) {
-    if (f.settings.temporal.aa != AntiAliasing::Taa) return;  // the upscaler resolves in upscale_feature.cpp
+    if (f.settings.temporal.aa != AntiAliasing::Taa || upscalerRuns(f.settings.temporal))
+        return;  // the upscaler resolves in upscale_feature.cpp
     passes::TaaInputs in;
     in.temporal = frameConstants_;
     in.color = f.hdr;

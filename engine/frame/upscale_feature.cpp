@@ -18,7 +18,7 @@ constexpr float kSampleSigma = 0.3f;
 
 }  // namespace
 
-bool UpscaleFeature::enabled(const render::RenderSettings& s) { return s.temporal.aa == AntiAliasing::Upscale; }
+bool UpscaleFeature::enabled(const render::RenderSettings& s) { return upscalerRuns(s.temporal); }
 
 VkExtent2D UpscaleFeature::renderExtent(const render::RenderSettings& s, uint32_t width, uint32_t height) {
     const float scale = std::clamp(s.temporal.upscale, 0.5f, 1.0f);

@@ -1,10 +1,10 @@
-// upscale_feature.hpp: the temporal upscaler (--aa upscale, --upscale S). beginFrame shrinks the frame to the
+// upscale_feature.hpp: the temporal upscaler (--aa taa --upscale S with S < 1; --aa upscale). beginFrame shrinks the frame to the
 // render size (S x output, each dimension) before anything is recorded: the graph sizes its output-relative
 // images and the frame's passes from it, and the temporal feature jitters the projection over a Halton sequence
 // lengthened by 1 / S^2 (each output pixel then sees as many samples as with TAA). keepOpaque snapshots the lit
 // image before transparency (the reactive term). addResolve reconstructs the output-size image from this frame's
 // samples and the reprojected history (passes/upscale.cpp) and grows the frame back to the output size, so bloom
-// and the tonemap run at output size. Nothing is allocated or dispatched unless --aa upscale. Plays the role of
+// and the tonemap run at output size. Nothing is allocated or dispatched unless the upscaler runs (frame::upscalerRuns). Plays the role of
 // IDKEngine's FSR2 path (reference 2.5: FSR2 renders at a lower resolution and upscales before bloom/tonemap).
 #pragma once
 #include "frame/frame_context.hpp"

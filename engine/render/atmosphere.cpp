@@ -1,6 +1,7 @@
 // atmosphere.cpp: Earth parameters, the GPU bake of the single-scattering sky, and its C++ twin. See atmosphere.hpp.
 #include "render/atmosphere.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "vk/context.hpp"
@@ -75,6 +76,12 @@ core::ImageRgba32f bakeAtmosphere(vk::Context& ctx, vk::ShaderLibrary& shaders, 
     vk::downloadBuffer(ctx, out, image.pixels.data(), desc.size);
     ctx.destroyDeferred(out);
     return image;
+}
+
+core::ImageRgba32f bakeSky(vk::Context& ctx, vk::ShaderLibrary& shaders, const AtmosphereSettings& a) {
+    const uint32_t width = std::max(a.width, 2u);
+    return bakeAtmosphere(ctx, shaders,
+                          earthAtmosphere(sunDirection(a.sunElevation, a.sunAzimuth), a.sunIntensity, width, width / 2));
 }
 
 glm::dvec3 atmosphereRadiance(const gpu::GpuAtmosphere& a, const glm::dvec3& d, uint32_t viewSteps,

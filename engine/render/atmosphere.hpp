@@ -35,6 +35,10 @@ gpu::GpuAtmosphere earthAtmosphere(glm::vec3 toSun, float sunIntensity, uint32_t
 // The GPU bake (one immediate submission, waits) read back as an RGBA32F image (row 0 = up).
 core::ImageRgba32f bakeAtmosphere(vk::Context& ctx, vk::ShaderLibrary& shaders, const gpu::GpuAtmosphere& params);
 
+// The sky `settings` ask for, baked (bakeAtmosphere of earthAtmosphere at settings.width x width / 2): the map the
+// raster's environment and the path tracer's environment (`idk render --pathtrace --sky atmosphere`) share.
+core::ImageRgba32f bakeSky(vk::Context& ctx, vk::ShaderLibrary& shaders, const AtmosphereSettings& settings);
+
 // Radiance along unit `direction` with viewSteps x lightSteps midpoint quadrature (the shader's scheme).
 glm::dvec3 atmosphereRadiance(const gpu::GpuAtmosphere& params, const glm::dvec3& direction, uint32_t viewSteps,
                               uint32_t lightSteps);

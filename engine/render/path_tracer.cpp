@@ -189,8 +189,15 @@ struct PathTracer::Impl {
 namespace {
 
 // PT-A's scene for options.environment: the HDR file (default: the raster's), or a constant grey 0.5 for an empty
-// path; a file that cannot be read falls back to the constant with a warning, as the raster does.
-pathtrace::PathTraceScene buildScene(const scene::Scene& scene, const PathTracerOptions& options) {
+// path; a file that cannot be read falls back to the constant with a warning, as the raster does. With
+// options.atmosphere.enabled the baked sky instead (black at intensity 0, where the raster bakes nothing either).
+pathtrace::PathTraceScene buildScene(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene::Scene& scene,
+                                     const PathTracerOptions& options) {
+    if (options.atmosphere.enabled) {
+        if (options.environmentIntensity == 0.0f) return pathtrace::buildPathTraceScene(scene, nullptr, 0.0f);
+        const core::ImageRgba32f sky = bakeSky(ctx, shaders, options.atmosphere);
+        return pathtrace::buildPathTraceScene(scene, &sky, options.environmentIntensity);
+    }
     const std::filesystem::path file = options.environment.value_or(defaultEnvironmentPath());
     if (!file.empty()) {
         try {
@@ -207,7 +214,7 @@ pathtrace::PathTraceScene buildScene(const scene::Scene& scene, const PathTracer
 }  // namespace
 
 PathTracer::PathTracer(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene::Scene& scene, PathTracerOptions options)
-    : PathTracer(ctx, shaders, scene, buildScene(scene, options), options) {}
+    : PathTracer(ctx, shaders, scene, buildScene(ctx, shaders, scene, options), options) {}
 
 PathTracer::PathTracer(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene::Scene& scene,
                        const pathtrace::PathTraceScene& pts, PathTracerOptions options)

@@ -16,6 +16,7 @@
 
 #include "core/image_file.hpp"
 #include "pathtrace/pt_settings.hpp"
+#include "render/atmosphere.hpp"
 #include "scene/camera.hpp"
 #include "scene/scene.hpp"
 #include "shared/pt_wavefront.h"
@@ -50,6 +51,9 @@ struct PathTracerOptions {
     float environmentIntensity = 1.0f;
     // Equirectangular HDR environment: nullopt = defaultEnvironmentPath(); an empty path = constant radiance 0.5.
     std::optional<std::filesystem::path> environment;
+    // `--sky atmosphere` (atmosphere.enabled): the sky render::bakeSky bakes for these settings replaces the file,
+    // the same equirectangular map the raster's environment uses (its importance-sampling tables built from it).
+    AtmosphereSettings atmosphere;
 };
 
 // What a render computes: PT-A's settings struct, shared with the CPU reference (pathtrace::renderReference), so
@@ -92,7 +96,8 @@ class PathTracer {
 public:
     using Progress = std::function<void(uint32_t samplesDone, uint32_t samplesTotal)>;
 
-    // Builds PT-A's PathTraceScene (BVHs, lights, environment tables from options.environment) and uploads it with
+    // Builds PT-A's PathTraceScene (BVHs, lights, environment tables from options.environment or the baked sky of
+    // options.atmosphere) and uploads it with
     // the GpuScene materials and textures (+ acceleration structures for the ray-query rung). Throws
     // std::runtime_error when the requested traversal cannot run on the device.
     PathTracer(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene::Scene& scene, PathTracerOptions options = {});

@@ -44,6 +44,10 @@ void Renderer::setScene(const scene::Scene& scene) {
     features_.setSourceScene(ctx_, scene, *gpuScene_, settings_);
 }
 
+void Renderer::prepareSourceScene(const scene::Scene& scene) {
+    if (gpuScene_) features_.rtShadows.ensureGeometry(ctx_, scene, *gpuScene_, settings_);
+}
+
 void Renderer::setPose(const scene::Scene& scene) {
     if (gpuScene_ && gpuScene_->animation()) gpuScene_->animation()->setPose(scene);
 }
@@ -136,6 +140,7 @@ FrameResult Renderer::renderOffscreen(const scene::CameraView& camera, uint32_t 
     if (pbr) result.shadingInvocations = features_.vrs.lastShadingInvocations();
     if (pbr) result.culling = cullingStats();
     if (pbr) result.geometryPath = features_.culling.lastGeometryPath();
+    if (pbr) result.skyBakes = features_.environment.skyBakes();
 
     std::vector<uint8_t> bytes = vk::readbackImage(ctx_, target, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
     result.image.width = width;

@@ -43,6 +43,9 @@ struct FrameResult {
     uint64_t shadingInvocations = 0;
     std::vector<passes::CullingViewStats> culling;  // GPU culling's counters per view (empty: culling off)
     std::string geometryPath;  // PBR: the camera G-buffer's path, frame::CullingFeature::lastGeometryPath()
+    // `--sky atmosphere`: sky bakes so far by this renderer (once per sun move). The bake is one immediate submission
+    // outside the frame's graph (its map is read back for the CPU's SH and mip tables), so it is not in passesRun.
+    uint32_t skyBakes = 0;
 };
 
 // renderFrame's target: the caller's colour image (e.g. a swapchain image). The frame is rendered exactly as
@@ -79,6 +82,10 @@ public:
     // The scene as posed now (after scene::evaluateAnimations): instance transforms, joint matrices and morph
     // weights reach the next frame (pose_upload and skinning passes, only when something changed).
     void setPose(const scene::Scene& scene);
+    // Builds what needs the source scene and was off at setScene (the ray-traced shadows' geometry, once that mode is
+    // switched on; frame/rt_shadow_feature.hpp); a cheap no-op otherwise. Callers that change settings between
+    // frames (the viewer) call it before each frame with the scene given to setScene.
+    void prepareSourceScene(const scene::Scene& scene);
     FrameResult renderOffscreen(const scene::CameraView& camera, uint32_t width, uint32_t height);
     // A still image: with temporal anti-aliasing, a fresh history and settings.temporal.frames jittered frames of
     // the unmoving camera (the last one is returned); otherwise one renderOffscreen. With --culling hiz the frame
@@ -118,6 +125,8 @@ public:
     frame::SsaoFeature& ssao() noexcept { return features_.ssao; }  // tests capture its inputs and output
     // The VXGI voxel grid of the last frame and its features (nullptr with --gi none): tests read it back.
     const frame::VxgiFeature& vxgi() const noexcept { return features_.vxgi; }
+    // The frame's environment map (tests count the atmosphere's sky bakes: once per sun move).
+    const frame::EnvironmentFeature& environment() const noexcept { return features_.environment; }
     // The directional cascades and spot maps of the last frame (nullptr when no light rendered one).
     const LightShadowMaps* lightShadowMaps() const noexcept { return features_.pointShadows.lightMaps(); }
     // Runs inside each frame's command buffer before the frame's graph is built (TextureStreamer::pump goes

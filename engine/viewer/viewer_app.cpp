@@ -225,6 +225,7 @@ bool Viewer::renderAndPresent() {
             return ui->addPass(graph, *ImGui::GetDrawData(), color);
         };
     }
+    renderer->prepareSourceScene(scene);  // a shadow mode switched to ray-traced builds its geometry here
     state.lastFrame = renderer->renderFrame(currentView(), target);
     swapchain->present(*image);
     return true;

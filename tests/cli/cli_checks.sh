@@ -651,21 +651,35 @@ PY
     grep -q -- "--aa 'fxaa'" "$tmp/err" || fail "error does not name --aa: $(cat "$tmp/err")"
     ;;
   upscale_flags)
-    # Issue 12: --aa upscale --upscale S runs the temporal upscaler: lighting shades S^2 of the output's pixels
-    # (16x16 at S = 0.5: 8x8 = 64), the upscaler's resolve runs instead of TAA's, the settings record aa and the
-    # scale; a scale outside [0.5, 1] exits 2 naming the flag.
-    "$idk" render --size 16x16 --out "$tmp/u.png" --aa upscale --upscale 0.5 --temporal-frames 2 --stats --json \
+    # Issue 12: `--aa taa --upscale S` with S < 1 runs the temporal upscaler: lighting shades S^2 of the output's
+    # pixels (16x16 at S = 0.5: 8x8 = 64), the upscaler's resolve runs instead of TAA's, the settings record aa and
+    # the scale; `--aa upscale` is its alias; `--aa taa` alone (S = 1) runs TAA at full size; --upscale with --aa
+    # none would run no temporal pass and exits 2 naming both flags; a scale outside [0.5, 1] exits 2 naming it.
+    "$idk" render --size 16x16 --out "$tmp/u.png" --aa taa --upscale 0.5 --temporal-frames 2 --stats --json \
       >"$tmp/u.json" \
-      || fail "render with --upscale 0.5 failed"
-    for key in '"aa": "upscale"' '"upscale": 0.5' '"upscale_resolve"' '"shadingInvocations": 64'; do
+      || fail "render with --aa taa --upscale 0.5 failed"
+    for key in '"aa": "taa"' '"upscale": 0.5' '"upscale_resolve"' '"shadingInvocations": 64'; do
       grep -q "$key" "$tmp/u.json" || fail "--json lacks $key: $(cat "$tmp/u.json")"
     done
     ! grep -q '"taa_resolve"' "$tmp/u.json" || fail "TAA's resolve ran with the upscaler"
-    "$idk" render --size 16x16 --out "$tmp/v.png" --upscale 0.5 --json >"$tmp/v.json" || fail "--upscale alone failed"
-    ! grep -q '"upscale_resolve"' "$tmp/v.json" || fail "the upscaler ran without --aa upscale"
-    "$idk" render --size 8x8 --out "$tmp/x.png" --upscale 0.3 2>"$tmp/err"; [ $? -eq 2 ] \
+    "$idk" render --size 16x16 --out "$tmp/a.png" --aa upscale --upscale 0.5 --temporal-frames 2 --stats --json \
+      >"$tmp/a.json" || fail "render with --aa upscale --upscale 0.5 failed"
+    for key in '"aa": "upscale"' '"upscale_resolve"' '"shadingInvocations": 64'; do
+      grep -q "$key" "$tmp/a.json" || fail "--aa upscale: --json lacks $key: $(cat "$tmp/a.json")"
+    done
+    "$idk" render --size 16x16 --out "$tmp/t.png" --aa taa --temporal-frames 2 --stats --json >"$tmp/t.json" \
+      || fail "render with --aa taa failed"
+    for key in '"upscale": 1' '"taa_resolve"' '"shadingInvocations": 256'; do
+      grep -q "$key" "$tmp/t.json" || fail "--aa taa: --json lacks $key: $(cat "$tmp/t.json")"
+    done
+    ! grep -q '"upscale_resolve"' "$tmp/t.json" || fail "the upscaler ran with --aa taa at S = 1"
+    "$idk" render --size 16x16 --out "$tmp/v.png" --upscale 0.5 2>"$tmp/err"; [ $? -eq 2 ] \
+      || fail "--upscale without --aa taa should exit 2"
+    grep -q -- "--upscale '0.5'.*--aa taa" "$tmp/err" || fail "error does not name --upscale and --aa: $(cat "$tmp/err")"
+    [ ! -e "$tmp/v.png" ] || fail "the refused render wrote an image"
+    "$idk" render --size 8x8 --out "$tmp/x.png" --aa taa --upscale 0.3 2>"$tmp/err"; [ $? -eq 2 ] \
       || fail "--upscale 0.3 should exit 2"
-    grep -q -- "--upscale" "$tmp/err" || fail "error does not name --upscale: $(cat "$tmp/err")"
+    grep -q -- "--upscale '0.3'" "$tmp/err" || fail "error does not name --upscale: $(cat "$tmp/err")"
     ;;
   ssr_flags)
     # Issue 12: --ssr adds the closest-depth pyramid, the Hi-Z march and the lit-image copy (a still renders two
@@ -706,6 +720,72 @@ PY
     "$idk" render --size 8x8 --out "$tmp/x.png" --soft-shadow-rays 0 2>"$tmp/err"; [ $? -eq 2 ] \
       || fail "--soft-shadow-rays 0 should exit 2"
     grep -q -- "--soft-shadow-rays" "$tmp/err" || fail "error does not name --soft-shadow-rays: $(cat "$tmp/err")"
+    ;;
+  temporal_replay)
+    # Issue 12: capture replay with the temporal and screen-space passes keeps per-frame history: a 6-record capture
+    # walking into the Cornell box with --aa taa --bloom --ssao --ssr renders a 6-frame video whose frames differ
+    # among themselves (the camera moved) and, every one, from the plain replay's (the passes ran on each frame).
+    # (--stats is refused with --replay; the pass lists are checked on stills by temporal_flags and ssr_flags.)
+    python3 - "$tmp/cap.idkcap" 6 <<'PY' || fail "cannot write the test capture"
+import struct, sys
+out, n = sys.argv[1], int(sys.argv[2])
+records = b"".join(struct.pack("<d3f3fdI", i / 30, -0.278 + 0.01 * i, 0.273, 0.8 - 0.06 * i, 0.02 * i, 0.0, 0.686,
+                               i / 30, 0) for i in range(n))
+open(out, "wb").write(b"IDKCAPT\0" + struct.pack("<IIfIQ", 1, 44, 30.0, 0, n) + records)
+PY
+    fx=(--aa taa --bloom --ssao --ssr --size 48x32)
+    "$idk" render --replay "$tmp/cap.idkcap" "${fx[@]}" --video "$tmp/fx.mp4" 2>"$tmp/err" \
+      || fail "replay with TAA, bloom, SSAO, SSR failed: $(cat "$tmp/err")"
+    [ "$(ffprobe -v error -select_streams v:0 -count_frames -show_entries stream=nb_read_frames -of csv=p=0 "$tmp/fx.mp4")" = 6 ] \
+      || fail "ffprobe does not count 6 frames"
+    "$idk" render --replay "$tmp/cap.idkcap" --size 48x32 --video "$tmp/plain.mp4" 2>/dev/null || fail "plain replay failed"
+    md5s() { ffmpeg -v error -i "$1" -f framemd5 - | grep -v '^#' | awk -F, '{print $NF}'; }
+    # Distinct decoded frames: the camera's motion reaches every frame (no frame repeats a stale history).
+    distinct=$(md5s "$tmp/fx.mp4" | sort -u | wc -l)
+    [ "$distinct" -eq 6 ] || fail "only $distinct distinct frames of 6"
+    # The passes ran on every frame: each frame differs from the plain replay's frame at the same record.
+    same=$(paste -d' ' <(md5s "$tmp/fx.mp4") <(md5s "$tmp/plain.mp4") | awk '$1 == $2' | wc -l)
+    [ "$same" -eq 0 ] || fail "$same frames equal to the plain replay's"
+    ;;
+  media_passes)
+    # Issue 13: --volumetrics, --sky atmosphere and --oit weighted each add their work to the frame when on and
+    # none of it when off (volumetrics on the Cornell box, the others on AlphaBlendModeTest): the passes that ran (--stats --json) for volumetrics and weighted OIT; for the sky, whose
+    # bake is one submission outside the graph, the skyBakes count (1 for a still: the sun never moved) and the
+    # settings record.
+    shared="${IDK_SHARED_DIR:-$(cd "$(dirname "$0")/../../.." && pwd)/shared}"
+    scene="$shared/scenes/AlphaBlendModeTest/glTF-Binary/AlphaBlendModeTest.glb"
+    [ -f "$scene" ] || fail "missing test input $scene"
+    "$idk" render "$scene" --size 24x24 --out "$tmp/off.png" --stats --json >"$tmp/off.json" || fail "plain render failed"
+    ! grep -q '"volumetrics_march"\|"volumetrics_upsample"\|"oit_accumulate"\|"oit_composite"\|"skyBakes"' "$tmp/off.json" \
+      || fail "volumetrics, weighted OIT or the sky bake ran while off: $(cat "$tmp/off.json")"
+    passes() { python3 -c "import json,sys; print('\n'.join(json.load(open(sys.argv[1]))['passes']))" "$1"; }
+    passes "$tmp/off.json" | grep -qx transparency || fail "the sorted transparency pass (the default) did not run"
+    # Volumetrics scatter the scene's lights: the embedded Cornell box (AlphaBlendModeTest has none: no passes).
+    "$idk" render --size 24x24 --out "$tmp/cb.png" --stats --json >"$tmp/cb.json" || fail "plain Cornell box failed"
+    ! grep -q '"volumetrics_march"\|"volumetrics_upsample"' "$tmp/cb.json" || fail "volumetrics ran while off"
+    "$idk" render --size 24x24 --out "$tmp/v.png" --volumetrics --stats --json >"$tmp/v.json" \
+      || fail "--volumetrics failed"
+    for key in '"volumetrics": true' '"volumetrics_march"' '"volumetrics_upsample"'; do
+      grep -q "$key" "$tmp/v.json" || fail "--volumetrics: --json lacks $key: $(cat "$tmp/v.json")"
+    done
+    "$idk" render "$scene" --size 24x24 --out "$tmp/w.png" --oit weighted --stats --json >"$tmp/w.json" \
+      || fail "--oit weighted failed"
+    for key in '"oit": "weighted"' '"oit_accumulate"' '"oit_composite"'; do
+      grep -q "$key" "$tmp/w.json" || fail "--oit weighted: --json lacks $key: $(cat "$tmp/w.json")"
+    done
+    ! passes "$tmp/w.json" | grep -qx transparency || fail "the sorted pass ran with --oit weighted"
+    "$idk" render "$scene" --size 24x24 --out "$tmp/s.png" --sky atmosphere --sun-elevation 10 --stats --json \
+      >"$tmp/s.json" || fail "--sky atmosphere failed"
+    for key in '"sky": "atmosphere"' '"sun-elevation": 10' '"skyBakes": 1' '"sky"'; do
+      grep -q "$key" "$tmp/s.json" || fail "--sky atmosphere: --json lacks $key: $(cat "$tmp/s.json")"
+    done
+    ! "$idk" compare "$tmp/s.png" "$tmp/off.png" --fail-above 0 >/dev/null || fail "the atmosphere sky left the image unchanged"
+    # The path tracer under the same baked sky (issue 13: the sky as the path tracer's environment).
+    "$idk" render "$scene" --pathtrace --spp 2 --max-depth 2 --size 24x24 --out "$tmp/p.exr" --no-validation \
+      2>/dev/null || fail "path trace under the HDR file failed"
+    "$idk" render "$scene" --pathtrace --sky atmosphere --sun-elevation 10 --spp 2 --max-depth 2 --size 24x24 \
+      --out "$tmp/pa.exr" --no-validation 2>"$tmp/err" || fail "--pathtrace --sky atmosphere failed: $(cat "$tmp/err")"
+    ! "$idk" compare "$tmp/pa.exr" "$tmp/p.exr" --fail-above 0 >/dev/null || fail "--pathtrace ignored --sky atmosphere"
     ;;
   *) fail "unknown case" ;;
 esac

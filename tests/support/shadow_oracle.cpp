@@ -101,6 +101,28 @@ bool occludedFrom(const std::vector<PlacedQuad>& quads, const glm::dvec3& p, con
     return castRay(quads, p, d / len, 1e-6, len - 1e-6).has_value();
 }
 
+double sphereVisibility(const std::vector<PlacedQuad>& occluders, const glm::dvec3& p, const glm::dvec3& c, double r,
+                        int n) {
+    const glm::dvec3 toCentre = c - p;
+    const double d = glm::length(toCentre);
+    const glm::dvec3 w = toCentre / d;
+    const glm::dvec3 u = glm::normalize(std::abs(w.x) > 0.9 ? glm::cross(w, glm::dvec3(0, 1, 0))
+                                                            : glm::cross(w, glm::dvec3(1, 0, 0)));
+    const glm::dvec3 v = glm::cross(w, u);
+    const double cosMax = std::sqrt(1.0 - (r / d) * (r / d));
+    int visible = 0;
+    for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) {
+            const double cosT = 1.0 - (i + 0.5) / n * (1.0 - cosMax), sinT = std::sqrt(1.0 - cosT * cosT);
+            const double phi = 2.0 * M_PI * (j + 0.5) / n;
+            const glm::dvec3 dir = u * (std::cos(phi) * sinT) + v * (std::sin(phi) * sinT) + w * cosT;
+            const double t = d * cosT - std::sqrt(std::max(r * r - d * d * sinT * sinT, 0.0));
+            visible += !occludedFrom(occluders, p, p + dir * t);
+        }
+    }
+    return double(visible) / double(n * n);
+}
+
 FloorCounts checkShadowFloor(const ShadowFrames& f, const std::vector<PlacedQuad>& visible,
                              const std::vector<PlacedQuad>& occluders, const scene::CameraView& camera,
                              const OracleLight& light, double bandTexels, bool skipUnlit) {

@@ -53,6 +53,10 @@ struct OracleLight {
     std::function<double(const glm::dvec3&)> texel;
 };
 bool occludedFrom(const std::vector<PlacedQuad>& quads, const glm::dvec3& p, const glm::dvec3& target);
+// The visible fraction of a sphere light (centre c, radius r) from p past `occluders`: n x n stratified directions
+// uniform in the sphere's cone seen from p (the soft-shadow oracle: SoftShadowTest and the benchmark's soft rows).
+double sphereVisibility(const std::vector<PlacedQuad>& occluders, const glm::dvec3& p, const glm::dvec3& c, double r,
+                        int n);
 
 struct FloorCounts {
     uint32_t dark = 0, lit = 0, band = 0, unlit = 0, failures = 0;

@@ -2,8 +2,8 @@
 // --soft-shadow-rays N`: rt_shadows/mask_body.h traces N rays per pixel, rt_shadows/denoise.comp filters along the
 // surfaces) against a CPU oracle: per floor pixel, the fraction of 2304 stratified directions uniform in the
 // sphere's cone (seen from the floor point) that reach the sphere past an opaque square occluder
-// (support/placed_quads.hpp castRay, exact for quads). 128x128 HDR frames, floor visibility s per pixel from
-// support/shadow_oracle.hpp. Asserted, for 64 rays (and, looser, for 8 rays, where the raw estimate's standard
+// (support/shadow_oracle.hpp sphereVisibility: castRay, exact for quads). 128x128 HDR frames, floor visibility s per
+// pixel from support/shadow_oracle.hpp. Asserted, for 64 rays (and, looser, for 8 rays, where the raw estimate's standard
 // deviation would be up to 0.18 per pixel and the filter carries the result):
 //  * umbra (oracle 0) and fully lit (oracle 1) pixels: |s - oracle| <= 0.05 (0.15): only the filter's reach
 //    into them from the penumbra moves them;
@@ -23,29 +23,6 @@ namespace {
 
 constexpr uint32_t kSize = kShadowFrameSize;
 constexpr float kRadius = 0.3f;
-
-// The visible fraction of the sphere (centre c, radius r) from p over `occluders`, n x n stratified directions.
-double sphereVisibility(const std::vector<PlacedQuad>& occluders, const glm::dvec3& p, const glm::dvec3& c, double r,
-                        int n) {
-    const glm::dvec3 toCentre = c - p;
-    const double d = glm::length(toCentre);
-    const glm::dvec3 w = toCentre / d;
-    const glm::dvec3 u = glm::normalize(std::abs(w.x) > 0.9 ? glm::cross(w, glm::dvec3(0, 1, 0))
-                                                            : glm::cross(w, glm::dvec3(1, 0, 0)));
-    const glm::dvec3 v = glm::cross(w, u);
-    const double cosMax = std::sqrt(1.0 - (r / d) * (r / d));
-    int visible = 0;
-    for (int i = 0; i < n; ++i) {
-        for (int j = 0; j < n; ++j) {
-            const double cosT = 1.0 - (i + 0.5) / n * (1.0 - cosMax), sinT = std::sqrt(1.0 - cosT * cosT);
-            const double phi = 2.0 * M_PI * (j + 0.5) / n;
-            const glm::dvec3 dir = u * (std::cos(phi) * sinT) + v * (std::sin(phi) * sinT) + w * cosT;
-            const double t = d * cosT - std::sqrt(std::max(r * r - d * d * sinT * sinT, 0.0));
-            visible += !occludedFrom(occluders, p, p + dir * t);
-        }
-    }
-    return double(visible) / double(n * n);
-}
 
 struct Limits {
     double hard, penumbraWorst, penumbraMean, width;

@@ -71,6 +71,28 @@ TEST(SettingsTable, BadValuesNameTheOptionAndWhatIsAccepted) {
     EXPECT_EQ(s.pointShadows.resolution, render::RenderSettings{}.pointShadows.resolution);  // untouched on error
 }
 
+// Issue 12's selection `--aa none|taa [--upscale S]`: --aa taa with S < 1 runs the upscaler (--aa upscale is kept
+// as its alias); --upscale with --aa none would run no temporal pass at all, so it is an error naming the flag.
+TEST(SettingsTable, UpscaleScaleGoesWithTemporalAntiAliasing) {
+    render::RenderSettings s;
+    applySettingOptions(parse({"--aa", "taa", "--upscale", "0.5"}), s);
+    EXPECT_EQ(s.temporal.aa, AntiAliasing::Taa);
+    EXPECT_FLOAT_EQ(s.temporal.upscale, 0.5f);
+    EXPECT_TRUE(upscalerRuns(s.temporal));
+    render::RenderSettings alias;
+    applySettingOptions(parse({"--aa", "upscale", "--upscale", "0.5"}), alias);
+    EXPECT_TRUE(upscalerRuns(alias.temporal));
+    render::RenderSettings none;
+    try {
+        applySettingOptions(parse({"--upscale", "0.5"}), none);
+        ADD_FAILURE() << "--upscale without --aa taa was accepted";
+    } catch (const core::CliError& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("--upscale '0.5'"), std::string::npos) << m;
+        EXPECT_NE(m.find("--aa taa"), std::string::npos) << m;
+    }
+}
+
 TEST(SettingsTable, HelpAndJsonListEveryRow) {
     const std::string help = settingOptionsHelp();
     const nlohmann::json j = settingsJson(render::RenderSettings{});

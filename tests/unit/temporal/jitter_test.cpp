@@ -87,5 +87,25 @@ TEST(Jitter, UpscalerPhasesAndRenderExtent) {
     EXPECT_EQ(TemporalFeature::stillFrames(s), 1u);
 }
 
+// `--aa taa --upscale S` runs the upscaler for S < 1 and TAA at S = 1 (the default); `--aa upscale` is the alias that
+// runs the upscaler at any S; --aa none runs neither.
+TEST(Jitter, TaaWithAScaleBelowOneRunsTheUpscaler) {
+    render::RenderSettings s;
+    EXPECT_EQ(s.temporal.upscale, 1.0f);
+    s.temporal.frames = 16;
+    s.temporal.aa = AntiAliasing::Taa;
+    EXPECT_FALSE(UpscaleFeature::enabled(s));
+    s.temporal.upscale = 0.5f;
+    EXPECT_TRUE(UpscaleFeature::enabled(s));
+    EXPECT_EQ(TemporalFeature::jitterPhases(s), 64u);
+    s.temporal.upscale = 1.0f;
+    s.temporal.aa = AntiAliasing::Upscale;
+    EXPECT_TRUE(UpscaleFeature::enabled(s));
+    s.temporal.aa = AntiAliasing::None;
+    s.temporal.upscale = 0.5f;
+    EXPECT_FALSE(UpscaleFeature::enabled(s));
+    EXPECT_EQ(TemporalFeature::stillFrames(s), 1u);
+}
+
 }  // namespace
 }  // namespace idk::frame

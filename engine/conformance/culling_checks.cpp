@@ -6,7 +6,7 @@
 //   compute rung bit for bit and, with a plain sampler in its place, must NOT reproduce the maximum (so the rung
 //   cannot pass by sampling one texel); oracle render::buildDepthPyramid.
 // * "ssr/closest-depth pyramid" (the SSR march's min pyramid, recordDepthPyramid with HizReduction::Closest) against
-//   closestDepthPyramid below.
+//   render::buildDepthPyramid with DepthReduction::Closest.
 // Moved from tests/conformance/culling/{depth_pyramid,ssr_pyramid}_test.cpp, which keep the CPU-only layout and
 // footprint tests. The culling kernel itself: cull_kernel_checks.cpp.
 #include <algorithm>
@@ -36,25 +36,6 @@ std::vector<float> randomDepth(glm::uvec2 size, uint32_t seed) {
             d[size_t(y) * size.x + x] = u(rng) < 0.05f ? u(rng) : v;
         }
     return d;
-}
-
-// Each texel the minimum over the depth pixels it covers (shared/depth_pyramid.h layout): the SSR pyramid's oracle.
-std::vector<float> closestDepthPyramid(const std::vector<float>& depth, glm::uvec2 size) {
-    const uint32_t levels = gpu::hizLevelCount(size);
-    std::vector<float> out(gpu::hizLevelOffset(size, levels));
-    for (uint32_t k = 0; k < levels; ++k) {
-        const glm::uvec2 s = gpu::hizLevelSize(size, k);
-        const uint32_t span = 2u << k, offset = gpu::hizLevelOffset(size, k);
-        for (uint32_t y = 0; y < s.y; ++y)
-            for (uint32_t x = 0; x < s.x; ++x) {
-                float m = 1.0f;
-                for (uint32_t py = y * span; py < std::min((y + 1) * span, size.y); ++py)
-                    for (uint32_t px = x * span; px < std::min((x + 1) * span, size.x); ++px)
-                        m = std::min(m, depth[size_t(py) * size.x + px]);
-                out[offset + y * s.x + x] = m;
-            }
-    }
-    return out;
 }
 
 vk::Image floatImage(CheckEnv& env, glm::uvec2 size, VkImageUsageFlags usage, const char* name) {
@@ -183,7 +164,7 @@ void closestPyramid(CheckEnv& env, Verdict& v) {
         const std::string what = std::to_string(size.x) + "x" + std::to_string(size.y);
         std::vector<float> depth(size_t(size.x) * size.y);
         for (float& d : depth) d = u(rng) < 0.2f ? 1.0f : u(rng);  // background holes
-        const std::vector<float> expected = closestDepthPyramid(depth, size);
+        const std::vector<float> expected = render::buildDepthPyramid(depth, size, render::DepthReduction::Closest);
         const std::vector<float> got = computePyramid(env, depth, size, passes::HizReduction::Closest);
         v.expectEq(expected.back(), *std::min_element(depth.begin(), depth.end()), what + ": the oracle's top texel");
         if (!v.expectEq(got.size(), expected.size(), what + ": texel count")) continue;

@@ -10,8 +10,9 @@
 
 #include <vector>
 
-#include "passes/vxgi_passes.hpp"
 #include "conformance/placed_quads.hpp"
+#include "passes/vxgi_passes.hpp"
+#include "vk/context.hpp"
 
 namespace idk::conformance {
 
@@ -30,5 +31,9 @@ struct OracleLight {
 // quads[i] with emission emissive[i] (linear radiance; missing entries: none).
 std::vector<OracleVoxel> voxelizeOnCpu(const std::vector<PlacedQuad>& quads, const std::vector<glm::vec3>& emissive,
                                        const std::vector<OracleLight>& lights, const passes::VoxelGridBox& box);
+
+// The RGBA16F voxel grid a frame left in GENERAL layout (level 0), as RGBA floats, x fastest; the GPU side of
+// every comparison with the oracle (the registry's vxgi checks and the gl-interop rung's tests).
+std::vector<glm::vec4> readVoxelGrid(vk::Context& ctx, const vk::Image& grid);
 
 }  // namespace idk::conformance

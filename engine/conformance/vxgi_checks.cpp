@@ -73,31 +73,6 @@ scene::Scene toScene(const VoxelScene& t) {
     return s;
 }
 
-// The grid left in GENERAL layout by the frame, as RGBA floats (x fastest).
-std::vector<glm::vec4> readGrid(vk::Context& ctx, const vk::Image& grid) {
-    const size_t voxels = size_t(grid.extent.width) * grid.extent.height * grid.extent.depth;
-    vk::BufferDesc desc;
-    desc.size = voxels * 8;
-    desc.memory = vk::MemoryUsage::Readback;
-    desc.name = "voxel grid readback";
-    vk::Buffer staging = ctx.createBuffer(desc);
-    ctx.runImmediate([&](VkCommandBuffer cmd) {
-        vk::transitionImage(cmd, grid, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-        VkBufferImageCopy copy{};
-        copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        copy.imageExtent = grid.extent;
-        vkCmdCopyImageToBuffer(cmd, grid.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.buffer, 1, &copy);
-        vk::transitionImage(cmd, grid, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
-    });
-    std::vector<uint16_t> halves(voxels * 4);
-    vk::downloadBuffer(ctx, staging, halves.data(), desc.size);
-    ctx.destroy(staging);
-    std::vector<glm::vec4> out(voxels);
-    for (size_t i = 0; i < voxels; ++i)
-        for (int c = 0; c < 4; ++c) out[i][c] = glm::unpackHalf1x16(halves[i * 4 + c]);
-    return out;
-}
-
 struct Grid {
     std::vector<glm::vec4> voxels;  // empty when the frame made no grid
     passes::VoxelGridBox box;
@@ -118,7 +93,7 @@ Grid voxelize(vk::Context& ctx, vk::ShaderLibrary& shaders, const VoxelScene& t,
     camera.position = {0.0f, 0.0f, 0.9f};
     renderer.renderOffscreen(camera, 16, 16);
     Grid g;
-    if (const vk::Image* grid = renderer.vxgi().grid()) g.voxels = readGrid(ctx, *grid);
+    if (const vk::Image* grid = renderer.vxgi().grid()) g.voxels = readVoxelGrid(ctx, *grid);
     g.box = renderer.vxgi().box();
     return g;
 }

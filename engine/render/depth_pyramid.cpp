@@ -7,7 +7,8 @@
 
 namespace idk::render {
 
-std::vector<float> buildDepthPyramid(const std::vector<float>& depth, glm::uvec2 size) {
+std::vector<float> buildDepthPyramid(const std::vector<float>& depth, glm::uvec2 size, DepthReduction reduction) {
+    const bool farthest = reduction == DepthReduction::Farthest;
     const uint32_t levels = gpu::hizLevelCount(size);
     std::vector<float> out(gpu::hizLevelOffset(size, levels));
     for (uint32_t k = 0; k < levels; ++k) {
@@ -15,10 +16,12 @@ std::vector<float> buildDepthPyramid(const std::vector<float>& depth, glm::uvec2
         const uint32_t span = 2u << k, offset = gpu::hizLevelOffset(size, k);
         for (uint32_t y = 0; y < s.y; ++y)
             for (uint32_t x = 0; x < s.x; ++x) {
-                float m = 0.0f;
+                float m = farthest ? 0.0f : 1.0f;
                 for (uint32_t py = y * span; py < std::min((y + 1) * span, size.y); ++py)
-                    for (uint32_t px = x * span; px < std::min((x + 1) * span, size.x); ++px)
-                        m = std::max(m, depth[size_t(py) * size.x + px]);
+                    for (uint32_t px = x * span; px < std::min((x + 1) * span, size.x); ++px) {
+                        const float d = depth[size_t(py) * size.x + px];
+                        m = farthest ? std::max(m, d) : std::min(m, d);
+                    }
                 out[offset + y * s.x + x] = m;
             }
     }

@@ -8,8 +8,13 @@
 
 namespace idk::render {
 
+// Which depth each texel keeps (depth 0 = near, 1 = far): the farthest (culling's Hi-Z) or the closest
+// (SSR's pyramid) of the pixels it covers.
+enum class DepthReduction { Farthest, Closest };
+
 // Every level of the pyramid of a w x h depth image (row-major, top row first), as the GPU lays it out.
-std::vector<float> buildDepthPyramid(const std::vector<float>& depth, glm::uvec2 size);
+std::vector<float> buildDepthPyramid(const std::vector<float>& depth, glm::uvec2 size,
+                                     DepthReduction reduction = DepthReduction::Farthest);
 
 // The late phase's occlusion test of a world box against `pyramid` (of view.viewport's size).
 bool hizBoxVisible(const std::vector<float>& pyramid, const gpu::GpuCullView& view, glm::vec3 center, glm::vec3 extent);

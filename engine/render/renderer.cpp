@@ -203,23 +203,11 @@ std::vector<glm::uvec2> Renderer::renderSurfaceIds(const scene::CameraView& came
         vk::Image& image;
         ~DestroyOnExit() { ctx.destroyDeferred(image); }
     } guard{ctx_, target};
-    VkCommandBuffer cmd = frames_.begin();
-    graph::RenderGraph graph(pool_, {width, height});
-    passes::IndirectDrawLog log;
-    try {
-        if (beforeFrame_) beforeFrame_(cmd);
-        frame::FrameContext f = frameContext(graph, camera, width, height, log);
-        graph::TextureHandle ids = graph.importTexture("surface ids", physicalOf(target), graph::ResourceState{},
-                                                       graph::FinalUse{graph::Access::TransferSrc});
+    runPartialFrame(camera, width, height, [&](frame::FrameContext& f) {
+        graph::TextureHandle ids = f.graph.importTexture("surface ids", physicalOf(target), graph::ResourceState{},
+                                                         graph::FinalUse{graph::Access::TransferSrc});
         frame::recordSurfaceIds(f, *gpuScene_, features_, ids);
-        graph.compile();
-        graph.execute(cmd);
-    } catch (...) {
-        if (!ctx_.deviceLost()) ctx_.waitFor(frames_.end());  // the frame slot stays usable (see renderOffscreen)
-        throw;
-    }
-    ctx_.waitFor(frames_.end());
-    hasTimings_ = false;
+    });
     const std::vector<uint8_t> bytes = vk::readbackImage(ctx_, target, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
     std::vector<glm::uvec2> ids(size_t(width) * height);
     std::memcpy(ids.data(), bytes.data(), std::min(bytes.size(), ids.size() * sizeof(glm::uvec2)));
@@ -228,13 +216,20 @@ std::vector<glm::uvec2> Renderer::renderSurfaceIds(const scene::CameraView& came
 
 void Renderer::warmUpCulling(const scene::CameraView& camera, uint32_t width, uint32_t height) {
     if (!gpuScene_) throw std::logic_error("Renderer::renderStill: call setScene first");
+    runPartialFrame(camera, width, height, [&](frame::FrameContext& f) { frame::recordCullingWarmup(f, *gpuScene_, features_); });
+}
+
+// One graph of part of the frame (what `record` declares), in a frame slot, waited for; its timestamps are not
+// reported (the next full frame's replace them).
+void Renderer::runPartialFrame(const scene::CameraView& camera, uint32_t width, uint32_t height,
+                               const std::function<void(frame::FrameContext&)>& record) {
     VkCommandBuffer cmd = frames_.begin();
     graph::RenderGraph graph(pool_, {width, height});
     passes::IndirectDrawLog log;
     try {
         if (beforeFrame_) beforeFrame_(cmd);
         frame::FrameContext f = frameContext(graph, camera, width, height, log);
-        frame::recordCullingWarmup(f, *gpuScene_, features_);
+        record(f);
         graph.compile();
         graph.execute(cmd);
     } catch (...) {
@@ -242,7 +237,7 @@ void Renderer::warmUpCulling(const scene::CameraView& camera, uint32_t width, ui
         throw;
     }
     ctx_.waitFor(frames_.end());
-    hasTimings_ = false;  // the next frame's timestamps replace these
+    hasTimings_ = false;
 }
 
 // ---- renderFrame: the viewer's path (same frame graph, no readback, caller's passes after it) ----

@@ -144,6 +144,8 @@ private:
     // The culling counters of the last frame (camera, then point-shadow faces); valid once it has finished.
     std::vector<passes::CullingViewStats> cullingStats() const;
     void warmUpCulling(const scene::CameraView& camera, uint32_t width, uint32_t height);
+    void runPartialFrame(const scene::CameraView& camera, uint32_t width, uint32_t height,
+                         const std::function<void(frame::FrameContext&)>& record);
 
     vk::Context& ctx_;
     vk::ShaderLibrary& shaders_;

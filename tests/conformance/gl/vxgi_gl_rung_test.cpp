@@ -23,6 +23,7 @@
 #include <cstdlib>
 #include <memory>
 
+#include "conformance/voxel_oracle.hpp"
 #include "passes/vxgi_gl_accumulate.hpp"
 #include "render/renderer.hpp"
 #include "shared/vxgi_types.h"
@@ -78,30 +79,6 @@ void expectClean(const vk::Context& ctx, const char* what) {
     for (const std::string& m : ctx.validationMessages()) ADD_FAILURE() << what << ": " << m;
 }
 
-std::vector<glm::vec4> readGrid(vk::Context& ctx, const vk::Image& grid) {
-    const size_t voxels = size_t(grid.extent.width) * grid.extent.height * grid.extent.depth;
-    vk::BufferDesc desc;
-    desc.size = voxels * 8;
-    desc.memory = vk::MemoryUsage::Readback;
-    desc.name = "voxel grid readback";
-    vk::Buffer staging = ctx.createBuffer(desc);
-    ctx.runImmediate([&](VkCommandBuffer cmd) {
-        vk::transitionImage(cmd, grid, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-        VkBufferImageCopy copy{};
-        copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        copy.imageExtent = grid.extent;
-        vkCmdCopyImageToBuffer(cmd, grid.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.buffer, 1, &copy);
-        vk::transitionImage(cmd, grid, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
-    });
-    std::vector<uint16_t> halves(voxels * 4);
-    vk::downloadBuffer(ctx, staging, halves.data(), desc.size);
-    ctx.destroy(staging);
-    std::vector<glm::vec4> out(voxels);
-    for (size_t i = 0; i < voxels; ++i)
-        for (int c = 0; c < 4; ++c) out[i][c] = glm::unpackHalf1x16(halves[i * 4 + c]);
-    return out;
-}
-
 // Grid tests: no shadows, centre raster (voxelize_record.frag); whole frames: the defaults, point shadows and
 // conservative raster (geometry-shader dilation on lavapipe: voxelize_record_dilated.frag).
 render::RenderSettings vxgiSettings(bool wholeFrame) {
@@ -137,7 +114,7 @@ Voxelized voxelize(std::optional<vk::Rung> forced, bool fallback = false) {
         renderer.setScene(testScene());
         renderer.renderOffscreen(insideCamera(), 16, 16);
         v.rung = ctx->ladder("vxgi-atomics").chosen;
-        v.grid = readGrid(*ctx, *renderer.vxgi().grid());
+        v.grid = conformance::readVoxelGrid(*ctx, *renderer.vxgi().grid());
         if (const passes::VxgiGlAccumulator* gl = renderer.vxgi().glAccumulator()) {
             v.stats = gl->lastStats();
             const std::vector<float> sums =
@@ -210,7 +187,7 @@ TEST(VxgiGlRungTest, OverflowIsReportedAndTheBufferGrows) {
         passes::VxgiGlAccumulator* gl = renderer.vxgi().glAccumulator();
         ASSERT_NE(gl, nullptr);
         const passes::VxgiGlStats whole = gl->lastStats();
-        const std::vector<glm::vec4> before = readGrid(*ctx, *renderer.vxgi().grid());
+        const std::vector<glm::vec4> before = conformance::readVoxelGrid(*ctx, *renderer.vxgi().grid());
         ASSERT_EQ(whole.dropped, 0u);
         ASSERT_GT(whole.appended, 2000u);
 
@@ -221,13 +198,13 @@ TEST(VxgiGlRungTest, OverflowIsReportedAndTheBufferGrows) {
         EXPECT_EQ(over.capacity, 1000u);
         EXPECT_EQ(over.dropped, whole.appended - 1000u);
         size_t occupiedOver = 0;
-        for (const glm::vec4& v : readGrid(*ctx, *renderer.vxgi().grid())) occupiedOver += v.a > 0.0f;
+        for (const glm::vec4& v : conformance::readVoxelGrid(*ctx, *renderer.vxgi().grid())) occupiedOver += v.a > 0.0f;
 
         renderer.renderOffscreen(insideCamera(), 16, 16);
         const passes::VxgiGlStats after = gl->lastStats();
         EXPECT_EQ(after.dropped, 0u);
         EXPECT_GE(after.capacity, whole.appended);
-        const std::vector<glm::vec4> again = readGrid(*ctx, *renderer.vxgi().grid());
+        const std::vector<glm::vec4> again = conformance::readVoxelGrid(*ctx, *renderer.vxgi().grid());
         size_t occupied = 0, differ = 0;
         for (size_t i = 0; i < before.size(); ++i) {
             occupied += before[i].a > 0.0f;
@@ -242,7 +219,7 @@ TEST(VxgiGlRungTest, OverflowIsReportedAndTheBufferGrows) {
         gl->setCapacity(1000);
         renderer.renderStill(insideCamera(), 16, 16);
         EXPECT_EQ(gl->lastStats().dropped, 0u);
-        const std::vector<glm::vec4> still = readGrid(*ctx, *renderer.vxgi().grid());
+        const std::vector<glm::vec4> still = conformance::readVoxelGrid(*ctx, *renderer.vxgi().grid());
         size_t stillDiffer = 0;
         for (size_t i = 0; i < before.size(); ++i)
             for (int c = 0; c < 4; ++c) stillDiffer += !within(before[i][c], still[i][c]) ? 1 : 0;

@@ -172,19 +172,34 @@ FrameResult Renderer::renderStill(const scene::CameraView& camera, uint32_t widt
     if (settings_.shading == Shading::Pbr && settings_.vrs.enabled) frames = std::max(frames, 2u);
     // SSR reflects the previous frame's lit image (frame/ssr_feature.hpp): a first frame lights the scene.
     if (settings_.shading == Shading::Pbr && settings_.ssr.enabled) frames = std::max(frames, 2u);
-    if (frames > 1) features_.temporal.resetHistory();
-    for (uint32_t i = 1; i < frames; ++i) renderOffscreen(camera, width, height);
+    // The passes of the still's earlier frames (uploads and skinning run in the first only): --stats lists them too.
+    std::vector<std::string> earlier;
+    auto note = [&](const std::vector<std::string>& passes) {
+        for (const std::string& p : passes)
+            if (std::find(earlier.begin(), earlier.end(), p) == earlier.end()) earlier.push_back(p);
+    };
     // Two-phase occlusion draws early what the frame before found visible. From cold it takes two frames: the
     // first one's early phase draws nothing, so its late phase tests against an empty pyramid and marks everything
     // in the frustum visible; the second draws all that early, and its late phase marks only what is really
-    // visible, which the third (the returned frame) draws early. Frames rendered above count towards the two.
+    // visible, which the next draws early. The features' frames below count towards the two; the G-buffer-only
+    // warm-ups come first, so those frames' histories (SSR's lit image, TAA, VRS rates) chain without a gap.
     if (settings_.shading == Shading::Pbr && settings_.culling.mode == frame::CullingMode::Hiz && !settings_.culling.freeze)
-        for (uint32_t i = frames - 1; i < 2; ++i) warmUpCulling(camera, width, height);
+        for (uint32_t i = frames - 1; i < 2; ++i) note(warmUpCulling(camera, width, height));
+    if (frames > 1) features_.temporal.resetHistory();
+    for (uint32_t i = 1; i < frames; ++i) note(renderOffscreen(camera, width, height).passesRun);
     FrameResult result = renderOffscreen(camera, width, height);
     // VXGI's gl-interop rung drops the fragments past its record buffer in a frame that overflows it and grows the
     // buffer to hold them (passes/vxgi_gl_accumulate.hpp): a still renders that frame again, whole.
-    if (const passes::VxgiGlAccumulator* gl = features_.vxgi.glAccumulator(); gl && gl->lastStats().dropped)
+    if (const passes::VxgiGlAccumulator* gl = features_.vxgi.glAccumulator(); gl && gl->lastStats().dropped) {
+        note(result.passesRun);
         result = renderOffscreen(camera, width, height);
+    }
+    // The returned frame's passes, after those that ran only in earlier frames of the still.
+    std::vector<std::string> passes;
+    for (const std::string& p : earlier)
+        if (std::find(result.passesRun.begin(), result.passesRun.end(), p) == result.passesRun.end()) passes.push_back(p);
+    passes.insert(passes.end(), result.passesRun.begin(), result.passesRun.end());
+    result.passesRun = std::move(passes);
     return result;
 }
 
@@ -214,15 +229,16 @@ std::vector<glm::uvec2> Renderer::renderSurfaceIds(const scene::CameraView& came
     return ids;
 }
 
-void Renderer::warmUpCulling(const scene::CameraView& camera, uint32_t width, uint32_t height) {
+std::vector<std::string> Renderer::warmUpCulling(const scene::CameraView& camera, uint32_t width, uint32_t height) {
     if (!gpuScene_) throw std::logic_error("Renderer::renderStill: call setScene first");
-    runPartialFrame(camera, width, height, [&](frame::FrameContext& f) { frame::recordCullingWarmup(f, *gpuScene_, features_); });
+    return runPartialFrame(camera, width, height, [&](frame::FrameContext& f) { frame::recordCullingWarmup(f, *gpuScene_, features_); });
 }
 
-// One graph of part of the frame (what `record` declares), in a frame slot, waited for; its timestamps are not
-// reported (the next full frame's replace them).
-void Renderer::runPartialFrame(const scene::CameraView& camera, uint32_t width, uint32_t height,
+// One graph of part of the frame (what `record` declares), in a frame slot, waited for; returns the passes that
+// ran. Its timestamps are not reported (the next full frame's replace them).
+std::vector<std::string> Renderer::runPartialFrame(const scene::CameraView& camera, uint32_t width, uint32_t height,
                                const std::function<void(frame::FrameContext&)>& record) {
+    std::vector<std::string> passes;
     VkCommandBuffer cmd = frames_.begin();
     graph::RenderGraph graph(pool_, {width, height});
     passes::IndirectDrawLog log;
@@ -232,12 +248,14 @@ void Renderer::runPartialFrame(const scene::CameraView& camera, uint32_t width, 
         record(f);
         graph.compile();
         graph.execute(cmd);
+        passes = graph.executionOrder();
     } catch (...) {
         if (!ctx_.deviceLost()) ctx_.waitFor(frames_.end());  // the frame slot stays usable (see renderOffscreen)
         throw;
     }
     ctx_.waitFor(frames_.end());
     hasTimings_ = false;
+    return passes;
 }
 
 // ---- renderFrame: the viewer's path (same frame graph, no readback, caller's passes after it) ----

@@ -143,8 +143,8 @@ private:
     // renderStill's warm-up for --culling hiz: the frame up to the G-buffer (frame::recordCullingWarmup).
     // The culling counters of the last frame (camera, then point-shadow faces); valid once it has finished.
     std::vector<passes::CullingViewStats> cullingStats() const;
-    void warmUpCulling(const scene::CameraView& camera, uint32_t width, uint32_t height);
-    void runPartialFrame(const scene::CameraView& camera, uint32_t width, uint32_t height,
+    std::vector<std::string> warmUpCulling(const scene::CameraView& camera, uint32_t width, uint32_t height);
+    std::vector<std::string> runPartialFrame(const scene::CameraView& camera, uint32_t width, uint32_t height,
                          const std::function<void(frame::FrameContext&)>& record);
 
     vk::Context& ctx_;

@@ -131,6 +131,18 @@ ProbeResult probeGlInterop(vk::Context& ctx) {
     r.semaphoreFd = gl->hasExtension("GL_EXT_semaphore_fd");
     // Every GL pass hands off in this mode (gl_sync.hpp); IDK_GL_SYNC=cpu forces the CPU-side waits.
     gl->setSync(chooseSyncMode(querySyncCapabilities(ctx, *gl), std::getenv("IDK_GL_SYNC")));
+    if (gl->sync().mode == SyncMode::Semaphores) {
+        // The extensions are listed; the import itself must work too, or every GL pass would fail on it.
+        try {
+            HandOff check(ctx, *gl, "probe hand-off");
+        } catch (const vk::DeviceLostError&) {
+            throw;
+        } catch (const vk::OutOfDeviceMemoryError&) {
+            throw;
+        } catch (const std::exception& e) {
+            gl->setSync({SyncMode::CpuWait, std::string("exporting semaphores to GL failed: ") + e.what()});
+        }
+    }
     r.note = "OpenGL " + gl->version() + " on " + gl->renderer() + " (EGL " + gl->platform() + "); sync: " +
              syncText(gl->sync());
     r.context = std::move(gl);

@@ -48,6 +48,8 @@ class HandOff {
 public:
     // Semaphore mode: creates, exports and imports the two semaphores (throws vk::Error / GlError).
     HandOff(vk::Context& ctx, const GlContext& gl, const std::string& name);
+    // Semaphore mode: makes the context current itself (glFinish, then the GL semaphores go), so destroy it outside
+    // a GlContext::Current scope (the context's lock is not recursive).
     ~HandOff();
     HandOff(const HandOff&) = delete;
     HandOff& operator=(const HandOff&) = delete;

@@ -11,7 +11,8 @@
 // submission is waited for, GL reads the record count, dispatches for it and ends with glFinish. With semaphores
 // no thread waits: GL waits for Vulkan's signal on its own queue, dispatches for the whole capacity (the shader
 // reads the count from the record header), signals Vulkan, and the frame's stats come from a copy of the header
-// made after GL's work, read when they are asked for (lastStats, the next prepare).
+// made after GL's work, read when they are asked for (lastStats, the next prepare: it waits for the last frame's
+// hand-off to complete, since that frame's count decides the capacity of this one).
 //
 // Overflow: the record buffer holds `capacity` records (first frame: 16 n^2 for an n^3 grid). The fragment counter
 // counts past it, the host reads it at the hand-over: records past the capacity are dropped from that frame (GL

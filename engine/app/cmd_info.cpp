@@ -13,6 +13,7 @@
 #include "app/commands.hpp"
 #include "app/ladder_report.hpp"
 #include "core/cli.hpp"
+#include "gl/gl_sync.hpp"
 #include "vk/context.hpp"
 
 namespace idk::app {
@@ -82,6 +83,11 @@ nlohmann::json describe(const vk::Context& ctx) {
                    {"bindlessSampledImages", d.maxSampledImagesUpdateAfterBind},
                    {"bindlessStorageBuffers", d.maxStorageBuffersUpdateAfterBind}};
     j["glInterop"] = {{"available", c.glInterop}, {"note", c.glInteropNote}};
+    // How the rung orders Vulkan and GL (gl/gl_sync.hpp): "semaphores" or "cpu-wait", and why; null without GL.
+    if (const gl::GlContext* gl = ctx.glContext())
+        j["glInterop"]["sync"] = {{"mode", gl::syncModeName(gl->sync().mode)}, {"why", gl->sync().why}};
+    else
+        j["glInterop"]["sync"] = nullptr;
     j["ladders"] = laddersJson(ctx.ladders());
     return j;
 }

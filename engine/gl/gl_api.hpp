@@ -16,6 +16,7 @@ namespace idk::gl {
     X(glGetIntegerv, decltype(&::glGetIntegerv))                                       \
     X(glGetError, decltype(&::glGetError))                                             \
     X(glFinish, decltype(&::glFinish))                                                 \
+    X(glFlush, decltype(&::glFlush))                                                   \
     X(glCreateMemoryObjectsEXT, PFNGLCREATEMEMORYOBJECTSEXTPROC)                 \
     X(glDeleteMemoryObjectsEXT, PFNGLDELETEMEMORYOBJECTSEXTPROC)                 \
     X(glMemoryObjectParameterivEXT, PFNGLMEMORYOBJECTPARAMETERIVEXTPROC)         \
@@ -51,10 +52,24 @@ namespace idk::gl {
     X(glDispatchCompute, PFNGLDISPATCHCOMPUTEPROC)                               \
     X(glMemoryBarrier, PFNGLMEMORYBARRIERPROC)
 
+// X(name, type): GL_EXT_semaphore / GL_EXT_semaphore_fd, loaded when present and left null otherwise: without them
+// the rung still runs, ordering the two APIs with CPU-side waits (gl_sync.hpp chooses).
+#define IDK_GL_SEMAPHORE_FUNCTIONS(X)                                            \
+    X(glGenSemaphoresEXT, PFNGLGENSEMAPHORESEXTPROC)                             \
+    X(glDeleteSemaphoresEXT, PFNGLDELETESEMAPHORESEXTPROC)                       \
+    X(glImportSemaphoreFdEXT, PFNGLIMPORTSEMAPHOREFDEXTPROC)                     \
+    X(glWaitSemaphoreEXT, PFNGLWAITSEMAPHOREEXTPROC)                             \
+    X(glSignalSemaphoreEXT, PFNGLSIGNALSEMAPHOREEXTPROC)
+
 struct Api {
 #define IDK_GL_DECLARE(name, type) type name = nullptr;
     IDK_GL_FUNCTIONS(IDK_GL_DECLARE)
+    IDK_GL_SEMAPHORE_FUNCTIONS(IDK_GL_DECLARE)
 #undef IDK_GL_DECLARE
+    bool hasSemaphoreFunctions() const noexcept {
+        return glGenSemaphoresEXT && glDeleteSemaphoresEXT && glImportSemaphoreFdEXT && glWaitSemaphoreEXT &&
+               glSignalSemaphoreEXT;
+    }
 };
 
 }  // namespace idk::gl

@@ -153,6 +153,11 @@ bool GlContext::tryDisplay(void* display, const std::string& platform, std::stri
     if (!api_.name) missing += (missing.empty() ? "" : ", ") + std::string(#name);
     IDK_GL_FUNCTIONS(IDK_GL_LOAD)
 #undef IDK_GL_LOAD
+    // Optional: Mesa returns dispatch stubs for names it knows even where the driver lacks the extension, so the
+    // extension string decides (in gl_sync.cpp), not these pointers alone.
+#define IDK_GL_LOAD_OPTIONAL(name, type) api_.name = reinterpret_cast<type>(egl_->getProcAddress(#name));
+    IDK_GL_SEMAPHORE_FUNCTIONS(IDK_GL_LOAD_OPTIONAL)
+#undef IDK_GL_LOAD_OPTIONAL
     if (missing.empty()) {
         version_ = reinterpret_cast<const char*>(api_.glGetString(GL_VERSION));
         renderer_ = reinterpret_cast<const char*>(api_.glGetString(GL_RENDERER));

@@ -3,6 +3,7 @@
 // Vulkan exported (shared_memory.hpp). libEGL is opened with dlopen, so a machine without it still runs: create()
 // returns nullptr and says why. IDK_GL_INTEROP=off skips EGL entirely (tests of the "no GL" path use it).
 #pragma once
+#include <cstdint>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -16,6 +17,14 @@ namespace idk::gl {
 class GlError : public std::runtime_error {
 public:
     using std::runtime_error::runtime_error;
+};
+
+// How Vulkan and GL order their work on shared memory (gl_sync.hpp): GPU-side with exported semaphores where both
+// APIs have them, else CPU-side waits. `why` says what decided it (shown by `idk info`).
+enum class SyncMode : uint8_t { CpuWait, Semaphores };
+struct SyncChoice {
+    SyncMode mode = SyncMode::CpuWait;
+    std::string why = "not probed";
 };
 
 struct EglLibrary;
@@ -51,6 +60,9 @@ public:
     // the Vulkan device's (VkPhysicalDeviceIDProperties). Empty when the extension is missing.
     const std::vector<uint8_t>& deviceUuid() const noexcept { return deviceUuid_; }
     const std::vector<uint8_t>& driverUuid() const noexcept { return driverUuid_; }
+    // The probe's choice (interop_probe.cpp); every hand-off on this context follows it.
+    const SyncChoice& sync() const noexcept { return sync_; }
+    void setSync(SyncChoice choice) { sync_ = std::move(choice); }
     // Throws GlError naming `what` and the GL error code if the last calls raised one (current context only).
     void check(const std::string& what) const;
 
@@ -67,6 +79,7 @@ private:
     std::vector<std::string> extensions_;
     std::string version_, renderer_, platform_;
     std::vector<uint8_t> deviceUuid_, driverUuid_;
+    SyncChoice sync_;
 };
 
 }  // namespace idk::gl

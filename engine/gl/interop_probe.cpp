@@ -2,9 +2,11 @@
 // probe costs a few milliseconds at start-up; the conformance check "gl-interop round trip" runs GL compute.
 #include "gl/interop_probe.hpp"
 
+#include <cstdlib>
 #include <cstring>
 #include <vector>
 
+#include "gl/gl_sync.hpp"
 #include "gl/shared_memory.hpp"
 #include "vk/check.hpp"
 #include "vk/context.hpp"
@@ -127,9 +129,22 @@ ProbeResult probeGlInterop(vk::Context& ctx) {
     r.atomicFloat = gl->hasExtension("GL_NV_shader_atomic_float");
     r.atomicFp16Vector = gl->hasExtension("GL_NV_shader_atomic_fp16_vector");
     r.semaphoreFd = gl->hasExtension("GL_EXT_semaphore_fd");
+    // Every GL pass hands off in this mode (gl_sync.hpp); IDK_GL_SYNC=cpu forces the CPU-side waits.
+    gl->setSync(chooseSyncMode(querySyncCapabilities(ctx, *gl), std::getenv("IDK_GL_SYNC")));
+    if (gl->sync().mode == SyncMode::Semaphores) {
+        // The extensions are listed; the import itself must work too, or every GL pass would fail on it.
+        try {
+            HandOff check(ctx, *gl, "probe hand-off");
+        } catch (const vk::DeviceLostError&) {
+            throw;
+        } catch (const vk::OutOfDeviceMemoryError&) {
+            throw;
+        } catch (const std::exception& e) {
+            gl->setSync({SyncMode::CpuWait, std::string("exporting semaphores to GL failed: ") + e.what()});
+        }
+    }
     r.note = "OpenGL " + gl->version() + " on " + gl->renderer() + " (EGL " + gl->platform() + "); sync: " +
-             (r.semaphoreFd ? "CPU-side waits (GL_EXT_semaphore_fd is present but the rung does not use it yet)"
-                            : "CPU-side waits (GL lacks GL_EXT_semaphore_fd)");
+             syncText(gl->sync());
     r.context = std::move(gl);
     return r;
 }

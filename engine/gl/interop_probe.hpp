@@ -1,6 +1,7 @@
 // interop_probe.hpp: the GL-interop rung's start-up probe. It creates the headless GL context, checks the
 // extensions the rung needs (GL_EXT_memory_object_fd; GL_NV_shader_atomic_float and
-// GL_NV_shader_atomic_fp16_vector for the ladders that use them; GL_EXT_semaphore_fd, else CPU-side waits), that
+// GL_NV_shader_atomic_fp16_vector for the ladders that use them; GL_EXT_semaphore_fd, else CPU-side waits: the
+// context's sync(), gl_sync.hpp), that
 // GL runs on the Vulkan device (matching UUIDs), and that a small image and a buffer survive a round trip:
 // written by Vulkan, read and rewritten by GL, read back by Vulkan, exact.
 #pragma once

@@ -5,12 +5,15 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "gl/gl_compute.hpp"
+#include "gl/gl_sync.hpp"
 #include "gl/shared_memory.hpp"
 #include "shared/vxgi_types.h"
 #include "vk/check.hpp"
@@ -58,12 +61,30 @@ VxgiGlAccumulator::VxgiGlAccumulator(vk::Context& ctx, const std::filesystem::pa
     const gl::GlContext* gl = ctx.glContext();
     if (!gl) throw std::runtime_error("vxgi-atomics gl-interop: no OpenGL context: " + ctx.capabilities().glInteropNote);
     const std::string source = readGlSource(glShaderDir);
-    gl::GlContext::Current current(*gl);
-    program_ = std::make_unique<gl::ComputeProgram>(*gl, "gl/vxgi_accumulate.comp.glsl", source);
+    {
+        gl::GlContext::Current current(*gl);
+        program_ = std::make_unique<gl::ComputeProgram>(*gl, "gl/vxgi_accumulate.comp.glsl", source);
+    }
+    try {
+        handOff_ = std::make_unique<gl::HandOff>(ctx, *gl, "vxgi gl accumulate");
+        if (handOff_->usesSemaphores()) {
+            countCopy_ = ctx.createBuffer({4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUsage::Readback,
+                                           "vxgi gl record count", "vxgi"});
+            if (!countCopy_.mapped()) throw std::runtime_error("vxgi gl-interop: the record count copy is not mapped");
+        }
+    } catch (...) {
+        handOff_.reset();
+        if (countCopy_) ctx.destroy(countCopy_);
+        gl::GlContext::Current current(*gl);
+        program_.reset();
+        throw;
+    }
 }
 
 VxgiGlAccumulator::~VxgiGlAccumulator() {
     releaseBuffers();
+    handOff_.reset();
+    if (countCopy_) ctx_.destroyDeferred(countCopy_);
     if (!program_) return;
     try {
         gl::GlContext::Current current(*ctx_.glContext());
@@ -84,6 +105,7 @@ void VxgiGlAccumulator::releaseBuffers() {
 }
 
 void VxgiGlAccumulator::prepare(uint32_t n) {
+    settleStats();  // the last frame's overflow decides this frame's capacity
     if (wanted_ == 0) wanted_ = 16 * n * n;  // a few walls across the grid, with depth complexity
     if (sums_ && gridSize_ == n && capacity_ == wanted_) return;
     const gl::GlContext& gl = *ctx_.glContext();
@@ -144,21 +166,57 @@ graph::BufferHandle VxgiGlAccumulator::addPass(graph::RenderGraph& graph, graph:
     return *written;
 }
 
-void VxgiGlAccumulator::accumulateOnGl() {
-    const gl::GlContext& gl = *ctx_.glContext();
-    gl::GlContext::Current current(gl);
-    uint32_t appended = 0;
-    gl.api().glGetNamedBufferSubData(records_->gl(), 0, sizeof(appended), &appended);
-    gl.check("vxgi gl-interop: reading the record count");
+const VxgiGlStats& VxgiGlAccumulator::lastStats() const {
+    settleStats();
+    return stats_;
+}
+
+void VxgiGlAccumulator::recordStats(uint32_t appended) const {
     const uint32_t count = std::min(appended, capacity_);
     stats_ = {appended, capacity_, appended - count};
-    program_->setUint("count", count);
+    if (!stats_.dropped) return;
+    wanted_ = uint32_t(std::min<uint64_t>(uint64_t(stats_.appended) * 5 / 4 + 1, UINT32_MAX));
+    std::fprintf(stderr,
+                 "vxgi gl-interop: %u of %u voxel fragments overflowed the record buffer (%u records) and were "
+                 "dropped this frame; it grows to %u records from the next frame (a still renders again)\n",
+                 stats_.dropped, stats_.appended, stats_.capacity, wanted_);
+}
+
+void VxgiGlAccumulator::settleStats() const {
+    if (!pendingCount_) return;
+    const uint64_t value = std::exchange(pendingCount_, 0);
+    ctx_.waitFor(value);  // the hand-off's acquire submission, which copied the count after GL's work
+    const vk::MemoryAllocation& a = countCopy_.allocation;
+    if (!a.hostCoherent) {
+        VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE};
+        range.memory = a.memory;
+        range.size = VK_WHOLE_SIZE;
+        vk::check(vkInvalidateMappedMemoryRanges(ctx_.device(), 1, &range));
+    }
+    uint32_t appended = 0;
+    std::memcpy(&appended, countCopy_.mapped(), sizeof appended);
+    recordStats(appended);
+}
+
+void VxgiGlAccumulator::accumulateOnGl() {
+    const gl::GlContext& gl = *ctx_.glContext();
+    uint32_t dispatched = capacity_;
+    if (!handOff_->usesSemaphores()) {
+        // The voxelization has completed (CPU-side wait): the count is read here, and only its records dispatched.
+        uint32_t appended = 0;
+        gl.api().glGetNamedBufferSubData(records_->gl(), 0, sizeof(appended), &appended);
+        gl.check("vxgi gl-interop: reading the record count");
+        recordStats(appended);
+        dispatched = std::min(appended, capacity_);
+    }
+    // With semaphores the voxelization may still run when this is issued: reading the count here would block this
+    // thread until it completed, so GL dispatches for the whole capacity and the shader skips past the count.
+    program_->setUint("capacity", capacity_);
     program_->setUint("voxelCount", gridSize_ * gridSize_ * gridSize_);
     gl.api().glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, records_->gl());
     gl.api().glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, sums_->gl());
-    const uint32_t groups = (count + kGroup - 1) / kGroup;
+    const uint32_t groups = (dispatched + kGroup - 1) / kGroup;
     if (groups) program_->dispatch(std::min(groups, kMaxGroupsX), (groups + kMaxGroupsX - 1) / kMaxGroupsX);
-    gl::finishGl(gl);  // complete before the rest of the frame is submitted
 }
 
 void VxgiGlAccumulator::handOver(VkCommandBuffer cmd) {
@@ -168,7 +226,7 @@ void VxgiGlAccumulator::handOver(VkCommandBuffer cmd) {
     gl::releaseToGl(cmd, ctx_, *sums_, kCs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     endLabel(cmd);
     vk::check(vkEndCommandBuffer(cmd));
-    ctx_.waitFor(ctx_.submit(cmd));  // the CPU-side wait: the voxelization has completed
+    handOff_->submitToGl(cmd);  // CPU-wait mode: the voxelization has completed when it returns
 
     // Begin the same command buffer again (an implicit reset: its pool has RESET_COMMAND_BUFFER_BIT) and take the
     // buffers back; also when GL throws, so the caller can still end and submit it.
@@ -177,23 +235,40 @@ void VxgiGlAccumulator::handOver(VkCommandBuffer cmd) {
         begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
         vk::check(vkBeginCommandBuffer(cmd, &begin));
         beginLabel(cmd, "vxgi_gl_accumulate");
-        gl::acquireFromGl(cmd, ctx_, *records_, kCs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-        gl::acquireFromGl(cmd, ctx_, *sums_, kCs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     };
+    const bool copyCount = handOff_->usesSemaphores();
+    auto acquire = [&](VkCommandBuffer c) {
+        constexpr VkPipelineStageFlags2 kCsCopy = kCs | VK_PIPELINE_STAGE_2_COPY_BIT;
+        gl::acquireFromGl(c, ctx_, *records_, kCsCopy, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+        gl::acquireFromGl(c, ctx_, *sums_, kCs, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        if (!copyCount) return;
+        // Semaphore mode: the count, for lastStats, copied after GL's work and made visible to the host.
+        const VkBufferCopy region{0, 0, 4};
+        vkCmdCopyBuffer(c, records_->vk().buffer, countCopy_.buffer, 1, &region);
+        VkMemoryBarrier2 toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+        toHost.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+        toHost.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        toHost.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+        toHost.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.memoryBarrierCount = 1;
+        dep.pMemoryBarriers = &toHost;
+        vkCmdPipelineBarrier2(c, &dep);
+    };
+    const GLuint buffers[2] = {records_->gl(), sums_->gl()};
     try {
+        gl::GlContext::Current current(*ctx_.glContext());
+        handOff_->glBegin(buffers);
         accumulateOnGl();
+        handOff_->glEnd(buffers);  // glFinish, or the signal to Vulkan and a flush
     } catch (...) {
         beginAgain();
+        handOff_->resumeVulkan(cmd, acquire);
         throw;
     }
     beginAgain();
-    if (stats_.dropped) {
-        wanted_ = uint32_t(std::min<uint64_t>(uint64_t(stats_.appended) * 5 / 4 + 1, UINT32_MAX));
-        std::fprintf(stderr,
-                     "vxgi gl-interop: %u of %u voxel fragments overflowed the record buffer (%u records) and were "
-                     "dropped this frame; it grows to %u records from the next frame (a still renders again)\n",
-                     stats_.dropped, stats_.appended, stats_.capacity, wanted_);
-    }
+    const uint64_t value = handOff_->resumeVulkan(cmd, acquire);
+    if (copyCount) pendingCount_ = value;
 }
 
 }  // namespace idk::passes

@@ -4,11 +4,15 @@
 // GL_NV_shader_atomic_float, and gives the sums back to Vulkan, whose merge pass (vxgi_voxelize.cpp) averages them
 // into the RGBA16F grid in the same render graph.
 //
-// The hand-over is CPU-side (llvmpipe has no GL_EXT_semaphore_fd, see gl/shared_memory.hpp): the pass ends the
-// graph's command buffer, submits it and waits, runs GL and glFinish, then begins the same command buffer again and
-// records the rest of the frame into it. So the graph's command buffer must come from a pool created with
-// VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT (vk::FrameRing's and Context::runImmediate's are). On a GPU this
-// stalls the queue once per frame; GL_EXT_semaphore_fd would order the two APIs on the GPU instead.
+// The hand-over (gl/gl_sync.hpp): the pass ends the graph's command buffer and submits it, GL runs, then the pass
+// begins the same command buffer again and the rest of the frame is recorded into it. So the graph's command buffer
+// must come from a pool created with VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT (vk::FrameRing's and
+// Context::runImmediate's are). With CPU-side waits (llvmpipe: no GL_EXT_semaphore_fd; or IDK_GL_SYNC=cpu) the
+// submission is waited for, GL reads the record count, dispatches for it and ends with glFinish. With semaphores
+// no thread waits: GL waits for Vulkan's signal on its own queue, dispatches for the whole capacity (the shader
+// reads the count from the record header), signals Vulkan, and the frame's stats come from a copy of the header
+// made after GL's work, read when they are asked for (lastStats, the next prepare: it waits for the last frame's
+// hand-off to complete, since that frame's count decides the capacity of this one).
 //
 // Overflow: the record buffer holds `capacity` records (first frame: 16 n^2 for an n^3 grid). The fragment counter
 // counts past it, the host reads it at the hand-over: records past the capacity are dropped from that frame (GL
@@ -25,6 +29,7 @@
 
 namespace idk::gl {
 class ComputeProgram;
+class HandOff;
 class SharedBuffer;
 }  // namespace idk::gl
 namespace idk::vk {
@@ -50,7 +55,8 @@ public:
 
     // Before a frame's passes: sizes the sums for an n^3 grid and the records for the current capacity.
     void prepare(uint32_t gridSize);
-    const VxgiGlStats& lastStats() const noexcept { return stats_; }
+    // With semaphores this waits for the last frame's hand-off to complete (it has by the time a frame is read).
+    const VxgiGlStats& lastStats() const;
     uint32_t capacity() const noexcept { return capacity_; }
     // Test hook: the record capacity of the next prepare() (an overflow test starts small).
     void setCapacity(uint32_t records) { wanted_ = records; }
@@ -69,15 +75,21 @@ public:
     graph::BufferHandle addPass(graph::RenderGraph& graph, graph::BufferHandle records, graph::BufferHandle sums);
 
 private:
-    void handOver(VkCommandBuffer cmd);  // submit, wait, run GL, begin again
-    void accumulateOnGl();               // the GL dispatch over this frame's records, glFinish
+    void handOver(VkCommandBuffer cmd);  // submit, run GL, begin again (gl::HandOff)
+    void accumulateOnGl();               // the GL dispatch over this frame's records
+    void recordStats(uint32_t appended) const;  // stats_, and the capacity of the next frame when it overflowed
+    void settleStats() const;            // semaphore mode: reads the header copy of the last hand-off
     void releaseBuffers();
     vk::Context& ctx_;
     std::unique_ptr<gl::ComputeProgram> program_;
     std::unique_ptr<gl::SharedBuffer> records_, sums_;
     vk::StorageBufferIndex recordsIndex_, sumsIndex_;
-    uint32_t gridSize_ = 0, capacity_ = 0, wanted_ = 0;
-    VxgiGlStats stats_;
+    std::unique_ptr<gl::HandOff> handOff_;
+    vk::Buffer countCopy_;              // semaphore mode: the record count after GL's work (host-readable)
+    uint32_t gridSize_ = 0, capacity_ = 0;
+    mutable uint32_t wanted_ = 0;
+    mutable uint64_t pendingCount_ = 0;  // timeline value after which countCopy_ holds the last frame's count
+    mutable VxgiGlStats stats_;
 };
 
 }  // namespace idk::passes

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "gl/gl_compute.hpp"
+#include "gl/gl_sync.hpp"
 #include "gl/shared_memory.hpp"
 #include "graph/render_graph.hpp"
 #include "render/vk_graph_backend.hpp"
@@ -113,17 +114,21 @@ SplatResult runSplatGraph(vk::Context& ctx, vk::ShaderLibrary& shaders, const Sp
         vk::uploadBuffer(ctx, buffers[1].vk(), std::span<const uint32_t>(input.bins));
         vk::uploadBuffer(ctx, buffers[2].vk(), std::span<const float>(input.values));
     }
+    std::unique_ptr<gl::ComputeProgram> program;
+    std::unique_ptr<gl::HandOff> handOff;
+    GLuint glBuffers[3] = {};
     if (onGl) {
-        // Handed to GL; runImmediate returns when the uploads and the release have completed (the CPU-side wait).
-        ctx.runImmediate([&](VkCommandBuffer cmd) {
+        {
+            gl::GlContext::Current current(*gl);
+            program = std::make_unique<gl::ComputeProgram>(*gl, "gl/splat_add.comp.glsl", readGlSource(glShaderDir));
+        }
+        for (int i = 0; i < 3; ++i) glBuffers[i] = buffers[i].shared->gl();
+        // Handed to GL (gl_sync.hpp): a CPU-side wait for the release, or a semaphore GL waits for.
+        handOff = std::make_unique<gl::HandOff>(ctx, *gl, "float splat");
+        handOff->submitToGl([&](VkCommandBuffer cmd) {
             for (const SplatBuffer& b : buffers)
                 gl::releaseToGl(cmd, ctx, *b.shared, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
         });
-    }
-    std::unique_ptr<gl::ComputeProgram> program;
-    if (onGl) {
-        gl::GlContext::Current current(*gl);
-        program = std::make_unique<gl::ComputeProgram>(*gl, "gl/splat_add.comp.glsl", readGlSource(glShaderDir));
     }
 
     const ComputeKernels kernels{ctx, shaders};
@@ -147,17 +152,25 @@ SplatResult runSplatGraph(vk::Context& ctx, vk::ShaderLibrary& shaders, const Sp
                            {buffers[2].index}, count, input.binCount);
             return;
         }
-        {
+        // GL runs while the graph records: its work is done (glFinish) or signalled to Vulkan (semaphore) before the
+        // command buffer that reads the bins is submitted; resumeVulkan gives the buffers back ahead of it.
+        try {
             gl::GlContext::Current current(*gl);
+            handOff->glBegin(glBuffers);
             program->setUint("count", count);
             program->setUint("binCount", input.binCount);
-            for (GLuint i = 0; i < 3; ++i) gl->api().glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers[i].shared->gl());
+            for (GLuint i = 0; i < 3; ++i) gl->api().glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, glBuffers[i]);
             if (count) program->dispatch(vk::groupCount(count, gpu::kSplatGroupSize));
-            gl::finishGl(*gl);  // complete before the command buffer that reads the bins is submitted
+            handOff->glEnd(glBuffers);
+        } catch (...) {
+            handOff->resumeVulkan(pass.commandBuffer(), [](VkCommandBuffer) {});
+            throw;
         }
-        for (const SplatBuffer& b : buffers)
-            gl::acquireFromGl(pass.commandBuffer(), ctx, *b.shared, kCompute,
-                              VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        handOff->resumeVulkan(pass.commandBuffer(), [&](VkCommandBuffer cmd) {
+            for (const SplatBuffer& b : buffers)
+                gl::acquireFromGl(cmd, ctx, *b.shared, kCompute,
+                                  VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        });
     });
     graph.addPass("sum bins", [&](graph::PassBuilder& b) {
         b.read(bins, graph::Access::StorageRead, kCompute);
@@ -176,6 +189,7 @@ SplatResult runSplatGraph(vk::Context& ctx, vk::ShaderLibrary& shaders, const Sp
     result.bins = vk::downloadBuffer<float>(ctx, buffers[0].vk(), input.binCount);
     result.total = vk::downloadBuffer<float>(ctx, total, 1)[0];
     if (onGl) {
+        handOff.reset();
         gl::GlContext::Current current(*gl);
         program.reset();
     }

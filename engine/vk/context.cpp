@@ -136,6 +136,7 @@ std::vector<const char*> enabledExtensions(const std::vector<std::string>& exts,
     if (vrs == VK_NV_SHADING_RATE_IMAGE_EXTENSION_NAME) enableIf(VK_NV_SHADING_RATE_IMAGE_EXTENSION_NAME);
     enableIf(VK_EXT_CONSERVATIVE_RASTERIZATION_EXTENSION_NAME);
     enableIf(VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME);
+    enableIf(VK_KHR_EXTERNAL_SEMAPHORE_FD_EXTENSION_NAME);  // GL-interop hand-offs on the GPU (gl/gl_sync.hpp)
     if (contains(exts, VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME) &&
         contains(exts, VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME)) {
         enableIf(VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME);

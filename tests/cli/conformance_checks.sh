@@ -135,6 +135,19 @@ assert j["glInterop"]["available"], j["glInterop"]
 l = next(l for l in j["ladders"] if l["id"] == "float-atomics")
 assert l["chosen"] == "gl-interop" and "forced" in l["reason"], l
 assert "GL_EXT_semaphore_fd" in j["glInterop"]["note"], j["glInterop"]  # the sync mode is stated
+s = j["glInterop"]["sync"]
+assert s["mode"] in ("semaphores", "cpu-wait") and s["why"] in j["glInterop"]["note"], s
+if "llvmpipe" in j["glInterop"]["note"]:  # neither GL_EXT_semaphore_fd nor VK_KHR_external_semaphore_fd there
+    assert s["mode"] == "cpu-wait" and "GL lacks GL_EXT_semaphore_fd" in s["why"], s
+PY
+    IDK_GL_SYNC=cpu "$idk" info --json >"$tmp/cpu.json" || fail "IDK_GL_SYNC=cpu info failed"
+    IDK_GL_SYNC=gpu "$idk" info --json >"$tmp/bad.json" || fail "IDK_GL_SYNC=gpu info failed"
+    python3 - "$tmp/cpu.json" "$tmp/bad.json" <<'PY' || fail "IDK_GL_SYNC: $(cat "$tmp/cpu.json" "$tmp/bad.json")"
+import json, sys
+cpu, bad = (json.load(open(f))["glInterop"] for f in sys.argv[1:3])
+assert cpu["sync"] == {"mode": "cpu-wait", "why": "forced by IDK_GL_SYNC=cpu"}, cpu
+assert "sync: CPU-side waits (forced by IDK_GL_SYNC=cpu)" in cpu["note"], cpu
+assert bad["sync"]["mode"] == "cpu-wait" and "IDK_GL_SYNC=gpu" in bad["sync"]["why"], bad
 PY
     "$idk" conformance --rung float-atomics=gl-interop --filter "float-atomics/splat [gl-interop]" >"$tmp/out" ||
       fail "the forced GL rung's check failed: $(cat "$tmp/out")"

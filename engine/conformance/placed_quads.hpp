@@ -24,6 +24,18 @@ struct PlacedQuad {
     float roughness = 1.0f;
 };
 
+// A quad facing `normal` (normalized here) with half sizes `half` and a linear base colour.
+inline PlacedQuad placedQuad(glm::vec3 centre, glm::vec3 normal, glm::vec2 half, glm::vec3 color,
+                             bool doubleSided = false) {
+    PlacedQuad q;
+    q.centre = centre;
+    q.normal = glm::normalize(normal);
+    q.halfSize = half;
+    q.baseColor = color;
+    q.doubleSided = doubleSided;
+    return q;
+}
+
 // Quad i = mesh, material, node and instance i; Scene::bounds covers them all.
 scene::Scene makePlacedQuadScene(const std::vector<PlacedQuad>& quads);
 

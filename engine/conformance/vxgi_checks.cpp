@@ -35,29 +35,19 @@ struct VoxelScene {
     OracleLight light{{0.2, 0.6, 0.1}, {3.0, 3.0, 3.0}};
 };
 
-PlacedQuad quad(glm::vec3 centre, glm::vec3 normal, glm::vec2 half, glm::vec3 color, bool doubleSided = false) {
-    PlacedQuad q;
-    q.centre = centre;
-    q.normal = glm::normalize(normal);
-    q.halfSize = half;
-    q.baseColor = color;
-    q.doubleSided = doubleSided;
-    return q;
-}
-
 VoxelScene makeVoxelScene() {
     VoxelScene t;
     // The walls lie on the scene bounds [-1, 1]^3 (voxel centres, fitVoxelGrid's half-voxel margin); their
     // edges stop short of the corners at coordinates that are no voxel centre.
-    t.quads.push_back(quad({0.0f, -1.0f, 0.0f}, {0, 1, 0}, {0.83f, 0.81f}, {0.8f, 0.8f, 0.8f}));     // floor
-    t.quads.push_back(quad({0.05f, 1.0f, -0.02f}, {0, -1, 0}, {0.71f, 0.77f}, {0.9f, 0.9f, 0.9f}));  // ceiling
-    t.quads.push_back(quad({-1.0f, 0.02f, 0.03f}, {1, 0, 0}, {0.74f, 0.69f}, {0.8f, 0.1f, 0.1f}));   // left
-    t.quads.push_back(quad({1.0f, -0.03f, 0.01f}, {-1, 0, 0}, {0.67f, 0.73f}, {0.1f, 0.8f, 0.1f}));  // right
-    t.quads.push_back(quad({0.01f, 0.02f, -1.0f}, {0, 0, 1}, {0.79f, 0.72f}, {0.7f, 0.7f, 0.6f}));   // back
-    t.quads.push_back(quad({-0.02f, 0.04f, 1.0f}, {0, 0, -1}, {0.76f, 0.7f}, {0.5f, 0.6f, 0.7f}));   // front
-    t.quads.push_back(quad({0.1f, -0.2f, 0.15f}, {0.3f, 0.8f, 0.45f}, {0.4f, 0.3f}, {0.2f, 0.7f, 0.3f}, true));
-    t.quads.push_back(quad({-0.3f, 0.30f, -0.2f}, {0, 1, 0}, {0.23f, 0.21f}, {0.9f, 0.2f, 0.2f}));   // thin pair
-    t.quads.push_back(quad({-0.3f, 0.31f, -0.2f}, {0, 1, 0}, {0.23f, 0.21f}, {0.1f, 0.3f, 0.9f}));
+    t.quads.push_back(placedQuad({0.0f, -1.0f, 0.0f}, {0, 1, 0}, {0.83f, 0.81f}, {0.8f, 0.8f, 0.8f}));     // floor
+    t.quads.push_back(placedQuad({0.05f, 1.0f, -0.02f}, {0, -1, 0}, {0.71f, 0.77f}, {0.9f, 0.9f, 0.9f}));  // ceiling
+    t.quads.push_back(placedQuad({-1.0f, 0.02f, 0.03f}, {1, 0, 0}, {0.74f, 0.69f}, {0.8f, 0.1f, 0.1f}));   // left
+    t.quads.push_back(placedQuad({1.0f, -0.03f, 0.01f}, {-1, 0, 0}, {0.67f, 0.73f}, {0.1f, 0.8f, 0.1f}));  // right
+    t.quads.push_back(placedQuad({0.01f, 0.02f, -1.0f}, {0, 0, 1}, {0.79f, 0.72f}, {0.7f, 0.7f, 0.6f}));   // back
+    t.quads.push_back(placedQuad({-0.02f, 0.04f, 1.0f}, {0, 0, -1}, {0.76f, 0.7f}, {0.5f, 0.6f, 0.7f}));   // front
+    t.quads.push_back(placedQuad({0.1f, -0.2f, 0.15f}, {0.3f, 0.8f, 0.45f}, {0.4f, 0.3f}, {0.2f, 0.7f, 0.3f}, true));
+    t.quads.push_back(placedQuad({-0.3f, 0.30f, -0.2f}, {0, 1, 0}, {0.23f, 0.21f}, {0.9f, 0.2f, 0.2f}));   // thin pair
+    t.quads.push_back(placedQuad({-0.3f, 0.31f, -0.2f}, {0, 1, 0}, {0.23f, 0.21f}, {0.1f, 0.3f, 0.9f}));
     t.emissive.assign(t.quads.size(), glm::vec3(0.0f));
     t.emissive[1] = {1.5f, 1.2f, 0.9f};  // the ceiling glows
     return t;
@@ -207,7 +197,7 @@ Columns wallColumns(const Grid& g, const PlacedQuad& wall) {
 void thinWall(CheckEnv& env, Verdict& v) {
     VoxelScene t = makeVoxelScene();
     t.quads.resize(6);  // the open box's walls only, and a wall (normal +x) one voxel thin inside
-    t.quads.push_back(quad({0.013f, -0.012f, 0.021f}, {1, 0, 0}, {0.803f, 0.689f}, {0.8f, 0.8f, 0.8f}, true));
+    t.quads.push_back(placedQuad({0.013f, -0.012f, 0.021f}, {1, 0, 0}, {0.803f, 0.689f}, {0.8f, 0.8f, 0.8f}, true));
     t.emissive.assign(t.quads.size(), glm::vec3(0.0f));
     onRung(env, v, "conservative-raster", *env.rung, [&](vk::Context& ctx, vk::ShaderLibrary& shaders) {
         for (frame::VoxelRaster raster : {frame::VoxelRaster::Centre, frame::VoxelRaster::Conservative}) {

@@ -8,6 +8,7 @@ using conformance::boxFaces;
 using conformance::castRay;
 using conformance::makePlacedQuadScene;
 using conformance::PlacedQuad;
+using conformance::placedQuad;
 using conformance::pointLight;
 using conformance::RayHit;
 }  // namespace idk::test

@@ -15,6 +15,8 @@
 #include "vk/context.hpp"
 #include "vk/transfer.hpp"
 
+#include "gl_modify_kernel.hpp"
+
 namespace idk::test {
 namespace {
 
@@ -77,19 +79,6 @@ TEST(GlInteropSyncTest, ProbedModeMatchesTheDeviceAndIsStated) {
     }
 }
 
-// GL maps every uint b[i] of the buffer to 3 b[i] + i and inverts every channel of the image.
-const char* kModify = R"(#version 450 core
-layout(local_size_x = 8, local_size_y = 8) in;
-layout(rgba8, binding = 0) uniform image2D image;
-layout(std430, binding = 1) buffer Values { uint values[]; };
-uniform uint count;
-void main() {
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    if (all(lessThan(p, imageSize(image)))) imageStore(image, p, vec4(1.0) - imageLoad(image, p));
-    uint i = gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 8u + gl_GlobalInvocationID.x;
-    if (i < count) values[i] = values[i] * 3u + i;
-}
-)";
 
 TEST(GlInteropSyncTest, HandOffRoundTripIsExactInTheProbedMode) {
     auto ctx = probedContext();

@@ -37,27 +37,17 @@ namespace {
 constexpr uint32_t kVoxels = 64;
 constexpr float kHalfStep = 1.0f / 1024.0f;  // one fp16 step, relative
 
-PlacedQuad quad(glm::vec3 centre, glm::vec3 normal, glm::vec2 half, glm::vec3 color, bool doubleSided = false) {
-    PlacedQuad q;
-    q.centre = centre;
-    q.normal = glm::normalize(normal);
-    q.halfSize = half;
-    q.baseColor = color;
-    q.doubleSided = doubleSided;
-    return q;
-}
-
 scene::Scene testScene() {
     std::vector<PlacedQuad> q;
-    q.push_back(quad({0.0f, -1.0f, 0.0f}, {0, 1, 0}, {0.83f, 0.81f}, {0.8f, 0.8f, 0.8f}));
-    q.push_back(quad({0.05f, 1.0f, -0.02f}, {0, -1, 0}, {0.71f, 0.77f}, {0.9f, 0.9f, 0.9f}));
-    q.push_back(quad({-1.0f, 0.02f, 0.03f}, {1, 0, 0}, {0.74f, 0.69f}, {0.8f, 0.1f, 0.1f}));
-    q.push_back(quad({1.0f, -0.03f, 0.01f}, {-1, 0, 0}, {0.67f, 0.73f}, {0.1f, 0.8f, 0.1f}));
-    q.push_back(quad({0.01f, 0.02f, -1.0f}, {0, 0, 1}, {0.79f, 0.72f}, {0.7f, 0.7f, 0.6f}));
-    q.push_back(quad({0.1f, -0.2f, 0.15f}, {0.3f, 0.8f, 0.45f}, {0.4f, 0.3f}, {0.2f, 0.7f, 0.3f}, true));
-    q.push_back(quad({-0.3f, 0.30f, -0.2f}, {0, 1, 0}, {0.23f, 0.21f}, {0.9f, 0.2f, 0.2f}));
-    q.push_back(quad({-0.3f, 0.31f, -0.2f}, {0, 1, 0}, {0.23f, 0.21f}, {0.1f, 0.3f, 0.9f}));
-    q.push_back(quad({-0.3f, 0.305f, -0.2f}, {0, 1, 0}, {0.23f, 0.21f}, {0.2f, 0.9f, 0.4f}));
+    q.push_back(placedQuad({0.0f, -1.0f, 0.0f}, {0, 1, 0}, {0.83f, 0.81f}, {0.8f, 0.8f, 0.8f}));
+    q.push_back(placedQuad({0.05f, 1.0f, -0.02f}, {0, -1, 0}, {0.71f, 0.77f}, {0.9f, 0.9f, 0.9f}));
+    q.push_back(placedQuad({-1.0f, 0.02f, 0.03f}, {1, 0, 0}, {0.74f, 0.69f}, {0.8f, 0.1f, 0.1f}));
+    q.push_back(placedQuad({1.0f, -0.03f, 0.01f}, {-1, 0, 0}, {0.67f, 0.73f}, {0.1f, 0.8f, 0.1f}));
+    q.push_back(placedQuad({0.01f, 0.02f, -1.0f}, {0, 0, 1}, {0.79f, 0.72f}, {0.7f, 0.7f, 0.6f}));
+    q.push_back(placedQuad({0.1f, -0.2f, 0.15f}, {0.3f, 0.8f, 0.45f}, {0.4f, 0.3f}, {0.2f, 0.7f, 0.3f}, true));
+    q.push_back(placedQuad({-0.3f, 0.30f, -0.2f}, {0, 1, 0}, {0.23f, 0.21f}, {0.9f, 0.2f, 0.2f}));
+    q.push_back(placedQuad({-0.3f, 0.31f, -0.2f}, {0, 1, 0}, {0.23f, 0.21f}, {0.1f, 0.3f, 0.9f}));
+    q.push_back(placedQuad({-0.3f, 0.305f, -0.2f}, {0, 1, 0}, {0.23f, 0.21f}, {0.2f, 0.9f, 0.4f}));
     scene::Scene s = makePlacedQuadScene(q);
     for (auto& m : s.materials) m.metallic = 0.0f;
     s.materials[1].emissive = {1.5f, 1.2f, 0.9f};

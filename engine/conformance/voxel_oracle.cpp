@@ -4,6 +4,7 @@
 #include <glm/gtc/packing.hpp>
 
 #include <cmath>
+#include <cstring>
 
 #include "vk/transfer.hpp"
 
@@ -94,25 +95,11 @@ std::vector<OracleVoxel> voxelizeOnCpu(const std::vector<PlacedQuad>& quads, con
 }
 
 std::vector<glm::vec4> readVoxelGrid(vk::Context& ctx, const vk::Image& grid) {
-    const size_t voxels = size_t(grid.extent.width) * grid.extent.height * grid.extent.depth;
-    vk::BufferDesc desc;
-    desc.size = voxels * 8;
-    desc.memory = vk::MemoryUsage::Readback;
-    desc.name = "voxel grid readback";
-    vk::Buffer staging = ctx.createBuffer(desc);
-    ctx.runImmediate([&](VkCommandBuffer cmd) {
-        vk::transitionImage(cmd, grid, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-        VkBufferImageCopy copy{};
-        copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        copy.imageExtent = grid.extent;
-        vkCmdCopyImageToBuffer(cmd, grid.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.buffer, 1, &copy);
-        vk::transitionImage(cmd, grid, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
-    });
-    std::vector<uint16_t> halves(voxels * 4);
-    vk::downloadBuffer(ctx, staging, halves.data(), desc.size);
-    ctx.destroy(staging);
-    std::vector<glm::vec4> out(voxels);
-    for (size_t i = 0; i < voxels; ++i)
+    const std::vector<uint8_t> bytes = vk::readbackImage(ctx, grid, VK_IMAGE_LAYOUT_GENERAL);  // RGBA16F, x fastest
+    std::vector<uint16_t> halves(bytes.size() / sizeof(uint16_t));
+    std::memcpy(halves.data(), bytes.data(), halves.size() * sizeof(uint16_t));
+    std::vector<glm::vec4> out(halves.size() / 4);
+    for (size_t i = 0; i < out.size(); ++i)
         for (int c = 0; c < 4; ++c) out[i][c] = glm::unpackHalf1x16(halves[i * 4 + c]);
     return out;
 }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "conformance/conformance.hpp"
+#include "core/image_file.hpp"
 #include "passes/vrs_passes.hpp"
 #include "scene/scene.hpp"
 
@@ -43,6 +44,10 @@ std::array<int, 5> expectClassifierMatches(Verdict& v, vk::Context& ctx, vk::Sha
 // 1x1 everywhere equals VRS off bit for bit; at coarse rates exactly the counted anchors are shaded.
 void expectOneByOneEqualsOff(CheckEnv& env, Verdict& v, const scene::Scene& scene);
 void expectCoarseCountedInvocations(CheckEnv& env, Verdict& v, const scene::Scene& scene);
+
+// PSNR (peak 1) over the RGB channels with radiance clipped at 1: the VRS frame comparisons (the hardware rung
+// against the software rung, VRS on against off on DamagedHelmet).
+double clippedPsnr(const core::ImageRgba32f& a, const core::ImageRgba32f& b);
 
 // The frame-level checks of vrs_frame_checks.cpp (software rung 1x1 and coarse rates, hardware rung), which
 // vrsChecks() lists too.

@@ -19,6 +19,7 @@
 #include "vk/check.hpp"
 #include "vk/context.hpp"
 #include "vk/shader_library.hpp"
+#include "vk/transfer.hpp"
 
 namespace idk::passes {
 namespace {
@@ -245,15 +246,8 @@ void VxgiGlAccumulator::handOver(VkCommandBuffer cmd) {
         // Semaphore mode: the count, for lastStats, copied after GL's work and made visible to the host.
         const VkBufferCopy region{0, 0, 4};
         vkCmdCopyBuffer(c, records_->vk().buffer, countCopy_.buffer, 1, &region);
-        VkMemoryBarrier2 toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-        toHost.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-        toHost.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-        toHost.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-        toHost.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dep.memoryBarrierCount = 1;
-        dep.pMemoryBarriers = &toHost;
-        vkCmdPipelineBarrier2(c, &dep);
+        vk::memoryBarrier(c, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                          VK_ACCESS_2_HOST_READ_BIT);
     };
     const GLuint buffers[2] = {records_->gl(), sums_->gl()};
     try {

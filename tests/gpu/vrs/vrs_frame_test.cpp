@@ -49,18 +49,6 @@ Rendered render(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene::Scene
     return r;
 }
 
-double psnr(const core::ImageRgba32f& a, const core::ImageRgba32f& b) {
-    double se = 0.0;
-    size_t n = 0;
-    for (size_t i = 0; i < a.pixels.size(); ++i) {
-        if (i % 4 == 3) continue;
-        const double d = std::min(a.pixels[i], 1.0f) - std::min(b.pixels[i], 1.0f);  // radiance clipped at 1
-        se += d * d;
-        n++;
-    }
-    return 10.0 * std::log10(1.0 / std::max(se / double(n), 1e-20));
-}
-
 class VrsFrameTest : public GpuTest {};
 
 // The registered checks "vrs/software 1x1 equals off" and "vrs/coarse counted invocations" run these bodies on the
@@ -82,7 +70,7 @@ TEST_F(VrsFrameTest, ReconstructedFramesStayCloseToVrsOff) {
         vrs.enabled = true;
         vrs.fixedRate = fixed;
         const Rendered on = render(ctx(), shaders(), scene, vrs);
-        const double db = psnr(on.frame.image, off.frame.image);
+        const double db = conformance::clippedPsnr(on.frame.image, off.frame.image);
         std::cout << "[ vrs ] rate " << fixed << ": PSNR " << db << " dB, " << on.frame.shadingInvocations
                   << " invocations\n";
         // Measured on lavapipe: 30.5 dB at 2x1 everywhere, 36.5 dB at the classifier's rates (34% of the

@@ -191,9 +191,9 @@ def main(argv):
     ap.add_argument("results")
     ap.add_argument("--scenes", default="cornell,DamagedHelmet,MetalRoughSpheresNoTextures")
     ap.add_argument("--size", default="128x128")
-    ap.add_argument("--ref-spp", type=int, default=512)
-    ap.add_argument("--ours-spp", type=spp_list, default=spp_list("1,2,4,8,16,32"))
-    ap.add_argument("--cycles-spp", type=spp_list, default=spp_list("1,4,16,64"))
+    ap.add_argument("--ref-spp", type=int, default=1024)
+    ap.add_argument("--ours-spp", type=spp_list, default=spp_list("1,4,16,64,256"))
+    ap.add_argument("--cycles-spp", type=spp_list, default=spp_list("1,4,16,64,256"))
     ap.add_argument("--units-check-spp", type=int, default=64,
                     help="spp of the Cornell box's light-unit checks (SPEC import; Lambert materials); 0 skips them")
     ap.add_argument("--max-depth", type=int, default=6)

@@ -20,20 +20,65 @@ def _secs(ms):
 
 
 def loglog_at(points, t):
-    """Error at time t on the log-log polyline through (time, error) points, extrapolated from the nearest segment
-    outside their range. Returns (error, extrapolated) or (None, False)."""
+    """Error at time t on the log-log polyline through (time, error) points sorted by time; None outside their time
+    range (no extrapolation: below the fewest samples' time a renderer's fixed start-up cost dominates)."""
     pts = sorted((p, e) for p, e in points if p and e and p > 0 and e > 0)
-    if len(pts) < 2:
-        return None, False
-    lt = math.log(t)
-    for i in range(len(pts) - 1):
-        (t0, e0), (t1, e1) = pts[i], pts[i + 1]
-        if t0 <= t <= t1 or (i == 0 and t < t0) or (i == len(pts) - 2 and t > t1):
+    if len(pts) < 2 or not pts[0][0] <= t <= pts[-1][0]:
+        return None
+    for (t0, e0), (t1, e1) in zip(pts, pts[1:]):
+        if t0 <= t <= t1:
             if t1 == t0:
-                return e0, False
-            w = (lt - math.log(t0)) / (math.log(t1) - math.log(t0))
-            return math.exp(math.log(e0) + w * (math.log(e1) - math.log(e0))), not (pts[0][0] <= t <= pts[-1][0])
-    return None, False
+                return min(e0, e1)
+            w = (math.log(t) - math.log(t0)) / (math.log(t1) - math.log(t0))
+            return math.exp(math.log(e0) + w * (math.log(e1) - math.log(e0)))
+    return None
+
+
+def linear_fit(xs, ys):
+    """Least-squares y = a + b x; (a, b), or None for fewer than two distinct x."""
+    n = len(xs)
+    if n < 2:
+        return None
+    mx, my = sum(xs) / n, sum(ys) / n
+    sxx = sum((x - mx) ** 2 for x in xs)
+    if sxx == 0:
+        return None
+    b = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sxx
+    return my - b * mx, b
+
+
+def time_model(entry, renderer):
+    """Render time = start-up + per-spp cost, fitted over the renderer's runs (the reference-spp run included)."""
+    rows = [r for r in entry["runs"] if r["renderer"] == renderer]
+    rows.append(entry["converged"] if renderer == "ours" else entry["reference"])
+    return linear_fit([r["spp"] for r in rows], [r["renderMilliseconds"] / 1000.0 for r in rows])
+
+
+def error_split(entry, ref_spp):
+    """Splits our converged run's error (N = ref_spp samples, against the N-sample Cycles reference) into noise and
+    the disagreement of the converged images. Cycles' runs against its reference follow RMSE^2 = s_c^2 (1/n + 1/N)
+    and ours RMSE^2 = bias^2 + s_o^2 / n + s_c^2 / N: s_c^2 and s_o^2 (the slope in 1/n) are fitted, then
+    bias^2 = RMSE_converged^2 - (s_o^2 + s_c^2) / N. Returns (bias, s_o, s_c) or None. Heavy-tailed noise (the
+    Cornell box's fireflies) makes the per-sample noise estimates, and so the split, rough."""
+    cyc = [r for r in entry["runs"] if r["renderer"] == "cycles" and r["rmse"] is not None]
+    ours = [r for r in entry["runs"] if r["renderer"] == "ours" and r["rmse"] is not None]
+    conv = entry["converged"].get("rmse")
+    if not cyc or len(ours) < 2 or conv is None:
+        return None
+    ws = [1.0 / r["spp"] + 1.0 / ref_spp for r in cyc]
+    sc2 = sum(w * r["rmse"] ** 2 for w, r in zip(ws, cyc)) / sum(w * w for w in ws)
+    fit = linear_fit([1.0 / r["spp"] for r in ours], [r["rmse"] ** 2 for r in ours])
+    if not fit:
+        return None
+    so2 = max(fit[1], 0.0)
+    return math.sqrt(max(conv ** 2 - (so2 + sc2) / ref_spp, 0.0)), math.sqrt(so2), math.sqrt(sc2)
+
+
+def noise_time_ratio(split, models):
+    """Time each renderer needs for the same noise, ours over Cycles: variance per sample x time per sample."""
+    if not split or not models["ours"] or not models["cycles"] or models["cycles"][1] <= 0 or split[2] <= 0:
+        return None
+    return (split[1] ** 2 * models["ours"][1]) / (split[2] ** 2 * models["cycles"][1])
 
 
 def _curve(entry, renderer):
@@ -95,20 +140,35 @@ def section(data, results_dir):
              "`IDK_BENCH_CYCLES=0 make bench` keeps these results.", ""]
     if png:
         lines += [f"![Path tracer vs Cycles: RMSE against time](bench/results/{png})", ""]
-    lines += ["| scene | mean radiance ours/Cycles (luminance; R, G, B) | converged disagreement (RMSE, ours "
-              f"{ref} spp vs reference) | ours at its {max(r['spp'] for r in data['scenes'][0]['runs'] if r['renderer'] == 'ours')} spp: time, RMSE "
-              "| Cycles RMSE at that time | error ratio ours/Cycles at equal time |",
-              "|---|---|---|---|---|---|"]
+    lines += ["| scene | mean radiance ours/Cycles (luminance; R, G, B) | ours vs reference at "
+              f"{ref} spp: RMSE (relMSE) | of it, disagreement of the converged images (RMSE, noise fitted out) | "
+              "noise per sample, ours / Cycles (RMSE x sqrt(spp)) | start-up + per-spp time, ours | "
+              "the same, Cycles | equal time: RMSE ours / Cycles | time to equal noise, ours / Cycles |",
+              "|---|---|---|---|---|---|---|---|---|"]
     for e in data["scenes"]:
-        rows, _ = _curve(e, "ours")
-        last = rows[-1]
-        t = last["renderMilliseconds"] / 1000.0
-        cyc, extrapolated = loglog_at(_curve(e, "cycles")[1], t)
         rgb = ", ".join(_fmt(v, 3) for v in e["meanRatioRgb"])
+        split = error_split(e, ref)
+        models = {r: time_model(e, r) for r in ("ours", "cycles")}
+        ours_pts, cyc_pts = _curve(e, "ours")[1], _curve(e, "cycles")[1]
+        t = min(max(p[0] for p in ours_pts), max(p[0] for p in cyc_pts))
+        eo, ec = loglog_at(ours_pts, t), loglog_at(cyc_pts, t)
+        equal = f"{t:.1f} s: {_fmt(eo)} / {_fmt(ec)}" if eo and ec else "no common time"
+        cells = [f"{a:.2f} s + {b * 1000:.1f} ms" if (m := models[r]) and (a := m[0]) is not None and (b := m[1])
+                 else "-" for r in ("ours", "cycles")]
         lines.append(f"| {e['scene']} | {e['meanRatio']:.3f} ({rgb}) | {_fmt(e['converged']['rmse'])} "
-                     f"(relMSE {_fmt(e['converged']['relMse'])}) | {t:.2f} s, {_fmt(last['rmse'])} | "
-                     f"{_fmt(cyc)}{' (extrapolated)' if extrapolated else ''} | "
-                     f"{_fmt(last['rmse'] / cyc if cyc else None)} |")
+                     f"({_fmt(e['converged']['relMse'])}) | {_fmt(split[0]) if split else '-'} | "
+                     f"{(_fmt(split[1]) + ' / ' + _fmt(split[2])) if split else '-'} | {cells[0]} | {cells[1]} | "
+                     f"{equal} | {_fmt(noise_time_ratio(split, models))} |")
+    lines += ["", "Columns: the mean-radiance ratio is ours at the reference's spp over the Cycles reference. "
+              "Our error at that spp splits into the two renderers' noise and what stays when both converge "
+              "(fitted: Cycles' runs give its noise per sample, our runs the slope of RMSE^2 in 1/spp; see "
+              "`error_split` in bench/cycles/cycles_report.py). Times are fitted as start-up + spp x per-spp cost "
+              "(Cycles' start-up is its scene sync and BVH build, ours mostly the first batch's pipeline work). "
+              "Equal time is the latest time both curves reach, read off each curve on log-log axes "
+              "(no extrapolation): there our error is mostly the converged disagreement, which Cycles, measured "
+              "against itself, does not have. Time to equal noise leaves that out: (noise per sample)^2 x per-spp "
+              "time, ours over Cycles (below 1: ours is faster to the same noise). Timings come from a shared, "
+              "loaded machine and scatter by tens of percent."]
     lines += ["", "Every run (RMSE and relative MSE against the Cycles reference; samples per second = "
               "spp x pixels / render time):", "",
               "| scene | renderer | spp | render time | RMSE | relMSE | samples/s | mean luminance |",

@@ -153,7 +153,7 @@ def section(data, results_dir):
         t = min(max(p[0] for p in ours_pts), max(p[0] for p in cyc_pts))
         eo, ec = loglog_at(ours_pts, t), loglog_at(cyc_pts, t)
         equal = f"{t:.1f} s: {_fmt(eo)} / {_fmt(ec)}" if eo and ec else "no common time"
-        cells = [f"{a:.2f} s + {b * 1000:.1f} ms" if (m := models[r]) and (a := m[0]) is not None and (b := m[1])
+        cells = [f"{max(a, 0.0):.2f} s + {b * 1000:.1f} ms" if (m := models[r]) and (a := m[0]) is not None and (b := m[1])
                  else "-" for r in ("ours", "cycles")]
         lines.append(f"| {e['scene']} | {e['meanRatio']:.3f} ({rgb}) | {_fmt(e['converged']['rmse'])} "
                      f"({_fmt(e['converged']['relMse'])}) | {_fmt(split[0]) if split else '-'} | "
@@ -214,9 +214,11 @@ WHY = [
     "Blender's smoothstep blend rather than glTF's angular falloff. Occlusion maps shade neither image.",
     "- **Material model.** Cycles shades the import with its Principled BSDF (3.x): Disney (Burley) diffuse with "
     "a roughness-dependent retro-reflection where glTF has a Lambert base, and single-scattering GGX (the "
-    "importer keeps the node's default `GGX`, not `Multiscatter GGX`), so rough metals lose energy in Cycles; "
-    "our energy compensation (issue 16) makes them brighter than Cycles by design. Emissive surfaces emit from "
-    "both sides in Cycles and from the front in ours.",
+    "importer keeps the node's default `GGX`, not `Multiscatter GGX`), so rough metals lose energy in Cycles: "
+    "with our energy compensation (issue 16) the rough gold and grey metal spheres of MetalRoughSpheresNoTextures "
+    "are visibly brighter in ours, most of its converged disagreement. The Cornell box's ratio is the Burley "
+    "diffuse and the Principled BSDF's specular added on top of the diffuse (the light-units check above). "
+    "Emissive surfaces emit from both sides in Cycles and from the front in ours.",
     "- **Light units.** glTF gives point and spot lights in candela and we use the value as radiant intensity; "
     "Blender's default import divides by 683 lm/W (measured above), so the benchmark imports with the unitless "
     "mode. Point lights get radius 0 (Blender's default is 0.25 m).",

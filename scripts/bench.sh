@@ -3,7 +3,8 @@
 # usage: scripts/bench.sh BUILD_DIR      (`make bench` builds first and passes $(BUILD))
 # Writes bench/results/latest.json (medians and spread of 5 repetitions per benchmark) and BENCHMARKS.md.
 # Extra arguments after BUILD_DIR go to idk_bench (e.g. --benchmark_filter=Gpu). Takes about a minute on
-# 2 cores with lavapipe, plus about 15 minutes for the path tracer (scripts/bench_pathtrace.sh).
+# 2 cores with lavapipe, plus about 15 minutes for the path tracer (scripts/bench_pathtrace.sh) and about 10 for the
+# Cycles comparison (bench/cycles/bench_cycles.py; IDK_BENCH_CYCLES=0 skips it).
 set -euo pipefail
 
 build="${1:?usage: scripts/bench.sh BUILD_DIR [idk_bench options]}"
@@ -36,6 +37,18 @@ echo "bench.sh: benchmarks took $(( $(date +%s) - start )) s"
 # bench/results/pathtrace_section.md, which bench_report.py includes as its own section).
 if [ "${IDK_BENCH_PATHTRACE:-1}" != 0 ]; then
   bash scripts/bench_pathtrace.sh "$build"
+fi
+# Issue 16's independent peer: Blender Cycles against our path tracer on the Cornell box and two shared scenes at
+# 128x128 (about 10 minutes on 2 cores). Blender is a benchmark-only package: `scripts/setup.sh --bench` installs it
+# here, never for `make test`. IDK_BENCH_CYCLES=0 skips it and keeps the last bench/results/cycles.json, which
+# bench_report.py turns into the "Path tracer vs Cycles" section.
+if [ "${IDK_BENCH_CYCLES:-1}" != 0 ]; then
+  bash scripts/setup.sh --bench || echo "bench.sh: scripts/setup.sh --bench could not install Blender" >&2
+  if command -v blender >/dev/null; then
+    "$python" bench/cycles/bench_cycles.py "$build" bench/results
+  else
+    echo "bench.sh: skipping the Cycles comparison (no blender; scripts/setup.sh --bench installs it)" >&2
+  fi
 fi
 # The soak runs (issue 17: 10,000 viewer frames and a 2,000-frame replay with memory sampled; a few minutes;
 # IDK_BENCH_SOAK=0 skips them and keeps the last bench/results/soak.json).

@@ -650,6 +650,20 @@ def pathtrace_section(results_dir):
         return f.read().rstrip().splitlines() + [""]
 
 
+# ---- Path tracer vs Cycles (bench/cycles/bench_cycles.py -> bench/results/cycles.json) ----------------------------
+
+def cycles_section(results_dir):
+    """Our path tracer against Blender Cycles (issue 16), with its plot, if bench_cycles.py has written cycles.json."""
+    path = os.path.join(results_dir, "cycles.json")
+    if not os.path.exists(path):
+        return []
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "bench", "cycles"))
+    sys.dont_write_bytecode = True  # no __pycache__ left in the source tree
+    import cycles_report  # bench/cycles/cycles_report.py
+    with open(path) as f:
+        return cycles_report.section(json.load(f), results_dir)
+
+
 # ---- Soak section (scripts/soak.sh -> bench/results/soak.json) ---------------------------------------------------
 
 def soak_section(results_dir):
@@ -703,6 +717,7 @@ def main(argv):
         elif group in groups:
             lines += [f"## {group[0].upper() + group[1:]}", ""] + table(groups[group]) + [""]
     lines += pathtrace_section(os.path.dirname(os.path.abspath(results_path)))
+    lines += cycles_section(os.path.dirname(os.path.abspath(results_path)))
     lines += soak_section(os.path.dirname(os.path.abspath(results_path)))
     lines += farm_section(os.path.dirname(os.path.abspath(results_path)))
     lines += vrs_section(os.path.dirname(os.path.abspath(results_path)))

@@ -2,7 +2,30 @@
 # Installs every Debian package idk-vk needs on a fresh Debian 12 (bookworm) machine.
 # Idempotent and quiet when everything is present. Mesa's lavapipe comes from bookworm-backports
 # because bookworm's Mesa 22.3 lacks the descriptor-indexing features the engine requires.
+# usage: scripts/setup.sh            what `make test` and `make bench` need
+#        scripts/setup.sh --bench    only the benchmark-only peers (Blender, for the Cycles comparison of
+#                                    scripts/bench_cycles.sh); scripts/bench.sh runs it, `make test` never does
 set -euo pipefail
+
+if [ "${1:-}" = --bench ]; then
+  BENCH_PACKAGES=(blender)
+  bench_missing=()
+  for p in "${BENCH_PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || bench_missing+=("$p")
+  done
+  [ ${#bench_missing[@]} -eq 0 ] && exit 0
+  SUDO=""
+  if [ "$(id -u)" -ne 0 ]; then
+    command -v sudo >/dev/null || { echo "setup.sh --bench: must run as root (or have sudo) to install: ${bench_missing[*]}" >&2; exit 1; }
+    SUDO="sudo"
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  echo "setup.sh --bench: installing ${bench_missing[*]}" >&2
+  $SUDO apt-get update -qq
+  # Blender's recommends pull in desktop integration the headless bench does not use.
+  $SUDO apt-get install -y -qq --no-install-recommends "${bench_missing[@]}" >/dev/null
+  exit 0
+fi
 
 PACKAGES=(
   build-essential cmake ninja-build pkg-config

@@ -8,16 +8,23 @@
 // pixel) says which draws and triangles are visible; the rest are hidden. Counters: hidden_culled_fraction (the
 // hidden triangles that culling did not draw / all hidden triangles), false_culls (visible draws the culler dropped:
 // the drawn set follows from the visibility bits before and after the last frame and the CPU frustum oracle) and
-// mismatches (pixels that differ from the unculled frame: catches meshlets the task shader dropped wrongly).
+// mismatches (pixels that differ from the unculled frame: catches meshlets the task shader dropped wrongly). On the
+// mesh rung, meshlet_cullable_fraction: the hidden triangles in meshlets that hold no visible triangle, over all
+// hidden triangles (the bound of any culler that draws whole meshlets).
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <array>
+#include <map>
+#include <set>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "bench_support.hpp"
+#include "frame/culling_feature.hpp"
 #include "render/culling_math.hpp"
+#include "render/meshlets.hpp"
 #include "render/renderer.hpp"
 #include "scene/camera.hpp"
 #include "scene/gltf_loader.hpp"
@@ -88,7 +95,43 @@ struct GroundTruth {
     std::vector<uint32_t> visibleTriangles;  // per GpuScene draw
     uint64_t totalVisibleTriangles = 0;
     std::vector<uint8_t> image;
+    std::vector<uint64_t> keys;  // (draw << 32 | triangle) of every visible triangle, sorted
 };
+
+// The most any meshlet culler can reach: the hidden triangles of the meshlets that hold no visible triangle, as a
+// fraction of all hidden triangles (a meshlet with one visible triangle must be drawn whole).
+double meshletCullableFraction(const render::GpuSceneData& data, const GroundTruth& truth, uint64_t sceneTriangles) {
+    const render::MeshletData m = render::buildMeshlets(data);
+    auto byte = [&](uint32_t i) { return (m.triangles[i / 4] >> (8 * (i % 4))) & 0xFFu; };
+    std::vector<std::map<std::array<uint32_t, 3>, uint32_t>> meshletOf(m.firstMeshlet.size());  // sorted vertices
+    auto sorted = [](uint32_t a, uint32_t b, uint32_t c) {
+        std::array<uint32_t, 3> k{a, b, c};
+        std::sort(k.begin(), k.end());
+        return k;
+    };
+    std::set<uint64_t> needed;  // (draw << 32 | meshlet) holding a visible triangle
+    for (uint64_t key : truth.keys) {
+        const uint32_t draw = uint32_t(key >> 32), triangle = uint32_t(key);
+        const uint32_t mesh = data.instances[draw].mesh;
+        auto& map = meshletOf[mesh];
+        if (map.empty())
+            for (uint32_t local = 0; local < m.meshletCount[mesh]; ++local) {
+                const gpu::GpuMeshlet& g = m.meshlets[m.firstMeshlet[mesh] + local];
+                for (uint32_t t = 0; t < g.triangleCount; ++t) {
+                    const uint32_t b = g.triangleOffset + 3 * t;
+                    map[sorted(m.vertices[g.vertexOffset + byte(b)], m.vertices[g.vertexOffset + byte(b + 1)],
+                               m.vertices[g.vertexOffset + byte(b + 2)])] = m.firstMeshlet[mesh] + local;
+                }
+            }
+        const uint32_t* ix = &data.indices[data.draws[draw].firstIndex + 3 * triangle];
+        const auto it = map.find(sorted(ix[0], ix[1], ix[2]));
+        if (it != map.end()) needed.insert(uint64_t(draw) << 32 | it->second);
+    }
+    uint64_t mustDraw = 0;  // every triangle of the needed meshlets
+    for (uint64_t k : needed) mustDraw += m.meshlets[uint32_t(k)].triangleCount;
+    const uint64_t hidden = sceneTriangles - truth.totalVisibleTriangles;
+    return hidden > 0 ? double(sceneTriangles - mustDraw) / double(hidden) : 1.0;
+}
 
 GroundTruth groundTruth(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene::Scene& scene,
                         const scene::CameraView& camera) {
@@ -107,6 +150,7 @@ GroundTruth groundTruth(vk::Context& ctx, vk::ShaderLibrary& shaders, const scen
     keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
     for (uint64_t k : keys) ++t.visibleTriangles[size_t(k >> 32)];
     t.totalVisibleTriangles = keys.size();
+    t.keys = std::move(keys);
     return t;
 }
 
@@ -136,12 +180,15 @@ void BM_Culling(benchmark::State& state) {
     uint64_t sceneTriangles = 0;
     std::vector<bool> drawnDraws;  // per draw: drawn in the last frame
     size_t mismatches = 0;
+    double meshletBound = -1.0;  // mesh rung: meshletCullableFraction
     {
         render::Renderer renderer(ctx, shaders);
         renderer.settings().culling.mode = mode;
         renderer.setScene(scene);
         const render::GpuSceneData& data = renderer.gpuScene()->data();
         for (const VkDrawIndexedIndirectCommand& d : data.draws) sceneTriangles += d.instanceCount * (d.indexCount / 3);
+        if (mode != frame::CullingMode::Off && frame::CullingFeature::usesMeshShaders(ctx, renderer.settings().culling))
+            meshletBound = meshletCullableFraction(data, truth, sceneTriangles);
         renderer.renderOffscreen(camera, kWidth, kHeight);  // warm-up: pipelines, meshlets, visibility bits
         renderer.renderOffscreen(camera, kWidth, kHeight);
         for (auto _ : state) {
@@ -175,6 +222,7 @@ void BM_Culling(benchmark::State& state) {
     state.counters["hidden_culled_fraction"] = hidden > 0 ? double(hiddenCulled) / double(hidden) : 1.0;
     state.counters["false_culls"] = double(falseCulls);
     if (mode != frame::CullingMode::Off) state.counters["mismatches"] = double(mismatches);
+    if (meshletBound >= 0.0) state.counters["meshlet_cullable_fraction"] = meshletBound;
     static const char* kModes[] = {"off", "frustum", "hiz"};
     std::string settings = std::to_string(kWidth) + "x" + std::to_string(kHeight) + ", --culling " + kModes[int(mode)] +
                            ", triangles drawn " + std::to_string(drawn) + " of " + std::to_string(sceneTriangles) +

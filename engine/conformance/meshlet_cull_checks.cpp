@@ -1,10 +1,11 @@
 // meshlet_cull_checks.cpp: "culling/meshlet task shader": the mesh rung's task shader (gbuffer/gbuffer_mesh.task.glsl,
 // run inside a Renderer with --culling hiz --geometry mesh) against its CPU oracle (render::meshletOracle: the same
-// sphere, normal-cone and Hi-Z tests, shared/meshlet_culling.h, with the pyramid the late phase read, captured from
-// the GPU) along a camera path that moves and cuts: after every frame the per-meshlet visibility bits are identical
-// and the frame's meshlet and triangle counters are exact; the instance bits follow render::cullOracle. The scene
-// (built here): a wall, spheres of 2000 triangles (single-sided, so the normal cone applies) behind it, above it and
-// in front of it, scaled and rotated. The check can fail both ways: the path must cull meshlets by each test.
+// sphere, normal-cone and vertex-box Hi-Z tests, shared/meshlet_culling.h, with the pyramid the late phase read,
+// captured from the GPU) along a camera path that moves and cuts: after every frame the per-meshlet visibility bits
+// are identical and the frame's meshlet and triangle counters are exact; the instance bits follow
+// render::cullOracle. The scene (built here): a wall, spheres of 2000 triangles (single-sided, so the normal cone
+// applies) behind it, above it and in front of it, scaled and rotated. The check can fail both ways: the path must
+// cull meshlets by each test.
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
@@ -155,16 +156,15 @@ void meshletTaskShader(CheckEnv& env, Verdict& v) {
             const gpu::GpuCullDraw& d = draws[i];
             for (uint32_t k = 0; k < d.meshletCount; ++k) {
                 const gpu::GpuMeshlet& m = meshlets.meshlets[d.firstMeshlet + k];
-                glm::vec3 centre;
-                float radius;
-                gpu::meshletSphere(m, data.instances[i].model, centre, radius);
+                glm::vec3 centre, extent;
+                gpu::meshletBox(m, data.instances[i].model, centre, extent);
                 gpu::GpuMeshlet noCone = m;
                 noCone.coneCutoff = 1.0f;
                 const bool inView = gpu::meshletInView(m, d.flags, data.instances[i].model, view, path[c].position);
                 const bool inFrustum = gpu::meshletInView(noCone, d.flags, data.instances[i].model, view, path[c].position);
                 frustumCulled += !inFrustum;
                 coneCulled += inFrustum && !inView;
-                hizCulled += inView && !render::hizBoxVisible(pyramid, view, centre, glm::vec3(radius));
+                hizCulled += inView && !render::hizBoxVisible(pyramid, view, centre, extent);
             }
         }
     }

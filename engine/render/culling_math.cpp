@@ -25,7 +25,7 @@ gpu::GpuCullView frustumView(const glm::mat4& m, glm::uvec2 viewport) {
     return v;
 }
 
-std::vector<gpu::GpuCullDraw> packCullDraws(const GpuSceneData& scene, const MeshletData* meshlets) {
+std::vector<gpu::GpuCullDraw> packCullDraws(const GpuSceneData& scene, const MeshletData* meshlets, bool blendCasts) {
     const std::vector<scene::Aabb> boxes = meshBounds(scene);
     std::vector<gpu::GpuCullDraw> out(scene.draws.size());
     static_assert(gpu::kTaskGroupSize == 32, "one meshlet visibility word per task workgroup");
@@ -37,7 +37,10 @@ std::vector<gpu::GpuCullDraw> packCullDraws(const GpuSceneData& scene, const Mes
         c.indexCount = d.indexCount;
         c.firstIndex = d.firstIndex;
         c.vertexOffset = d.vertexOffset;
-        if (d.instanceCount == 0) c.flags |= gpu::kCullSkip;
+        // The scene's commands leave BLEND draws without an instance (the transparency pass draws them).
+        const bool blend = mesh < scene.meshes.size() && scene.meshes[mesh].material < scene.materials.size() &&
+                           scene.materials[scene.meshes[mesh].material].alphaMode == gpu::kAlphaBlend;
+        if (d.instanceCount == 0 && !(blendCasts && blend)) c.flags |= gpu::kCullSkip;
         if (mesh >= scene.meshes.size() || d.vertexOffset != scene.meshes[mesh].baseVertex)
             c.flags |= gpu::kCullAlwaysVisible;
         if (mesh < scene.meshes.size()) {
@@ -111,10 +114,9 @@ MeshletCounts meshletOracle(const std::vector<gpu::GpuCullDraw>& draws, const st
                 const gpu::GpuMeshlet& m = meshlets.at(d.firstMeshlet + local);
                 bool visible = gpu::meshletInView(m, d.flags, model, view, eye);
                 if (visible && phase == gpu::kCullLate && !(d.flags & gpu::kCullAlwaysVisible)) {
-                    glm::vec3 center;
-                    float radius;
-                    gpu::meshletSphere(m, model, center, radius);
-                    visible = hizBoxVisible(*pyramid, view, center, glm::vec3(radius));
+                    glm::vec3 center, extent;
+                    gpu::meshletBox(m, model, center, extent);
+                    visible = hizBoxVisible(*pyramid, view, center, extent);
                 }
                 if (visible) newWord |= 1u << lane;
                 const bool early = phase == gpu::kCullLate && drawnEarly[i] && wasVisible;

@@ -20,7 +20,9 @@ gpu::GpuCullView frustumView(const glm::mat4& viewProjection, glm::uvec2 viewpor
 // `meshlets` (optional, render/meshlets.hpp) fills the meshlet ranges of the mesh rung and each draw's first
 // meshlet visibility word (ceil(meshletCount / 32) words per draw, one per task workgroup).
 struct MeshletData;
-std::vector<gpu::GpuCullDraw> packCullDraws(const GpuSceneData& scene, const MeshletData* meshlets = nullptr);
+// `blendCasts` (the point-shadow faces): BLEND draws are culled and drawn like the others (they cast by coverage).
+std::vector<gpu::GpuCullDraw> packCullDraws(const GpuSceneData& scene, const MeshletData* meshlets = nullptr,
+                                            bool blendCasts = false);
 // The words of the mesh rung's meshlet visibility bits that `draws` (packed with meshlets) address.
 uint32_t meshletVisibilityWords(const std::vector<gpu::GpuCullDraw>& draws);
 
@@ -37,9 +39,9 @@ std::vector<bool> cullOracle(const std::vector<gpu::GpuCullDraw>& draws, const s
 // The oracle of the mesh rung's task shader (gbuffer/gbuffer_mesh.task.glsl) for the draws one phase launched
 // (`launched`: per draw, launched by the culling pass; `drawnEarly`: the late phase's relaunch flag, per draw):
 // each launched draw's meshlets through meshletInView (shared/meshlet_culling.h) from `eye` and, in the late
-// phase, the Hi-Z test of the sphere's box against `pyramid`. The early phase tests only the meshlets whose bit in
-// `meshletBits` is set; the late phase rewrites the words of the launched draws and does not draw again what the
-// early phase drew. The counters it adds up are the task shader's (GpuCullCounters).
+// phase, the Hi-Z test of its vertex box (meshletBox) against `pyramid`. The early phase tests only the meshlets
+// whose bit in `meshletBits` is set; the late phase rewrites the words of the launched draws and does not draw
+// again what the early phase drew. The counters it adds up are the task shader's (GpuCullCounters).
 struct MeshletCounts {
     uint32_t tested = 0, drawn = 0, triangles = 0;
 };

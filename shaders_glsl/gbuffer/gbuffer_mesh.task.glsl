@@ -1,7 +1,7 @@
 #version 460
 // gbuffer_mesh.task.glsl: the mesh rung's culling of one drawn instance's meshlets, one per invocation: sphere
 // against the frustum, normal cone against the eye (single-sided materials under similarity transforms only),
-// and in the late occlusion phase the sphere's box against the Hi-Z pyramid; survivors are compacted into the
+// and in the late occlusion phase the meshlet's vertex box against the Hi-Z pyramid; survivors are compacted into the
 // payload and launched as mesh workgroups. The culling pass wrote the instance of command gl_DrawID.
 // Two-phase occlusion per meshlet (niagara's scheme): one visibility bit per meshlet persists between frames; the
 // early phase draws only the meshlets visible last frame, the late phase tests all of them against the pyramid
@@ -54,10 +54,9 @@ bool meshletVisible(GpuMeshlet m, GpuCullDraw d, mat4 model, GpuCullView view) {
     vec3 eye = FrameBuffer(p.gbuffer.frame).frame.cameraPosition;
     if (!meshletInView(m, d.flags, model, view, eye)) return false;
     if (p.phase != kCullLate || (d.flags & kCullAlwaysVisible) != 0u) return true;
-    vec3 center;
-    float radius;
-    meshletSphere(m, model, center, radius);
-    return hizVisible(view, center, vec3(radius));
+    vec3 center, extent;
+    meshletBox(m, model, center, extent);
+    return hizVisible(view, center, extent);
 }
 
 void main() {

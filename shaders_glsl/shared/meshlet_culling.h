@@ -18,6 +18,11 @@ IDK_INLINE void meshletSphere(GpuMeshlet m, mat4 model, IDK_OUT(vec3) center, ID
     radius = m.radius * (largest > scale.z ? largest : scale.z);
 }
 
+// The world box of meshlet `m`'s vertex box under `model` (the late phase tests it against the Hi-Z pyramid).
+IDK_INLINE void meshletBox(GpuMeshlet m, mat4 model, IDK_OUT(vec3) center, IDK_OUT(vec3) extent) {
+    worldBox(model, m.boxCenter, m.boxExtent, center, extent);
+}
+
 // False when the meshlet cannot be seen from `eye` through `view`: its sphere is outside a plane, or (single-sided
 // material, perspective view, no mirroring, uniform scale: a non-uniform scale bends normals away from the cone)
 // every triangle faces away from the eye. `drawFlags`: GpuCullDraw::flags (kCullAlwaysVisible: never culled).

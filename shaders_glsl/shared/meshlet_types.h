@@ -15,7 +15,8 @@ IDK_CONST(uint, kMeshGroupSize, 32);         // each mesh invocation emits 2 ver
 
 // One meshlet: up to 64 vertices (indices relative to the mesh's baseVertex, in MeshletData::vertices) and up to
 // 124 triangles (three byte-sized local vertex indices each, packed little-endian into uint words of
-// MeshletData::triangles, starting at byte triangleOffset; the GPU copy appends them to the vertices). Bounds in object space (meshopt_computeMeshletBounds).
+// MeshletData::triangles, starting at byte triangleOffset; the GPU copy appends them to the vertices). Bounds in
+// object space (sphere and cone: meshopt_computeMeshletBounds).
 struct GpuMeshlet {
     vec3 center;      // bounding sphere
     float radius;
@@ -26,9 +27,13 @@ struct GpuMeshlet {
     uint triangleOffset;  // first byte of its triangles
     uint vertexCount;
     uint triangleCount;
+    // The axis-aligned box of its vertices (object space): the late phase's Hi-Z footprint (tighter than the
+    // sphere's box, most of all for flat meshlets).
+    vec3 boxCenter;
+    vec3 boxExtent;
     uint pad;
 };
-IDK_GPU_SIZE(GpuMeshlet, 64);
+IDK_GPU_SIZE(GpuMeshlet, 88);
 
 // The mesh rung's indirect command (VkDrawMeshTasksIndirectCommandEXT); the culling pass writes the instance of
 // each into a parallel array (the task shader reads it as a storage buffer, the draw as indirect arguments).

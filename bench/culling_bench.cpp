@@ -11,6 +11,7 @@
 // mismatches (pixels that differ from the unculled frame: catches meshlets the task shader dropped wrongly). On the
 // mesh rung, meshlet_cullable_fraction: the hidden triangles in meshlets that hold no visible triangle, over all
 // hidden triangles (the bound of any culler that draws whole meshlets).
+// BM_HizBuild: the compute rung's Hi-Z pyramid at 1280x720, one dispatch per level against six levels per dispatch.
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
@@ -23,11 +24,16 @@
 
 #include "bench_support.hpp"
 #include "frame/culling_feature.hpp"
+#include "passes/depth_pyramid_levels.hpp"
+#include "render/depth_pyramid.hpp"
 #include "render/culling_math.hpp"
 #include "render/meshlets.hpp"
 #include "render/renderer.hpp"
 #include "scene/camera.hpp"
 #include "scene/gltf_loader.hpp"
+#include "vk/bindless.hpp"
+#include "vk/timestamps.hpp"
+#include "vk/transfer.hpp"
 
 namespace idk::bench {
 namespace {
@@ -242,6 +248,52 @@ BENCHMARK(BM_Culling)
     ->UseRealTime()
     ->Iterations(2)
     ->Unit(benchmark::kMillisecond);
+
+// The compute rung's Hi-Z pyramid of a 1280x720 depth image (random depth on a 2^-24 grid): Arg = levels per
+// dispatch of culling/hiz_build.comp.glsl, 1 (one dispatch per level, eleven) or kHizTileLevels (two dispatches:
+// six levels from 32 x 32 shared-memory tiles, then the rest). Both give the CPU reduction's pyramid (the
+// mismatches counter; the conformance check culling/hi-z pyramid covers every size). Peer: one per level.
+void BM_HizBuild(benchmark::State& state) {
+    if (!requireDevice(state)) return;
+    vk::Context& ctx = *context();
+    const uint32_t perDispatch = uint32_t(state.range(0));
+    const glm::uvec2 size(kWidth, kHeight);
+    std::vector<float> depth = randomFloats(size_t(size.x) * size.y, 11);
+    for (float& d : depth) d -= 0.5f;  // [0, 1)
+    vk::ImageDesc desc;
+    desc.format = VK_FORMAT_R32_SFLOAT;
+    desc.extent = {size.x, size.y, 1};
+    desc.usage = VK_IMAGE_USAGE_STORAGE_BIT;
+    desc.name = "bench depth";
+    desc.category = "bench";
+    vk::Image image = ctx.createImage(desc);
+    vk::uploadImage(ctx, image, depth.data(), depth.size() * sizeof(float), VK_IMAGE_LAYOUT_GENERAL);
+    vk::StorageImageIndex storage = ctx.bindless().addStorage(image.view);
+    const uint32_t count = gpu::hizLevelOffset(size, gpu::hizLevelCount(size));
+    vk::Buffer pyramid = ctx.createBuffer(
+        {count * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::GpuOnly, "bench pyramid", "bench"});
+    vk::TimestampQueries queries(ctx, 1);
+    auto record = [&](VkCommandBuffer cmd) {
+        passes::recordDepthPyramidLevels(cmd, ctx, *shaders(), storage.value, size, pyramid.address,
+                                         passes::HizReduction::Farthest, perDispatch);
+    };
+    timeGpu(ctx, queries, record);  // warm-up: pipeline creation
+    for (auto _ : state) state.SetIterationTime(timeGpu(ctx, queries, record));
+    const std::vector<float> got = vk::downloadBuffer<float>(ctx, pyramid, count);
+    const std::vector<float> expected = render::buildDepthPyramid(depth, size);
+    double mismatches = 0;
+    for (size_t i = 0; i < got.size(); ++i) mismatches += got[i] != expected[i];
+    ctx.bindless().release(storage);
+    ctx.destroyDeferred(pyramid);
+    ctx.destroyDeferred(image);
+    const uint32_t levels = gpu::hizLevelCount(size);
+    state.counters["mismatches"] = mismatches;
+    state.counters["dispatches"] = double((levels + perDispatch - 1) / perDispatch);
+    setRow(state, {"culling", "1280x720 random depth", "Hi-Z pyramid (compute rung), " + std::to_string(perDispatch) +
+                                                          " level(s) per dispatch",
+                   "hiz-reduction=fallback (compute)", perDispatch == 1 ? "" : "BM_HizBuild/1", "ours", "manual"});
+}
+BENCHMARK(BM_HizBuild)->Arg(1)->Arg(gpu::kHizTileLevels)->UseManualTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace idk::bench

@@ -8,19 +8,32 @@
 // pixel) says which draws and triangles are visible; the rest are hidden. Counters: hidden_culled_fraction (the
 // hidden triangles that culling did not draw / all hidden triangles), false_culls (visible draws the culler dropped:
 // the drawn set follows from the visibility bits before and after the last frame and the CPU frustum oracle) and
-// mismatches (pixels that differ from the unculled frame: catches meshlets the task shader dropped wrongly).
+// mismatches (pixels that differ from the unculled frame: catches meshlets the task shader dropped wrongly). On the
+// mesh rung, meshlet_cullable_fraction: the hidden triangles in meshlets that hold no visible triangle, over all
+// hidden triangles (the bound of any culler that draws whole meshlets).
+// BM_HizBuild: the compute rung's Hi-Z pyramid at 1280x720, one dispatch per level against six levels per dispatch.
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
+#include <array>
+#include <map>
+#include <set>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "bench_support.hpp"
+#include "frame/culling_feature.hpp"
+#include "passes/depth_pyramid_levels.hpp"
+#include "render/depth_pyramid.hpp"
 #include "render/culling_math.hpp"
+#include "render/meshlets.hpp"
 #include "render/renderer.hpp"
 #include "scene/camera.hpp"
 #include "scene/gltf_loader.hpp"
+#include "vk/bindless.hpp"
+#include "vk/timestamps.hpp"
+#include "vk/transfer.hpp"
 
 namespace idk::bench {
 namespace {
@@ -88,7 +101,43 @@ struct GroundTruth {
     std::vector<uint32_t> visibleTriangles;  // per GpuScene draw
     uint64_t totalVisibleTriangles = 0;
     std::vector<uint8_t> image;
+    std::vector<uint64_t> keys;  // (draw << 32 | triangle) of every visible triangle, sorted
 };
+
+// The most any meshlet culler can reach: the hidden triangles of the meshlets that hold no visible triangle, as a
+// fraction of all hidden triangles (a meshlet with one visible triangle must be drawn whole).
+double meshletCullableFraction(const render::GpuSceneData& data, const GroundTruth& truth, uint64_t sceneTriangles) {
+    const render::MeshletData m = render::buildMeshlets(data);
+    auto byte = [&](uint32_t i) { return (m.triangles[i / 4] >> (8 * (i % 4))) & 0xFFu; };
+    std::vector<std::map<std::array<uint32_t, 3>, uint32_t>> meshletOf(m.firstMeshlet.size());  // sorted vertices
+    auto sorted = [](uint32_t a, uint32_t b, uint32_t c) {
+        std::array<uint32_t, 3> k{a, b, c};
+        std::sort(k.begin(), k.end());
+        return k;
+    };
+    std::set<uint64_t> needed;  // (draw << 32 | meshlet) holding a visible triangle
+    for (uint64_t key : truth.keys) {
+        const uint32_t draw = uint32_t(key >> 32), triangle = uint32_t(key);
+        const uint32_t mesh = data.instances[draw].mesh;
+        auto& map = meshletOf[mesh];
+        if (map.empty())
+            for (uint32_t local = 0; local < m.meshletCount[mesh]; ++local) {
+                const gpu::GpuMeshlet& g = m.meshlets[m.firstMeshlet[mesh] + local];
+                for (uint32_t t = 0; t < g.triangleCount; ++t) {
+                    const uint32_t b = g.triangleOffset + 3 * t;
+                    map[sorted(m.vertices[g.vertexOffset + byte(b)], m.vertices[g.vertexOffset + byte(b + 1)],
+                               m.vertices[g.vertexOffset + byte(b + 2)])] = m.firstMeshlet[mesh] + local;
+                }
+            }
+        const uint32_t* ix = &data.indices[data.draws[draw].firstIndex + 3 * triangle];
+        const auto it = map.find(sorted(ix[0], ix[1], ix[2]));
+        if (it != map.end()) needed.insert(uint64_t(draw) << 32 | it->second);
+    }
+    uint64_t mustDraw = 0;  // every triangle of the needed meshlets
+    for (uint64_t k : needed) mustDraw += m.meshlets[uint32_t(k)].triangleCount;
+    const uint64_t hidden = sceneTriangles - truth.totalVisibleTriangles;
+    return hidden > 0 ? double(sceneTriangles - mustDraw) / double(hidden) : 1.0;
+}
 
 GroundTruth groundTruth(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene::Scene& scene,
                         const scene::CameraView& camera) {
@@ -107,6 +156,7 @@ GroundTruth groundTruth(vk::Context& ctx, vk::ShaderLibrary& shaders, const scen
     keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
     for (uint64_t k : keys) ++t.visibleTriangles[size_t(k >> 32)];
     t.totalVisibleTriangles = keys.size();
+    t.keys = std::move(keys);
     return t;
 }
 
@@ -136,12 +186,15 @@ void BM_Culling(benchmark::State& state) {
     uint64_t sceneTriangles = 0;
     std::vector<bool> drawnDraws;  // per draw: drawn in the last frame
     size_t mismatches = 0;
+    double meshletBound = -1.0;  // mesh rung: meshletCullableFraction
     {
         render::Renderer renderer(ctx, shaders);
         renderer.settings().culling.mode = mode;
         renderer.setScene(scene);
         const render::GpuSceneData& data = renderer.gpuScene()->data();
         for (const VkDrawIndexedIndirectCommand& d : data.draws) sceneTriangles += d.instanceCount * (d.indexCount / 3);
+        if (mode != frame::CullingMode::Off && frame::CullingFeature::usesMeshShaders(ctx, renderer.settings().culling))
+            meshletBound = meshletCullableFraction(data, truth, sceneTriangles);
         renderer.renderOffscreen(camera, kWidth, kHeight);  // warm-up: pipelines, meshlets, visibility bits
         renderer.renderOffscreen(camera, kWidth, kHeight);
         for (auto _ : state) {
@@ -175,6 +228,7 @@ void BM_Culling(benchmark::State& state) {
     state.counters["hidden_culled_fraction"] = hidden > 0 ? double(hiddenCulled) / double(hidden) : 1.0;
     state.counters["false_culls"] = double(falseCulls);
     if (mode != frame::CullingMode::Off) state.counters["mismatches"] = double(mismatches);
+    if (meshletBound >= 0.0) state.counters["meshlet_cullable_fraction"] = meshletBound;
     static const char* kModes[] = {"off", "frustum", "hiz"};
     std::string settings = std::to_string(kWidth) + "x" + std::to_string(kHeight) + ", --culling " + kModes[int(mode)] +
                            ", triangles drawn " + std::to_string(drawn) + " of " + std::to_string(sceneTriangles) +
@@ -194,6 +248,52 @@ BENCHMARK(BM_Culling)
     ->UseRealTime()
     ->Iterations(2)
     ->Unit(benchmark::kMillisecond);
+
+// The compute rung's Hi-Z pyramid of a 1280x720 depth image (random depth on a 2^-24 grid): Arg = levels per
+// dispatch of culling/hiz_build.comp.glsl, 1 (one dispatch per level, eleven) or kHizTileLevels (two dispatches:
+// six levels from 32 x 32 shared-memory tiles, then the rest). Both give the CPU reduction's pyramid (the
+// mismatches counter; the conformance check culling/hi-z pyramid covers every size). Peer: one per level.
+void BM_HizBuild(benchmark::State& state) {
+    if (!requireDevice(state)) return;
+    vk::Context& ctx = *context();
+    const uint32_t perDispatch = uint32_t(state.range(0));
+    const glm::uvec2 size(kWidth, kHeight);
+    std::vector<float> depth = randomFloats(size_t(size.x) * size.y, 11);
+    for (float& d : depth) d -= 0.5f;  // [0, 1)
+    vk::ImageDesc desc;
+    desc.format = VK_FORMAT_R32_SFLOAT;
+    desc.extent = {size.x, size.y, 1};
+    desc.usage = VK_IMAGE_USAGE_STORAGE_BIT;
+    desc.name = "bench depth";
+    desc.category = "bench";
+    vk::Image image = ctx.createImage(desc);
+    vk::uploadImage(ctx, image, depth.data(), depth.size() * sizeof(float), VK_IMAGE_LAYOUT_GENERAL);
+    vk::StorageImageIndex storage = ctx.bindless().addStorage(image.view);
+    const uint32_t count = gpu::hizLevelOffset(size, gpu::hizLevelCount(size));
+    vk::Buffer pyramid = ctx.createBuffer(
+        {count * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::GpuOnly, "bench pyramid", "bench"});
+    vk::TimestampQueries queries(ctx, 1);
+    auto record = [&](VkCommandBuffer cmd) {
+        passes::recordDepthPyramidLevels(cmd, ctx, *shaders(), storage.value, size, pyramid.address,
+                                         passes::HizReduction::Farthest, perDispatch);
+    };
+    timeGpu(ctx, queries, record);  // warm-up: pipeline creation
+    for (auto _ : state) state.SetIterationTime(timeGpu(ctx, queries, record));
+    const std::vector<float> got = vk::downloadBuffer<float>(ctx, pyramid, count);
+    const std::vector<float> expected = render::buildDepthPyramid(depth, size);
+    double mismatches = 0;
+    for (size_t i = 0; i < got.size(); ++i) mismatches += got[i] != expected[i];
+    ctx.bindless().release(storage);
+    ctx.destroyDeferred(pyramid);
+    ctx.destroyDeferred(image);
+    const uint32_t levels = gpu::hizLevelCount(size);
+    state.counters["mismatches"] = mismatches;
+    state.counters["dispatches"] = double((levels + perDispatch - 1) / perDispatch);
+    setRow(state, {"culling", "1280x720 random depth", "Hi-Z pyramid (compute rung), " + std::to_string(perDispatch) +
+                                                          " level(s) per dispatch",
+                   "hiz-reduction=fallback (compute)", perDispatch == 1 ? "" : "BM_HizBuild/1", "ours", "manual"});
+}
+BENCHMARK(BM_HizBuild)->Arg(1)->Arg(gpu::kHizTileLevels)->UseManualTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace idk::bench

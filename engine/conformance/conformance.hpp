@@ -129,6 +129,7 @@ std::vector<Check> textureChecks();
 std::vector<Check> vrsChecks();
 std::vector<Check> cullingChecks();
 std::vector<Check> cullKernelChecks();
+std::vector<Check> meshletCullChecks();
 std::vector<Check> bvhRefitChecks();
 std::vector<Check> atmosphereChecks();
 std::vector<Check> vxgiChecks();

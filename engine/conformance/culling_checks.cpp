@@ -1,7 +1,8 @@
 // culling_checks.cpp: the depth pyramids against direct CPU reductions, exactly, for odd, non-power-of-two, thin and
-// tiny depth images (1x1 to 641x361):
+// tiny depth images (1x1 to 641x361, 2049x3, 1280x720):
 // * "culling/hi-z pyramid" (the farthest-depth pyramid the GPU culling reads) on each rung of the "hiz-reduction"
-//   ladder: fallback = culling/hiz_build.comp.glsl through passes::recordDepthPyramid (compute max of 2x2 loads),
+//   ladder: fallback = culling/hiz_build.comp.glsl through passes::recordDepthPyramid (compute max of 2x2 loads,
+//   six levels per dispatch from shared-memory tiles; also one and four levels per dispatch, the same texels),
 //   native = passes::recordDepthPyramidMinmax (one MAX-reduction sample per 2x2 block), which must also equal the
 //   compute rung bit for bit and, with a plain sampler in its place, must NOT reproduce the maximum (so the rung
 //   cannot pass by sampling one texel); oracle render::buildDepthPyramid.
@@ -16,6 +17,7 @@
 
 #include "conformance/conformance.hpp"
 #include "passes/culling.hpp"
+#include "passes/depth_pyramid_levels.hpp"
 #include "render/depth_pyramid.hpp"
 #include "vk/bindless.hpp"
 #include "vk/context.hpp"
@@ -50,7 +52,7 @@ vk::Image floatImage(CheckEnv& env, glm::uvec2 size, VkImageUsageFlags usage, co
 
 // The compute rung (max or min) on a storage image.
 std::vector<float> computePyramid(CheckEnv& env, const std::vector<float>& depth, glm::uvec2 size,
-                                  passes::HizReduction reduction) {
+                                  passes::HizReduction reduction, uint32_t levelsPerDispatch = gpu::kHizTileLevels) {
     vk::Image image = floatImage(env, size, VK_IMAGE_USAGE_STORAGE_BIT, "check depth");
     vk::uploadImage(env.ctx, image, depth.data(), depth.size() * sizeof(float), VK_IMAGE_LAYOUT_GENERAL);
     vk::StorageImageIndex storage = env.ctx.bindless().addStorage(image.view);
@@ -58,7 +60,8 @@ std::vector<float> computePyramid(CheckEnv& env, const std::vector<float>& depth
     vk::Buffer pyramid = env.ctx.createBuffer(
         {count * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::GpuOnly, "check pyramid", "test"});
     env.ctx.runImmediate([&](VkCommandBuffer cmd) {
-        passes::recordDepthPyramid(cmd, env.ctx, env.shaders, storage.value, size, pyramid.address, reduction);
+        passes::recordDepthPyramidLevels(cmd, env.ctx, env.shaders, storage.value, size, pyramid.address, reduction,
+                                         levelsPerDispatch);
     });
     std::vector<float> out = vk::downloadBuffer<float>(env.ctx, pyramid, count);
     env.ctx.bindless().release(storage);
@@ -112,7 +115,8 @@ size_t differing(Verdict& v, const std::vector<float>& got, const std::vector<fl
     return wrong;
 }
 
-const glm::uvec2 kSizes[] = {{1, 1}, {2, 1}, {1, 7}, {7, 5}, {97, 61}, {128, 128}, {300, 17}, {255, 256}, {641, 361}};
+const glm::uvec2 kSizes[] = {{1, 1},     {2, 1},     {1, 7},     {7, 5},   {97, 61},
+                             {128, 128}, {300, 17},  {255, 256}, {641, 361}, {2049, 3}, {1280, 720}};
 
 vk::SamplerIndex addPyramidSampler(CheckEnv& env, VkFilter filter, VkSamplerReductionMode reduction) {
     vk::SamplerDesc desc;
@@ -139,6 +143,14 @@ void hizPyramid(CheckEnv& env, Verdict& v) {
         if (!v.expectEq(got.size(), expected.size(), what + ": texel count")) continue;
         v.expectEq(differing(v, got, expected), size_t(0), what + ": texels differing from the CPU reduction");
         if (sampler) v.expectEq(differing(v, got, compute), size_t(0), what + ": texels differing from the compute rung");
+        if (sampler) continue;
+        // The compute rung reduces kHizTileLevels levels per dispatch from shared-memory tiles; one level per
+        // dispatch (and any count between) must give the same texels.
+        for (uint32_t perDispatch : {1u, 4u}) {
+            const std::vector<float> levels = computePyramid(env, depth, size, passes::HizReduction::Farthest, perDispatch);
+            v.expectEq(differing(v, levels, expected), size_t(0),
+                       what + ": texels differing with " + std::to_string(perDispatch) + " level(s) per dispatch");
+        }
     }
     if (!sampler) return;
     env.ctx.bindless().release(max);

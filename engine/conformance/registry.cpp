@@ -21,7 +21,7 @@ const std::vector<Check>& allChecks() {
         std::vector<Check> all;
         for (std::vector<Check> (*area)() : {computeChecks, subgroupChecks, splatChecks, ptMathChecks, bvhChecks,
                                                 ptWavefrontChecks, denoiseChecks, textureChecks,
-                                                vrsChecks, cullingChecks, cullKernelChecks, bvhRefitChecks,
+                                                vrsChecks, cullingChecks, cullKernelChecks, meshletCullChecks, bvhRefitChecks,
                                                 atmosphereChecks, vxgiChecks, shadowChecks}) {
             std::vector<Check> list = area();
             all.insert(all.end(), list.begin(), list.end());

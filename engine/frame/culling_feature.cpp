@@ -3,11 +3,14 @@
 #include "frame/culling_feature.hpp"
 
 #include <algorithm>
+#include <array>
+#include <memory>
 #include <string>
 
 #include "frame/frame_inputs.hpp"
 #include "render/culling_math.hpp"
 #include "render/meshlets.hpp"
+#include "shared/depth_pyramid.h"
 #include "vk/transfer.hpp"
 
 namespace idk::frame {
@@ -34,9 +37,9 @@ CullingFeature::~CullingFeature() { release(); }
 
 void CullingFeature::release() {
     if (draws_) ctx_.destroyDeferred(draws_);
-    for (vk::Buffer* b : {&visibility_, &meshlets_, &meshletVertices_, &meshletTriangles_})
+    for (vk::Buffer* b : {&visibility_, &meshlets_, &meshletIndices_, &meshletVisibility_, &capturedPyramid_})
         if (*b) ctx_.destroyDeferred(*b);
-    meshlets_ = meshletVertices_ = meshletTriangles_ = {};
+    meshlets_ = meshletIndices_ = meshletVisibility_ = capturedPyramid_ = {};
     for (vk::Buffer& b : views_) ctx_.destroyDeferred(b);
     for (vk::Buffer& b : stats_) ctx_.destroyDeferred(b);
     draws_ = visibility_ = {};
@@ -71,9 +74,9 @@ std::string CullingFeature::geometryError(const vk::Context& ctx, const CullingS
 
 void CullingFeature::createResources(const render::GpuScene& scene, uint32_t framesInFlight, bool meshRung) {
     if (draws_ && meshRung != meshRung_) {  // --geometry changed: records (and meshlets) for the other path
-        for (vk::Buffer* b : {&draws_, &visibility_, &meshlets_, &meshletVertices_, &meshletTriangles_})
+        for (vk::Buffer* b : {&draws_, &visibility_, &meshlets_, &meshletIndices_, &meshletVisibility_})
             if (*b) ctx_.destroyDeferred(*b);
-        draws_ = visibility_ = meshlets_ = meshletVertices_ = meshletTriangles_ = {};
+        draws_ = visibility_ = meshlets_ = meshletIndices_ = meshletVisibility_ = {};
     }
     if (!draws_) {
         meshRung_ = meshRung;
@@ -85,12 +88,23 @@ void CullingFeature::createResources(const render::GpuScene& scene, uint32_t fra
                 b = createBuffer(ctx_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::GpuOnly, name);
                 if (!v.empty()) vk::uploadBuffer(ctx_, b, v.data(), v.size() * sizeof(v[0]));
             };
-            upload(meshlets_, meshlets.meshlets, "meshlets");
-            upload(meshletVertices_, meshlets.vertices, "meshlet vertices");
-            upload(meshletTriangles_, meshlets.triangles, "meshlet triangles");
+            // One index buffer (vertex indices, then triangle bytes) keeps the mesh push block within 128 bytes.
+            std::vector<gpu::GpuMeshlet> gpuMeshlets = meshlets.meshlets;
+            for (gpu::GpuMeshlet& m : gpuMeshlets) m.triangleOffset += uint32_t(4 * meshlets.vertices.size());
+            std::vector<uint32_t> indices = meshlets.vertices;
+            indices.insert(indices.end(), meshlets.triangles.begin(), meshlets.triangles.end());
+            upload(meshlets_, gpuMeshlets, "meshlets");
+            upload(meshletIndices_, indices, "meshlet indices");
         }
         const std::vector<gpu::GpuCullDraw> records =
             render::packCullDraws(scene.data(), meshRung_ ? &meshlets : nullptr);
+        if (meshRung_) {  // no meshlet drawn before the first frame: its late phase tests them all
+            const std::vector<uint32_t> zeros(std::max(render::meshletVisibilityWords(records), 1u), 0u);
+            meshletWords_ = uint32_t(zeros.size());
+            meshletVisibility_ = createBuffer(ctx_, zeros.size() * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                              vk::MemoryUsage::GpuOnly, "cull meshlet visibility");
+            vk::uploadBuffer(ctx_, meshletVisibility_, zeros.data(), zeros.size() * sizeof(uint32_t));
+        }
         const VkDeviceSize bytes = records.size() * sizeof(gpu::GpuCullDraw);
         draws_ = createBuffer(ctx_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::GpuOnly, "cull draws");
         vk::uploadBuffer(ctx_, draws_, records.data(), bytes);
@@ -137,16 +151,22 @@ passes::GBufferOutputs CullingFeature::addGBuffer(FrameContext& f, const render:
         in.drawCount = scene.drawCount();
         in.meshTasks = meshRung_;
         const graph::BufferHandle meshlets = importBuffer(f.graph, "meshlets", meshlets_);
-        const graph::BufferHandle meshletVertices = importBuffer(f.graph, "meshlet vertices", meshletVertices_);
-        const graph::BufferHandle meshletTriangles = importBuffer(f.graph, "meshlet triangles", meshletTriangles_);
+        const graph::BufferHandle meshletIndices = importBuffer(f.graph, "meshlet indices", meshletIndices_);
+        // The last frame's late task shader wrote the meshlet bits; this frame's early one reads them.
+        graph::BufferHandle meshletVisibility;
+        if (meshRung_ && mode == CullingMode::Hiz)
+            meshletVisibility = importBuffer(f.graph, "cull meshlet visibility", meshletVisibility_,
+                                             graph::stateAfterAccess(graph::Access::StorageReadWrite,
+                                                                     graph::ResourceKind::Buffer,
+                                                                     VK_PIPELINE_STAGE_2_TASK_SHADER_BIT_EXT));
         std::vector<graph::BufferHandle> counters;  // per phase: the culling pass's, then the task shader's
         // One view's culled G-buffer draw for `in.phase`, over `drawOver` in the late phase.
         auto draw = [&](const std::string& name, const passes::GBufferOutputs* drawOver, bool keepDepth) {
             passes::CulledDraws c = passes::addCullPass(f.graph, f.ctx, f.shaders, in, name);
             c.keepDepth = keepDepth;
             c.meshlets = meshlets;
-            c.meshletVertices = meshletVertices;
-            c.meshletTriangles = meshletTriangles;
+            c.meshletIndices = meshletIndices;
+            c.meshletVisibility = meshletVisibility;
             const passes::GBufferOutputs out = passes::addGBufferPass(f.graph, f.ctx, f.shaders, f.scene,
                                                                       f.frameConstants, &f.log, &c, drawOver);
             counters.push_back(c.counters);
@@ -169,6 +189,7 @@ passes::GBufferOutputs CullingFeature::addGBuffer(FrameContext& f, const render:
                 minmax = hizLevels_.forSize({f.width, f.height});
             in.pyramid = passes::addDepthPyramidPass(f.graph, f.ctx, f.shaders, early.depth, {f.width, f.height},
                                                      "depth_pyramid_early", minmax);
+            if (capturePyramid_) capture(f, in.pyramid);
             f.gbuffer = draw("camera late", &early, false);
         }
         passes::addCullStatsCopyPass(f.graph, counters, stats);
@@ -180,9 +201,45 @@ passes::GBufferOutputs CullingFeature::addGBuffer(FrameContext& f, const render:
     return f.gbuffer;
 }
 
+void CullingFeature::capture(FrameContext& f, graph::BufferHandle pyramid) {
+    const glm::uvec2 size(f.width, f.height);
+    const uint32_t floats = gpu::hizLevelOffset(size, gpu::hizLevelCount(size));
+    if (capturedPyramid_ && capturedFloats_ != floats) {
+        ctx_.destroyDeferred(capturedPyramid_);
+        capturedPyramid_ = {};
+    }
+    if (!capturedPyramid_)
+        capturedPyramid_ = createBuffer(ctx_, floats * sizeof(float), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                        vk::MemoryUsage::Readback, "cull captured pyramid");
+    capturedFloats_ = floats;
+    const graph::BufferHandle host = importBuffer(f.graph, "cull captured pyramid", capturedPyramid_);
+    auto handles = std::make_shared<std::array<graph::BufferHandle, 2>>();
+    f.graph.addPass(
+        "cull_capture_pyramid",
+        [&](graph::PassBuilder& b) {
+            (*handles)[0] = b.read(pyramid, graph::Access::TransferSrc);
+            (*handles)[1] = b.write(host, graph::Access::TransferDst);
+            b.sideEffect();  // read by the CPU after the frame's fence
+        },
+        [handles, floats](graph::PassContext& pc) {
+            const VkBufferCopy region{0, 0, floats * sizeof(float)};
+            vkCmdCopyBuffer(pc.commandBuffer(), pc.vkBuffer((*handles)[0]), pc.vkBuffer((*handles)[1]), 1, &region);
+        });
+}
+
+std::vector<float> CullingFeature::earlyPyramid() const {
+    if (!capturedPyramid_) return {};
+    return vk::downloadBuffer<float>(ctx_, capturedPyramid_, capturedFloats_);
+}
+
 std::vector<uint32_t> CullingFeature::visibilityBits() const {
     if (!visibility_) return {};
     return vk::downloadBuffer<uint32_t>(ctx_, visibility_, drawCount_);
+}
+
+std::vector<uint32_t> CullingFeature::meshletVisibilityBits() const {
+    if (!meshletVisibility_) return {};
+    return vk::downloadBuffer<uint32_t>(ctx_, meshletVisibility_, meshletWords_);
 }
 
 std::vector<passes::CullingViewStats> CullingFeature::lastStats() const {
@@ -195,7 +252,7 @@ std::vector<passes::CullingViewStats> CullingFeature::lastStats() const {
     for (uint32_t phase = 0; phase < lastPhases_; ++phase) {
         const gpu::GpuCullCounters& cull = c[phase * perPhase];
         camera.instancesTested = cull.instancesTested;  // every phase tests every draw: count them once
-        camera.instancesDrawn += cull.drawCount;
+        camera.instancesDrawn += cull.drawCount - cull.relaunched;  // each instance once
         camera.trianglesDrawn += cull.trianglesDrawn;  // 0 on the mesh rung: the task shader counts
         if (meshRung_) {
             const gpu::GpuCullCounters& task = c[phase * perPhase + 1];

@@ -41,9 +41,7 @@ void PointShadowFeature::addPasses(FrameContext& f, const render::GpuScene& scen
                     records.size() * sizeof(gpu::GpuShadowMap));
     f.pointShadows.table = passes::addShadowTablePass(f.graph, std::move(bytes));
     if (cubes) {
-        // Scenes with BLEND casters draw their cubes unculled: the culling kernel's commands leave BLEND out.
-        const std::optional<passes::ShadowCulledDraws> culled =
-            maps_->blendCasters() ? std::nullopt : cull_.addPasses(f, scene, *maps_, cubeFrame);
+        const std::optional<passes::ShadowCulledDraws> culled = cull_.addPasses(f, scene, *maps_, cubeFrame);
         f.pointShadows.cubes = passes::addPointShadowPass(f.graph, f.ctx, f.shaders, f.scene, *maps_, cubeFrame,
                                                           &f.log, culled ? &*culled : nullptr);
     }

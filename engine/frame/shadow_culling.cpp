@@ -64,7 +64,8 @@ std::optional<passes::ShadowCulledDraws> ShadowCulling::addPasses(FrameContext& 
     }
     ctx_ = &f.ctx;
     if (!draws_) {
-        const std::vector<gpu::GpuCullDraw> records = render::packCullDraws(scene.data());
+        // BLEND draws cast too (by coverage, as in the unculled cubes): culled per face like the others.
+        const std::vector<gpu::GpuCullDraw> records = render::packCullDraws(scene.data(), nullptr, true);
         const VkDeviceSize bytes = records.size() * sizeof(gpu::GpuCullDraw);
         draws_ = createBuffer(f.ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::GpuOnly,
                               "shadow cull draws");

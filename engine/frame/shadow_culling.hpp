@@ -1,8 +1,8 @@
 // shadow_culling.hpp: GPU culling of the point-shadow cube faces (issue 10): each face of each cube is a view
 // (render/cube_face_views.hpp: the face's 90-degree frustum from the light, cut at the cube's near and far planes)
 // and gets one dispatch of the culling kernel (passes/cull_shadows.cpp), whose compacted commands and count the
-// point_shadows pass draws. Frustum only (a face has no depth to test against before it is drawn). Runs whenever
-// --culling is not off; the records, per-slot face views and the stats readback exist only then.
+// point_shadows pass draws. Frustum only (a face has no depth to test against before it is drawn). BLEND casters
+// are culled like the others. Runs whenever --culling is not off; the records, per-slot face views and the stats readback exist only then.
 #pragma once
 #include <optional>
 #include <vector>

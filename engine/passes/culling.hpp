@@ -35,7 +35,11 @@ struct CulledDraws {
     // Mesh rung: the commands are MeshTaskCommands; the task shader culls meshlets against views[view] (and in
     // the late phase against the pyramid) and adds its counts to `counters`.
     bool meshTasks = false;
-    graph::BufferHandle meshlets, meshletVertices, meshletTriangles, draws, views, pyramid;
+    graph::BufferHandle meshlets, meshletIndices, draws, views, pyramid;
+    // The meshlet visibility bits (kCullEarly reads them, kCullLate rewrites them; unused in kCullFrustum) and the
+    // version the G-buffer pass used (set while that pass is declared).
+    graph::BufferHandle meshletVisibility;
+    std::shared_ptr<graph::BufferHandle> meshletVisibilityUsed = std::make_shared<graph::BufferHandle>();
     graph::BufferHandle drawInstance;  // uint per command: its instance (the task shader's gl_DrawID lookup)
     uint32_t view = 0, phase = gpu::kCullFrustum;
     // The task shader's GpuCullCounters (meshlet and triangle counts; zeroed by the cull pass's reset), and the

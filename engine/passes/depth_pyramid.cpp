@@ -1,30 +1,41 @@
-// depth_pyramid.cpp: "depth_pyramid": the Hi-Z pyramid of an R32F depth image (shared/depth_pyramid.h), one
-// dispatch of culling/hiz_build.comp.glsl per level in one pass, with a buffer barrier between levels (each level
-// reads the one before). The portable compute rung (fallback of the ladder "hiz-reduction"; the sampler rung is
-// depth_pyramid_minmax.cpp): any size, odd and non-power-of-two included. Ports IDKEngine's
-// Hi-Z generation (MeshCulling/Camera/HiZGenerate, a fullscreen draw per mip).
+// depth_pyramid.cpp: "depth_pyramid": the Hi-Z pyramid of an R32F depth image (shared/depth_pyramid.h) in one pass:
+// culling/hiz_build.comp.glsl reduces kHizTileLevels levels per dispatch from 32 x 32 tiles in shared memory (two
+// dispatches at 1280x720, eleven levels), with a buffer barrier between dispatches (each reads the one before's
+// last level); the SSR's closest-depth pyramid is one dispatch of ssr/hiz_min.comp.glsl per level. The portable
+// compute rung (fallback of the ladder "hiz-reduction"; the sampler rung is depth_pyramid_minmax.cpp): any size,
+// odd and non-power-of-two included. Ports IDKEngine's Hi-Z generation (MeshCulling/Camera/HiZGenerate, a
+// fullscreen draw per mip).
 #include "passes/culling.hpp"
+#include "passes/depth_pyramid_levels.hpp"
 
+#include <algorithm>
 #include <memory>
+#include <stdexcept>
 
 #include "shared/depth_pyramid.h"
 #include "vk/bindless.hpp"
 
 namespace idk::passes {
 
-void recordDepthPyramid(VkCommandBuffer cmd, vk::Context& ctx, vk::ShaderLibrary& shaders, uint32_t depthStorage,
-                        glm::uvec2 size, VkDeviceAddress pyramid, HizReduction reduction) {
+void recordDepthPyramidLevels(VkCommandBuffer cmd, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                              uint32_t depthStorage, glm::uvec2 size, VkDeviceAddress pyramid, HizReduction reduction,
+                              uint32_t levelsPerDispatch) {
+    const bool tiled = reduction == HizReduction::Farthest;  // hiz_build (tiles); the SSR minimum: hiz_level.glsl
+    if (tiled && (levelsPerDispatch < 1 || levelsPerDispatch > gpu::kHizTileLevels))
+        throw std::invalid_argument("recordDepthPyramidLevels: 1 to kHizTileLevels levels per dispatch");
+    const uint32_t step = tiled ? levelsPerDispatch : 1;
+    const uint32_t group = tiled ? gpu::kHizTile / 2 : gpu::kHizGroupSize;  // invocations per side
+    const uint32_t texels = tiled ? gpu::kHizTile : gpu::kHizGroupSize;     // first-level texels per group side
     vk::ComputePipelineDesc pipeline;
-    pipeline.shader = reduction == HizReduction::Closest ? vk::ShaderId::ssr_hiz_min_comp
-                                                         : vk::ShaderId::culling_hiz_build_comp;
+    pipeline.shader = tiled ? vk::ShaderId::culling_hiz_build_comp : vk::ShaderId::ssr_hiz_min_comp;
     pipeline.pushBytes = sizeof(gpu::HizBuildPush);
-    pipeline.localSize = {gpu::kHizGroupSize, gpu::kHizGroupSize, 1};
+    pipeline.localSize = {group, group, 1};
     vk::bindPipeline(cmd, shaders.compute(pipeline));
     ctx.bindless().bind(cmd);
     const uint32_t levels = gpu::hizLevelCount(size);
-    for (uint32_t level = 0; level < levels; ++level) {
+    for (uint32_t level = 0; level < levels; level += step) {
         if (level > 0) {
-            // Level k reads level k - 1's writes (storage buffer, compute to compute).
+            // These levels read the last dispatch's writes (storage buffer, compute to compute).
             VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
             barrier.srcStageMask = barrier.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
             barrier.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
@@ -34,11 +45,17 @@ void recordDepthPyramid(VkCommandBuffer cmd, vk::Context& ctx, vk::ShaderLibrary
             dep.pMemoryBarriers = &barrier;
             vkCmdPipelineBarrier2(cmd, &dep);
         }
-        const gpu::HizBuildPush push{pyramid, size, depthStorage, level};
+        const uint32_t count = std::min(step, levels - level);
+        const gpu::HizBuildPush push{pyramid, size, depthStorage, level | (tiled ? count << 16 : 0u)};
         vk::pushConstants(cmd, ctx, push);
         const glm::uvec2 s = gpu::hizLevelSize(size, level);
-        vkCmdDispatch(cmd, vk::groupCount(s.x, gpu::kHizGroupSize), vk::groupCount(s.y, gpu::kHizGroupSize), 1);
+        vkCmdDispatch(cmd, vk::groupCount(s.x, texels), vk::groupCount(s.y, texels), 1);
     }
+}
+
+void recordDepthPyramid(VkCommandBuffer cmd, vk::Context& ctx, vk::ShaderLibrary& shaders, uint32_t depthStorage,
+                        glm::uvec2 size, VkDeviceAddress pyramid, HizReduction reduction) {
+    recordDepthPyramidLevels(cmd, ctx, shaders, depthStorage, size, pyramid, reduction, gpu::kHizTileLevels);
 }
 
 graph::BufferHandle addDepthPyramidPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,

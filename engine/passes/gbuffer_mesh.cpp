@@ -16,8 +16,11 @@ void useMeshShaders(vk::GraphicsPipelineDesc& desc) {
 
 void declareMeshDraws(graph::PassBuilder& b, const CulledDraws& c) {
     b.read(c.meshlets, graph::Access::StorageRead, kTaskMeshStages);
-    b.read(c.meshletVertices, graph::Access::StorageRead, VK_PIPELINE_STAGE_2_MESH_SHADER_BIT_EXT);
-    b.read(c.meshletTriangles, graph::Access::StorageRead, VK_PIPELINE_STAGE_2_MESH_SHADER_BIT_EXT);
+    b.read(c.meshletIndices, graph::Access::StorageRead, VK_PIPELINE_STAGE_2_MESH_SHADER_BIT_EXT);
+    constexpr VkPipelineStageFlags2 kTs = VK_PIPELINE_STAGE_2_TASK_SHADER_BIT_EXT;
+    if (c.phase == gpu::kCullEarly) *c.meshletVisibilityUsed = b.read(c.meshletVisibility, graph::Access::StorageRead, kTs);
+    if (c.phase == gpu::kCullLate)
+        *c.meshletVisibilityUsed = b.write(c.meshletVisibility, graph::Access::StorageReadWrite, kTs);
     b.read(c.drawInstance, graph::Access::StorageRead, VK_PIPELINE_STAGE_2_TASK_SHADER_BIT_EXT);
     b.read(c.draws, graph::Access::StorageRead, VK_PIPELINE_STAGE_2_TASK_SHADER_BIT_EXT);
     b.read(c.views, graph::Access::StorageRead, VK_PIPELINE_STAGE_2_TASK_SHADER_BIT_EXT);
@@ -30,8 +33,8 @@ void recordMeshDraws(graph::PassContext& pc, vk::Context& ctx, const CulledDraws
     gpu::GBufferMeshPush push{};
     push.gbuffer = gbuffer;
     push.meshlets = pc.buffer(c.meshlets).address;
-    push.meshletVertices = pc.buffer(c.meshletVertices).address;
-    push.meshletTriangles = pc.buffer(c.meshletTriangles).address;
+    push.meshletIndices = pc.buffer(c.meshletIndices).address;
+    push.meshletVisibility = c.phase != gpu::kCullFrustum ? pc.buffer(*c.meshletVisibilityUsed).address : 0;
     push.drawInstance = pc.buffer(c.drawInstance).address;
     push.draws = pc.buffer(c.draws).address;
     push.views = pc.buffer(c.views).address;

@@ -1,9 +1,12 @@
 // culling_math.cpp: frustum planes, culling records and the culling oracle (see culling_math.hpp).
 #include "render/culling_math.hpp"
 
+#include <algorithm>
+
 #include "render/depth_pyramid.hpp"
 #include "render/draw_bounds.hpp"
 #include "render/meshlets.hpp"
+#include "shared/meshlet_culling.h"
 
 namespace idk::render {
 
@@ -22,9 +25,11 @@ gpu::GpuCullView frustumView(const glm::mat4& m, glm::uvec2 viewport) {
     return v;
 }
 
-std::vector<gpu::GpuCullDraw> packCullDraws(const GpuSceneData& scene, const MeshletData* meshlets) {
+std::vector<gpu::GpuCullDraw> packCullDraws(const GpuSceneData& scene, const MeshletData* meshlets, bool blendCasts) {
     const std::vector<scene::Aabb> boxes = meshBounds(scene);
     std::vector<gpu::GpuCullDraw> out(scene.draws.size());
+    static_assert(gpu::kTaskGroupSize == 32, "one meshlet visibility word per task workgroup");
+    uint32_t visibilityWords = 0;
     for (size_t i = 0; i < scene.draws.size(); ++i) {
         const VkDrawIndexedIndirectCommand& d = scene.draws[i];
         const uint32_t mesh = scene.instances[i].mesh;
@@ -32,7 +37,10 @@ std::vector<gpu::GpuCullDraw> packCullDraws(const GpuSceneData& scene, const Mes
         c.indexCount = d.indexCount;
         c.firstIndex = d.firstIndex;
         c.vertexOffset = d.vertexOffset;
-        if (d.instanceCount == 0) c.flags |= gpu::kCullSkip;
+        // The scene's commands leave BLEND draws without an instance (the transparency pass draws them).
+        const bool blend = mesh < scene.meshes.size() && scene.meshes[mesh].material < scene.materials.size() &&
+                           scene.materials[scene.meshes[mesh].material].alphaMode == gpu::kAlphaBlend;
+        if (d.instanceCount == 0 && !(blendCasts && blend)) c.flags |= gpu::kCullSkip;
         if (mesh >= scene.meshes.size() || d.vertexOffset != scene.meshes[mesh].baseVertex)
             c.flags |= gpu::kCullAlwaysVisible;
         if (mesh < scene.meshes.size()) {
@@ -42,6 +50,8 @@ std::vector<gpu::GpuCullDraw> packCullDraws(const GpuSceneData& scene, const Mes
             if (meshlets) {
                 c.firstMeshlet = meshlets->firstMeshlet[mesh];
                 c.meshletCount = meshlets->meshletCount[mesh];
+                c.meshletVisibilityWord = visibilityWords;
+                visibilityWords += (c.meshletCount + 31) / 32;
             }
         }
         if (mesh < boxes.size() && !boxes[mesh].empty()) {
@@ -54,9 +64,15 @@ std::vector<gpu::GpuCullDraw> packCullDraws(const GpuSceneData& scene, const Mes
     return out;
 }
 
+uint32_t meshletVisibilityWords(const std::vector<gpu::GpuCullDraw>& draws) {
+    uint32_t words = 0;
+    for (const gpu::GpuCullDraw& d : draws) words = std::max(words, d.meshletVisibilityWord + (d.meshletCount + 31) / 32);
+    return words;
+}
+
 std::vector<bool> cullOracle(const std::vector<gpu::GpuCullDraw>& draws, const std::vector<gpu::GpuInstance>& instances,
                              const gpu::GpuCullView& view, uint32_t phase, std::vector<uint32_t>* visibility,
-                             const std::vector<float>* pyramid) {
+                             const std::vector<float>* pyramid, bool meshTasks) {
     std::vector<bool> drawn(draws.size(), false);
     for (size_t i = 0; i < draws.size(); ++i) {
         const gpu::GpuCullDraw& d = draws[i];
@@ -71,11 +87,47 @@ std::vector<bool> cullOracle(const std::vector<gpu::GpuCullDraw>& draws, const s
         if (phase != gpu::kCullFrustum) {
             const bool drawnEarly = (*visibility)[i] != 0;
             if (phase == gpu::kCullLate) (*visibility)[i] = visible ? 1u : 0u;
-            if (phase == gpu::kCullEarly ? !drawnEarly : drawnEarly) visible = false;
+            const bool relaunch = phase == gpu::kCullLate && drawnEarly && meshTasks;
+            if (phase == gpu::kCullEarly ? !drawnEarly : drawnEarly && !relaunch) visible = false;
         }
         drawn[i] = visible;
     }
     return drawn;
+}
+
+MeshletCounts meshletOracle(const std::vector<gpu::GpuCullDraw>& draws, const std::vector<gpu::GpuInstance>& instances,
+                            const std::vector<gpu::GpuMeshlet>& meshlets, const gpu::GpuCullView& view, glm::vec3 eye,
+                            uint32_t phase, const std::vector<bool>& launched, const std::vector<bool>& drawnEarly,
+                            std::vector<uint32_t>& meshletBits, const std::vector<float>* pyramid) {
+    MeshletCounts counts;
+    for (size_t i = 0; i < draws.size(); ++i) {
+        if (!launched[i]) continue;
+        const gpu::GpuCullDraw& d = draws[i];
+        const glm::mat4& model = instances[i].model;
+        for (uint32_t group = 0; group * gpu::kTaskGroupSize < d.meshletCount; ++group) {
+            uint32_t& word = meshletBits.at(d.meshletVisibilityWord + group);
+            uint32_t newWord = 0;
+            for (uint32_t lane = 0; lane < gpu::kTaskGroupSize; ++lane) {
+                const uint32_t local = group * gpu::kTaskGroupSize + lane;
+                const bool wasVisible = phase != gpu::kCullFrustum && ((word >> lane) & 1u);
+                if (local >= d.meshletCount || (phase == gpu::kCullEarly && !wasVisible)) continue;
+                const gpu::GpuMeshlet& m = meshlets.at(d.firstMeshlet + local);
+                bool visible = gpu::meshletInView(m, d.flags, model, view, eye);
+                if (visible && phase == gpu::kCullLate && !(d.flags & gpu::kCullAlwaysVisible)) {
+                    glm::vec3 center, extent;
+                    gpu::meshletBox(m, model, center, extent);
+                    visible = hizBoxVisible(*pyramid, view, center, extent);
+                }
+                if (visible) newWord |= 1u << lane;
+                const bool early = phase == gpu::kCullLate && drawnEarly[i] && wasVisible;
+                if (early) continue;
+                ++counts.tested;
+                if (visible) ++counts.drawn, counts.triangles += m.triangleCount;
+            }
+            if (phase == gpu::kCullLate) word = newWord;
+        }
+    }
+    return counts;
 }
 
 }  // namespace idk::render

@@ -4,6 +4,7 @@
 #include <meshoptimizer.h>
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -50,6 +51,14 @@ MeshletData buildMeshlets(const GpuSceneData& scene) {
             g.triangleOffset = uint32_t(bytes.size());
             g.vertexCount = ml.vertex_count;
             g.triangleCount = ml.triangle_count;
+            glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+            for (uint32_t k = 0; k < ml.vertex_count; ++k) {
+                const glm::vec3& p = scene.vertices[size_t(mesh.baseVertex) + vertices[ml.vertex_offset + k]].position;
+                lo = glm::min(lo, p);
+                hi = glm::max(hi, p);
+            }
+            g.boxCenter = 0.5f * (lo + hi);
+            g.boxExtent = 0.5f * (hi - lo);
             out.meshlets.push_back(g);
             out.vertices.insert(out.vertices.end(), vertices.begin() + ml.vertex_offset,
                                 vertices.begin() + ml.vertex_offset + ml.vertex_count);

@@ -58,7 +58,7 @@ public:
     VkImageView layeredView(uint32_t i) const { return cubes_.at(i).layeredView; }  // 2D array of the 6 faces
     VkImageView faceView(uint32_t i, uint32_t face) const { return cubes_.at(i).faceViews.at(face); }  // both rungs
     bool alphaMask() const noexcept { return alphaMask_; }  // MASK or BLEND: the pass needs its fragment shader
-    // BLEND draws cast (by coverage) from the maps' own commands; the culling kernel's per-face commands lack them.
+    // BLEND draws cast (by coverage): unculled cubes draw them from the maps' own commands (the scene's lack them).
     bool blendCasters() const noexcept { return blendCasters_; }
 
     // This frame: imports every cube into the graph (in the state the previous frame left it) and builds the

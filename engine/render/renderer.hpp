@@ -100,6 +100,10 @@ public:
     // GPU culling's per-draw visibility bits (two-phase occlusion: what the last late phase found visible; empty
     // before a culled frame). Valid once that frame has finished.
     std::vector<uint32_t> cullingVisibility() const { return features_.culling.visibilityBits(); }
+    std::vector<uint32_t> cullingMeshletVisibility() const { return features_.culling.meshletVisibilityBits(); }
+    // Conformance: keep each Hiz frame's early Hi-Z pyramid (what the late phase tested against) for readback.
+    void captureCullingPyramid(bool on) { features_.culling.capturePyramid(on); }
+    std::vector<float> cullingEarlyPyramid() const { return features_.culling.earlyPyramid(); }
     // Renders into target.image (size = its extent) and submits without waiting for the GPU (PBR shading,
     // Display output; throws std::logic_error otherwise). Before recording it waits for this renderer's previous
     // frame, so that frame's pass timings can be read and its resources reused.

@@ -1,9 +1,11 @@
 #version 460
 // cull_instances.comp.glsl: one invocation per scene draw for one view: the frustum test of the instance's world
-// box, and in the late phase of two-phase occlusion culling the Hi-Z test (shared/depth_pyramid.h); survivors append a VkDrawIndexedIndirectCommand whose firstInstance names the instance (the vertex shader's
-// gl_InstanceIndex) and count themselves in the counters that vkCmdDrawIndexedIndirectCount reads. Ports IDKEngine's
-// MeshCulling/Camera/Cull/compute.glsl (there: atomicAdd into a per-mesh instanceCount, commands re-uploaded by
-// the CPU every pass; here: compacted commands and a GPU count, nothing re-uploaded).
+// box, and in the late phase of two-phase occlusion culling the Hi-Z test (shared/depth_pyramid.h); survivors
+// append a VkDrawIndexedIndirectCommand whose firstInstance names the instance (the vertex shader's
+// gl_InstanceIndex) and count themselves in the counters that vkCmdDrawIndexedIndirectCount reads. On the mesh
+// rung the late phase also relaunches the visible draws the early phase drew (the task shader tests their other
+// meshlets). Ports IDKEngine's MeshCulling/Camera/Cull/compute.glsl (there: atomicAdd into a per-mesh
+// instanceCount, commands re-uploaded by the CPU every pass; here: compacted commands and a GPU count).
 #extension GL_GOOGLE_include_directive : require
 #include "scene_buffers.glsl"
 #include "culling_types.h"
@@ -59,19 +61,23 @@ void main() {
         worldBox(InstanceBuffer(p.instances).data[i].model, d.boxCenter, d.boxExtent, center, extent);
         visible = boxInFrustum(view, center, extent) && (p.phase != kCullLate || hizVisible(view, center, extent));
     }
+    bool relaunch = false;  // mesh rung, late phase: drawn early, launched again for its remaining meshlets
     if (p.phase != kCullFrustum) {
         bool drawnEarly = Visibility(p.visibility).data[i] != 0u;  // early: drawn if in the frustum
         if (p.phase == kCullLate) Visibility(p.visibility).data[i] = visible ? 1u : 0u;
-        if (p.phase == kCullEarly ? !drawnEarly : drawnEarly) visible = false;
+        // Late and visible implies in the frustum, so drawnEarly here means the early phase drew it.
+        relaunch = p.phase == kCullLate && drawnEarly && p.meshTasks != 0u;
+        if (p.phase == kCullEarly ? !drawnEarly : drawnEarly && !relaunch) visible = false;
     }
     if (!visible) return;
+    if (relaunch) atomicAdd(Counters(p.counters).c.relaunched, 1u);
     // The order of the compacted commands varies between runs; the image does not (depth test LESS, and each
     // pixel's nearest fragment does not depend on draw order unless two fragments tie exactly in depth).
     uint slot = atomicAdd(Counters(p.counters).c.drawCount, 1u);
     if (p.meshTasks == 0u) atomicAdd(Counters(p.counters).c.trianglesDrawn, d.indexCount / 3u);  // else per meshlet
     if (p.meshTasks != 0u) {
         TaskCommands(p.commands).data[slot] = MeshTaskCommand((d.meshletCount + kTaskGroupSize - 1u) / kTaskGroupSize, 1u, 1u);
-        DrawInstances(p.drawInstance).data[slot] = i;
+        DrawInstances(p.drawInstance).data[slot] = relaunch ? i | kDrawnEarly : i;
     } else {
         Commands(p.commands).data[slot] = DrawCommand(d.indexCount, 1u, d.firstIndex, d.vertexOffset, i);
     }

@@ -22,7 +22,7 @@ layout(location = 5) out vec4 outColor[];
 layout(location = 6) out vec2 outUv1[];
 
 uint triangleByte(uint byteIndex) {
-    return (MeshletWords(p.meshletTriangles).data[byteIndex >> 2] >> ((byteIndex & 3u) * 8u)) & 0xFFu;
+    return (MeshletWords(p.meshletIndices).data[byteIndex >> 2] >> ((byteIndex & 3u) * 8u)) & 0xFFu;
 }
 
 void main() {
@@ -31,7 +31,7 @@ void main() {
     GpuInstance instance = InstanceBuffer(p.gbuffer.instances).data[payload.instance];
     mat4 viewProjection = FrameBuffer(p.gbuffer.frame).frame.viewProjection;
     for (uint i = gl_LocalInvocationIndex; i < m.vertexCount; i += kMeshGroupSize) {
-        uint vi = uint(int(MeshletWords(p.meshletVertices).data[m.vertexOffset + i]) + payload.vertexOffset);
+        uint vi = uint(int(MeshletWords(p.meshletIndices).data[m.vertexOffset + i]) + payload.vertexOffset);
         GpuVertex v = VertexBuffer(p.gbuffer.vertices).data[vi];
         vec4 world = instance.model * vec4(v.position, 1.0);
         outWorldPosition[i] = world.xyz;

@@ -1,14 +1,21 @@
 #version 460
 // gbuffer_mesh.task.glsl: the mesh rung's culling of one drawn instance's meshlets, one per invocation: sphere
 // against the frustum, normal cone against the eye (single-sided materials under similarity transforms only),
-// and in the late occlusion phase the sphere's box against the Hi-Z pyramid; survivors are compacted into the
+// and in the late occlusion phase the meshlet's vertex box against the Hi-Z pyramid; survivors are compacted into the
 // payload and launched as mesh workgroups. The culling pass wrote the instance of command gl_DrawID.
+// Two-phase occlusion per meshlet (niagara's scheme): one visibility bit per meshlet persists between frames; the
+// early phase draws only the meshlets visible last frame, the late phase tests all of them against the pyramid
+// of the early depth, rewrites the bits and draws the visible ones the early phase did not draw. Bits never decide
+// correctness, only what the early phase draws: a stale or cleared bit (first frame, camera cut) leaves the
+// meshlet to the late phase, whose pyramid is never nearer than the final depth.
 // Ports IDKEngine's GBuffer/MeshPath/task.glsl (frustum + optional Hi-Z, subgroupBallot compaction) with the
-// normal cone added; the compaction here is a shared counter (a real GPU would use subgroupBallot for order).
+// normal cone and the meshlet bits added; the compaction here is a shared counter (a real GPU would use
+// subgroupBallot for order and skip the shared atomics).
 #extension GL_EXT_mesh_shader : require
 #extension GL_GOOGLE_include_directive : require
 #include "scene_buffers.glsl"
 #include "culling_types.h"
+#include "meshlet_culling.h"
 #include "depth_pyramid.h"
 #include "meshlet_payload.glsl"
 
@@ -22,8 +29,12 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer Cul
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer Pyramid { float data[]; };
 layout(buffer_reference, scalar, buffer_reference_align = 4) buffer Counters { GpuCullCounters c; };
 
+layout(buffer_reference, scalar, buffer_reference_align = 4) buffer MeshletBits { uint data[]; };
+
 shared uint survivors;
 shared uint triangles;
+shared uint tested;
+shared uint newBits;  // late phase: the meshlets found visible (next frame's early set)
 
 bool hizVisible(GpuCullView view, vec3 center, vec3 extent) {
     vec4 rect;
@@ -40,52 +51,53 @@ bool hizVisible(GpuCullView view, vec3 center, vec3 extent) {
 }
 
 bool meshletVisible(GpuMeshlet m, GpuCullDraw d, mat4 model, GpuCullView view) {
-    if ((d.flags & kCullAlwaysVisible) != 0u) return true;  // deformed vertices: the bounds do not hold
-    vec3 scale = vec3(length(model[0].xyz), length(model[1].xyz), length(model[2].xyz));
-    vec3 center = vec3(model * vec4(m.center, 1.0));
-    float radius = m.radius * max(scale.x, max(scale.y, scale.z));
-    for (int i = 0; i < 6; ++i) {
-        vec4 plane = view.planes[i];
-        if (dot(plane.xyz, center) + plane.w < -radius * length(plane.xyz)) return false;
-    }
-    // Normal cone (meshoptimizer's test). Only where "front" is the winding the cone was built from: single-sided
-    // materials, no mirroring, uniform scale (a non-uniform scale bends normals away from the cone), perspective.
-    bool perspective = view.viewProjection[0][3] != 0.0 || view.viewProjection[1][3] != 0.0 ||
-                       view.viewProjection[2][3] != 0.0;
-    bool uniformScale = abs(scale.x - scale.y) <= 1e-4 * scale.x && abs(scale.x - scale.z) <= 1e-4 * scale.x;
-    bool mirrored = determinant(mat3(model)) < 0.0;
-    if ((d.flags & kCullSingleSided) != 0u && perspective && uniformScale && !mirrored && m.coneCutoff < 1.0) {
-        vec3 apex = vec3(model * vec4(m.coneApex, 1.0));
-        vec3 axis = normalize(mat3(model) * m.coneAxis);
-        vec3 eye = FrameBuffer(p.gbuffer.frame).frame.cameraPosition;
-        if (dot(normalize(apex - eye), axis) >= m.coneCutoff) return false;
-    }
-    return p.phase != kCullLate || hizVisible(view, center, vec3(radius));
+    vec3 eye = FrameBuffer(p.gbuffer.frame).frame.cameraPosition;
+    if (!meshletInView(m, d.flags, model, view, eye)) return false;
+    if (p.phase != kCullLate || (d.flags & kCullAlwaysVisible) != 0u) return true;
+    vec3 center, extent;
+    meshletBox(m, model, center, extent);
+    return hizVisible(view, center, extent);
 }
 
 void main() {
-    uint instance = DrawInstances(p.drawInstance).data[gl_DrawID];
+    uint command = DrawInstances(p.drawInstance).data[gl_DrawID];
+    uint instance = command & ~kDrawnEarly;
     GpuCullDraw d = CullDraws(p.draws).data[instance];
     uint local = gl_WorkGroupID.x * kTaskGroupSize + gl_LocalInvocationIndex;
+    uint word = d.meshletVisibilityWord + gl_WorkGroupID.x;  // this workgroup's 32 meshlet bits
+    uint bit = 1u << gl_LocalInvocationIndex;
+    uint lastBits = p.phase != kCullFrustum ? MeshletBits(p.meshletVisibility).data[word] : 0u;
     if (gl_LocalInvocationIndex == 0u) {
         survivors = 0u;
         triangles = 0u;
+        tested = 0u;
+        newBits = 0u;
         payload.instance = instance;
         payload.vertexOffset = d.vertexOffset;
     }
     barrier();
-    if (local < d.meshletCount) {
+    // Early: only the meshlets drawn last frame. Late: every meshlet, except that those the early phase drew (bit
+    // set and the instance drawn early: they passed the same frustum and cone tests then) are not drawn twice.
+    bool wasVisible = (lastBits & bit) != 0u;
+    bool test = local < d.meshletCount && (p.phase != kCullEarly || wasVisible);
+    bool drawnEarly = p.phase == kCullLate && (command & kDrawnEarly) != 0u && wasVisible;
+    if (test) {
         GpuMeshlet m = Meshlets(p.meshlets).data[d.firstMeshlet + local];
         mat4 model = InstanceBuffer(p.gbuffer.instances).data[instance].model;
-        if (meshletVisible(m, d, model, CullViews(p.views).data[p.view])) {
+        bool visible = meshletVisible(m, d, model, CullViews(p.views).data[p.view]);
+        if (visible && p.phase == kCullLate) atomicOr(newBits, bit);
+        if (!drawnEarly) atomicAdd(tested, 1u);
+        if (visible && !drawnEarly) {
             payload.meshlets[atomicAdd(survivors, 1u)] = d.firstMeshlet + local;
             atomicAdd(triangles, m.triangleCount);
         }
     }
     barrier();
     if (gl_LocalInvocationIndex == 0u) {
+        // The late phase rewrites the whole word (this workgroup's meshlets; bits past meshletCount stay 0).
+        if (p.phase == kCullLate) MeshletBits(p.meshletVisibility).data[word] = newBits;
         Counters counters = Counters(p.counters);
-        atomicAdd(counters.c.meshletsTested, min(d.meshletCount - gl_WorkGroupID.x * kTaskGroupSize, kTaskGroupSize));
+        atomicAdd(counters.c.meshletsTested, tested);
         atomicAdd(counters.c.meshletsDrawn, survivors);
         atomicAdd(counters.c.trianglesDrawn, triangles);
     }

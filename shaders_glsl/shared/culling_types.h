@@ -24,8 +24,12 @@ struct GpuCullDraw {
     uint flags;      // kCull*
     uint firstMeshlet;  // mesh rung: the mesh's meshlets (shared/meshlet_types.h)
     uint meshletCount;
+    // Mesh rung: the first word of this draw's meshlet visibility bits (bit j of word w + k: meshlet 32 k + j of
+    // the draw drawn last frame). One word per task workgroup (kTaskGroupSize = 32 meshlets), so each workgroup
+    // owns its word and writes it without atomics.
+    uint meshletVisibilityWord;
 };
-IDK_GPU_SIZE(GpuCullDraw, 48);
+IDK_GPU_SIZE(GpuCullDraw, 52);
 
 // One view: six world-space planes (xyz normal pointing inside, w offset), inside when dot(n, p) + w >= 0.
 // Extracted from the view-projection matrix (Gribb-Hartmann, Vulkan depth 0..1): left, right, top, bottom, near,
@@ -42,18 +46,26 @@ IDK_GPU_SIZE(GpuCullView, 176);
 // CullPush::phase. Two-phase occlusion culling (niagara's approach): the early phase draws what was visible last
 // frame (frustum only), the late phase tests every draw against the Hi-Z pyramid of the early phase's depth,
 // records the result as next frame's visibility, and draws what passes but the early phase did not draw.
+// On the mesh rung the same holds per meshlet: the early phase launches the instances visible last frame and their
+// task shader draws only the meshlets whose bit is set; the late phase launches every instance that passes (also
+// those drawn early, marked kDrawnEarly in drawInstance) and its task shader tests each meshlet (frustum, normal
+// cone, Hi-Z), rewrites the meshlet's bit, and draws it unless the early phase drew it.
 IDK_CONST(uint, kCullFrustum, 0);  // frustum only, no visibility bits
 IDK_CONST(uint, kCullEarly, 1);
 IDK_CONST(uint, kCullLate, 2);
+IDK_CONST(uint, kDrawnEarly, 0x80000000u);  // drawInstance flag (mesh rung, late phase): the early phase drew it
 
 // The counters the pass writes; drawCount is the vkCmdDrawIndexedIndirectCount count (it must stay first).
 struct GpuCullCounters {
     uint drawCount;         // commands written = instances drawn
     uint instancesTested;   // draws that were tested (not kCullSkip)
     uint trianglesDrawn;    // MDI: indexCount / 3 of the drawn commands; mesh rung: triangles of drawn meshlets
-    uint meshletsTested;    // mesh rung (task shader): meshlets of the drawn instances
+    uint meshletsTested;    // mesh rung (task shader): meshlets of the launched instances it tested (early: those
+                            // with their bit set; late: those the early phase did not draw)
     uint meshletsDrawn;     // mesh rung: meshlets that passed frustum, normal cone (and Hi-Z in the late phase)
-    uint pad0, pad1, pad2;
+    uint relaunched;        // mesh rung, late phase: commands of instances the early phase drew already (their
+                            // meshlets not drawn early are tested again); drawCount - relaunched were newly drawn
+    uint pad1, pad2;
 };
 IDK_GPU_SIZE(GpuCullCounters, 32);
 
@@ -66,7 +78,7 @@ struct CullPush {
     DeviceAddress counters;      // GpuCullCounters, zeroed before the pass
     DeviceAddress visibility;    // uint[drawCount], 1 = drawn last frame (kCullEarly reads, kCullLate rewrites)
     DeviceAddress pyramid;       // float[]: the Hi-Z pyramid of the early phase's depth (kCullLate; depth_pyramid.h)
-    DeviceAddress drawInstance;  // meshTasks: out: uint[drawCount], the instance of each command
+    DeviceAddress drawInstance;  // meshTasks: out: uint[drawCount], the instance of each command (| kDrawnEarly)
     uint drawCount;
     uint view;                   // index into views
     uint phase;                  // kCull*

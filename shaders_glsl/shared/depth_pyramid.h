@@ -15,14 +15,17 @@
 
 IDK_GPU_BEGIN
 
-IDK_CONST(uint, kHizGroupSize, 8);     // hiz_build.comp: 8 x 8 texels per workgroup
+IDK_CONST(uint, kHizGroupSize, 8);     // hiz_level.glsl (the SSR pyramid): 8 x 8 texels per workgroup
+IDK_CONST(uint, kHizTile, 32);         // culling/hiz_build.comp: 32 x 32 texels of its first level per workgroup
+IDK_CONST(uint, kHizTileLevels, 6);    // the levels one hiz_build dispatch reduces a tile to (32 x 32 .. 1 x 1)
 IDK_CONST(uint, kHizMaxLevels, 16);    // enough for 65536-pixel sides
 
 struct HizBuildPush {
     DeviceAddress pyramid;  // float[]: the whole pyramid
     uvec2 depthSize;        // w, h of the depth image
     uint depth;             // bindless storage index of the R32F depth image (read by level 0)
-    uint level;             // the level this dispatch writes (reads level - 1, or the image for 0)
+    uint level;             // the level this dispatch writes (reads level - 1, or the image for 0); hiz_build:
+                            // bits 16+ = how many levels from there (<= kHizTileLevels; 0 means 1)
 };
 IDK_GPU_SIZE(HizBuildPush, 24);
 

@@ -13,22 +13,27 @@ IDK_CONST(uint, kMeshletMaxTriangles, 124);  // meshoptimizer's recommendation f
 IDK_CONST(uint, kTaskGroupSize, 32);         // one meshlet per task invocation
 IDK_CONST(uint, kMeshGroupSize, 32);         // each mesh invocation emits 2 vertices and up to 4 triangles
 
-// One meshlet: up to 64 vertices (indices relative to the mesh's baseVertex, in meshletVertices) and up to 124
-// triangles (three byte-sized local vertex indices each, packed little-endian into uint words of
-// meshletTriangles, starting at byte triangleOffset). Bounds in object space (meshopt_computeMeshletBounds).
+// One meshlet: up to 64 vertices (indices relative to the mesh's baseVertex, in MeshletData::vertices) and up to
+// 124 triangles (three byte-sized local vertex indices each, packed little-endian into uint words of
+// MeshletData::triangles, starting at byte triangleOffset; the GPU copy appends them to the vertices). Bounds in
+// object space (sphere and cone: meshopt_computeMeshletBounds).
 struct GpuMeshlet {
     vec3 center;      // bounding sphere
     float radius;
     vec3 coneApex;    // normal cone: every triangle faces away from an eye inside the cone behind the apex
     float coneCutoff; // cos of the cone's half angle plus its spread; 1: no cone (never cone-culled)
     vec3 coneAxis;
-    uint vertexOffset;    // first entry in meshletVertices
-    uint triangleOffset;  // first byte in meshletTriangles
+    uint vertexOffset;    // first entry of its vertex indices
+    uint triangleOffset;  // first byte of its triangles
     uint vertexCount;
     uint triangleCount;
+    // The axis-aligned box of its vertices (object space): the late phase's Hi-Z footprint (tighter than the
+    // sphere's box, most of all for flat meshlets).
+    vec3 boxCenter;
+    vec3 boxExtent;
     uint pad;
 };
-IDK_GPU_SIZE(GpuMeshlet, 64);
+IDK_GPU_SIZE(GpuMeshlet, 88);
 
 // The mesh rung's indirect command (VkDrawMeshTasksIndirectCommandEXT); the culling pass writes the instance of
 // each into a parallel array (the task shader reads it as a storage buffer, the draw as indirect arguments).
@@ -43,9 +48,11 @@ IDK_GPU_SIZE(MeshTaskCommand, 12);
 struct GBufferMeshPush {
     GBufferPush gbuffer;
     DeviceAddress meshlets;          // GpuMeshlet[]
-    DeviceAddress meshletVertices;   // uint[]
-    DeviceAddress meshletTriangles;  // uint[] of packed bytes
-    DeviceAddress drawInstance;      // uint[]: the instance of command gl_DrawID
+    DeviceAddress meshletIndices;    // uint[]: the meshlets' vertex indices, then their packed triangle bytes (the
+                                     // uploaded GpuMeshlet::triangleOffset counts bytes from the buffer's start)
+    DeviceAddress meshletVisibility; // uint[]: one bit per meshlet of each draw (GpuCullDraw::meshletVisibilityWord);
+                                     // kCullEarly reads it, kCullLate rewrites it; 0 in kCullFrustum
+    DeviceAddress drawInstance;      // uint[]: the instance of command gl_DrawID (| kDrawnEarly, late phase)
     DeviceAddress draws;             // GpuCullDraw[] (shared/culling_types.h)
     DeviceAddress views;             // GpuCullView[]
     DeviceAddress pyramid;           // float[]: Hi-Z pyramid (phase kCullLate only)

@@ -1,6 +1,6 @@
 // meshlets_test.cpp: meshlets built by render::buildMeshlets on real meshes (Duck, DamagedHelmet): every
 // triangle of every mesh appears in exactly one meshlet with its winding, within the vertex/triangle limits;
-// each meshlet's sphere holds its vertices; and the normal-cone test the task shader applies never culls a
+// each meshlet's sphere and box hold its vertices; and the normal-cone test the task shader applies never culls a
 // meshlet that has a front-facing triangle (random eyes, 200 per meshlet).
 #include <gtest/gtest.h>
 
@@ -57,8 +57,12 @@ void checkScene(const char* path) {
             }
             auto position = [&](uint32_t v) { return data.vertices[size_t(mesh.baseVertex) + v].position; };
             for (const Triangle& t : tris)
-                for (uint32_t v : t)
+                for (uint32_t v : t) {
                     ASSERT_LE(glm::distance(position(v), ml.center), ml.radius * (1.0f + 1e-4f) + 1e-6f);
+                    const glm::vec3 slack = glm::abs(ml.boxCenter) * 1e-6f + 1e-6f;  // centre +- extent rounding
+                    ASSERT_TRUE(glm::all(glm::lessThanEqual(glm::abs(position(v) - ml.boxCenter), ml.boxExtent + slack)))
+                        << path << ": a vertex outside its meshlet's box";
+                }
             // Eyes around the meshlet at 0.5 .. 4 radii (and some on the cone's axis behind the apex).
             for (int e = 0; e < 200; ++e) {
                 glm::vec3 dir(u(rng), u(rng), u(rng));

@@ -146,8 +146,8 @@ TEST_F(MaterialLayersTest, AnisotropyDeferredStandInAndForwardLobe) {
         std::printf("raster %s: anisotropic gold vs the isotropic stand-in at the rms roughness: %.4f%% of the "
                     "frame's radiance\n", blend ? "forward (BLEND)" : "deferred", 100.0 * change[blend]);
     }
-    EXPECT_LT(change[0], 1e-3);  // deferred: the stand-in itself
-    EXPECT_GT(change[1], 0.002);  // forward: the anisotropic lobe
+    EXPECT_LT(change[0], 1e-3);   // deferred: the stand-in itself (measured 0.0015%: rounding)
+    EXPECT_GT(change[1], 0.002);  // forward: the anisotropic lobe (measured 0.28%: one small sphere of the frame)
 }
 
 }  // namespace

@@ -87,7 +87,8 @@ vec3 anisotropicReflection(SurfaceLayers s, vec3 n, vec3 v, float perceptualRoug
 // alpha when the material is anisotropic but no direction is known).
 float baseDistributionVisibility(SurfaceLayers s, float alpha, vec3 n, vec3 v, vec3 l, vec3 h, float NdotL,
                                  float NdotV, float NdotH) {
-    if (s.anisotropyStrength <= 0.0) return distributionGgx(NdotH, alpha) * visibilitySmithGgxCorrelated(NdotL, NdotV, alpha);
+    if (s.anisotropyStrength <= 0.0)
+        return distributionGgx(NdotH, alpha) * visibilitySmithGgxCorrelated(NdotL, NdotV, alpha);
     vec2 a = anisotropicAlphas(s, alpha);
     vec3 d = s.anisotropyDirection - n * dot(s.anisotropyDirection, n);
     if (dot(d, d) < 1e-8) {

@@ -60,6 +60,11 @@ GpuPtProbeCase randomCase(std::mt19937& gen, uint32_t i) {
     s.clearcoatRoughness = i % 12 == 1 ? 0.0f : uni(gen);
     s.sheenColor = i % 5 == 2 ? glm::vec3(uni(gen), uni(gen), uni(gen)) : glm::vec3(0.0f);
     s.sheenRoughness = uni(gen);
+    // KHR_materials_anisotropy on a share of the cases, some without a direction (the BSDF's basis then). Drawn
+    // from a generator of their own so that the other cases stay the ones this probe always ran.
+    std::mt19937 anisoGen(i * 2654435761u + 1u);
+    s.anisotropyStrength = i % 9 == 3 ? uni(anisoGen) : 0.0f;
+    s.anisotropyDirection = i % 18 == 3 ? randomUnit(anisoGen) : glm::vec3(0.0f);
     c.wo = randomUnit(gen);
     c.wi = randomUnit(gen);
     c.u = glm::vec3(uni(gen), uni(gen), uni(gen));

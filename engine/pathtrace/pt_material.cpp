@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shared/pt_anisotropy.h"
+
 namespace idk::pathtrace {
 
 namespace {
@@ -107,6 +109,12 @@ PtMaterialHit evaluateMaterial(const PathTraceScene& pts, const PtHitPoint& hit,
     // normal on the geometric normal's side (the BSDF turns both toward wo).
     if (glm::dot(n, hit.geometricNormal) < 0.0f) n = -n;
     s.shadingNormal = n;
+    // KHR_materials_anisotropy: the direction in the vertex frame (its texture is not read yet: RG = (1, 0.5)).
+    s.anisotropyStrength = std::clamp(pm.anisotropyStrength, 0.0f, 1.0f);
+    s.anisotropyDirection = s.anisotropyStrength > 0.0f
+                                ? gpu::ptAnisotropyDirection(hit.tangent, hit.normal, pm.anisotropyRotation,
+                                                             glm::vec2(1.0f, 0.5f))
+                                : glm::vec3(0.0f);
 
     if (m.unlit) {
         out.unlit = true;
@@ -117,6 +125,7 @@ PtMaterialHit evaluateMaterial(const PathTraceScene& pts, const PtHitPoint& hit,
         s.ior = 1.0f;  // no Fresnel reflection either: nothing scatters
         s.clearcoat = 0.0f;
         s.sheenColor = glm::vec3(0.0f);
+        s.anisotropyStrength = 0.0f;
     }
     return out;
 }

@@ -103,6 +103,8 @@ std::vector<gpu::GpuPtMaterial> packPtMaterials(const scene::Scene& scene) {
         p.clearcoatRoughness = m.clearcoatRoughness;
         p.sheenColor = m.sheenColor;
         p.sheenRoughness = m.sheenRoughness;
+        p.anisotropyStrength = m.anisotropyStrength;
+        p.anisotropyRotation = m.anisotropyRotation;
         out.push_back(p);
     }
     return out;

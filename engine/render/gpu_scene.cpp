@@ -76,10 +76,13 @@ gpu::GpuMaterial packMaterial(const scene::Material& m, const TextureBindings& b
     g.clearcoatRoughness = m.clearcoatRoughness;
     g.sheenColor = m.sheenColor;
     g.sheenRoughness = m.sheenRoughness;
+    g.anisotropyStrength = m.anisotropyStrength;
+    g.anisotropyRotation = m.anisotropyRotation;
     if (!m.unlit) {
         if (m.specular != 1.0f || m.specularColor != glm::vec3(1.0f)) g.flags |= gpu::kMaterialSpecular;
         if (m.clearcoat > 0.0f) g.flags |= gpu::kMaterialClearcoat;
         if (glm::any(glm::greaterThan(m.sheenColor, glm::vec3(0.0f)))) g.flags |= gpu::kMaterialSheen;
+        if (m.anisotropyStrength > 0.0f) g.flags |= gpu::kMaterialAnisotropy;
     }
     return g;
 }

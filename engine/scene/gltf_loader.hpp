@@ -1,7 +1,9 @@
 // gltf_loader.hpp: loads a glTF 2.0 file (.gltf or .glb) through tinygltf into a Scene of flat arrays.
 // Ports IDKEngine's ModelLoader (geometry with every attribute, compressed geometry, the full metallic-roughness
 // material, hierarchy, skins, morph targets, animations, cameras, lights). Every index and byte range is
-// validated before it is read. Implementation: gltf_loader.cpp plus the gltf_*.cpp files by topic.
+// validated before it is read. Implementation: gltf_loader.cpp plus the gltf_*.cpp files by topic (material
+// extensions: gltf_materials.cpp, and gltf_material_ext.cpp for KHR_materials_specular, _clearcoat, _sheen and
+// _anisotropy, whose textures are reported and not read yet).
 #pragma once
 
 #include <cstdint>

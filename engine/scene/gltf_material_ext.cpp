@@ -1,4 +1,5 @@
-// gltf_material_ext.cpp: the BSDF material extensions of the loader: KHR_materials_specular, _clearcoat, _sheen.
+// gltf_material_ext.cpp: the BSDF material extensions of the loader: KHR_materials_specular, _clearcoat, _sheen,
+// _anisotropy.
 // Untrusted input: every factor is checked for type and finiteness and clamped to the range the specification
 // gives (out-of-range values warn, naming the material); a texture the extension names is checked for range like
 // the core ones, then ignored with a warning (the factors alone are used: extension textures are not bound yet).
@@ -97,6 +98,13 @@ void loadMaterialExtensions(const Ctx& ctx, const tinygltf::Material& src, const
         mat.sheenColor = rangedColor(ctx, *ext, "sheenColorFactor", glm::vec3(0.0f), 0.0f, 1.0f, w);
         mat.sheenRoughness = rangedNumber(ctx, *ext, "sheenRoughnessFactor", 0.0f, 0.0f, 1.0f, w);
         ignoredTextures(ctx, *ext, {"sheenColorTexture", "sheenRoughnessTexture"}, w);
+    }
+    if (const auto* ext = extension(src.extensions, "KHR_materials_anisotropy"); ext && ext->IsObject()) {
+        const std::string w = where + " KHR_materials_anisotropy";
+        mat.anisotropyStrength = rangedNumber(ctx, *ext, "anisotropyStrength", 0.0f, 0.0f, 1.0f, w);
+        // Any finite angle is valid (radians); a bound keeps sin/cos accurate in float.
+        mat.anisotropyRotation = rangedNumber(ctx, *ext, "anisotropyRotation", 0.0f, -1.0e4f, 1.0e4f, w);
+        ignoredTextures(ctx, *ext, {"anisotropyTexture"}, w);
     }
 }
 

@@ -102,6 +102,9 @@ struct Material {
     float clearcoatRoughness = 0.0f;       // clearcoatRoughnessFactor, [0, 1]
     glm::vec3 sheenColor{0.0f};            // KHR_materials_sheen sheenColorFactor, linear, [0, 1]
     float sheenRoughness = 0.0f;           // sheenRoughnessFactor, [0, 1]
+    // KHR_materials_anisotropy, KHR_materials_iridescence, KHR_materials_dispersion (branch matB)
+    float anisotropyStrength = 0.0f;       // KHR_materials_anisotropy anisotropyStrength, [0, 1]
+    float anisotropyRotation = 0.0f;       // anisotropyRotation, radians counter-clockwise from the tangent
 };
 
 // Filtering and wrapping as glTF enums (9728 NEAREST, 9729 LINEAR, ...; 10497 REPEAT, 33071 CLAMP, 33648 MIRROR).

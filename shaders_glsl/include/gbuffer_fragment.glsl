@@ -61,7 +61,7 @@ void main() {
     // Emissive alpha: 1 + the material index when the material uses a BSDF extension (the lighting pass reads its
     // factors from the material buffer), else 0. RGBA16F holds integers exactly up to 2048; a material past that
     // is shaded without its extensions (a real renderer with more would add an R16UI target).
-    bool layered = (m.flags & kMaterialLayers) != 0u && materialIndex < 2047u;
+    bool layered = (m.flags & (kMaterialLayers | kMaterialAnisotropy)) != 0u && materialIndex < 2047u;
     outEmissive = vec4(emissive, layered ? float(materialIndex + 1u) : 0.0);
     outDepth = gl_FragCoord.z;
 #ifdef GBUFFER_IDS

@@ -9,11 +9,18 @@
 // Ambient: the split-sum E_s = f0 A + f90 B with A + B = E(n.v), the GGX directional albedo of the path tracer's
 // tables (shared/pt_albedo_tables.h), times Turquin's multiple-scattering factor 1 + f0 (1 / E - 1), so a white
 // rough metal in a uniform environment reflects it all, as the path tracer's compensation makes it.
+// KHR_materials_anisotropy: the base's GGX D and V become the extension's anisotropic ones (shared/pt_anisotropy.h,
+// the path tracer's functions) in the frame of the anisotropy direction, which the forward pass builds from its
+// tangent frame (withAnisotropyFrame). The deferred G-buffer stores no tangent, so there (and wherever no
+// direction is known) an anisotropic material takes the isotropic lobe at the rms alpha sqrt((at^2 + ab^2) / 2),
+// the roughness the path tracer's energy compensation reads too. Ambient: the isotropic split-sum at the rms alpha
+// along the sample viewer's bent reflection vector (anisotropicReflection), an approximation of the lobe's shape.
 #ifndef IDK_MATERIAL_LAYERS_GLSL
 #define IDK_MATERIAL_LAYERS_GLSL
 #include "pbr.glsl"
 #include "pt_energy.h"
 #include "pt_sheen.h"
+#include "pt_anisotropy.h"
 
 struct SurfaceLayers {
     uint flags;  // kMaterialSpecular | kMaterialClearcoat | kMaterialSheen
@@ -23,14 +30,77 @@ struct SurfaceLayers {
     float clearcoatRoughness;
     vec3 sheenColor;
     float sheenRoughness;
+    // KHR_materials_anisotropy, KHR_materials_iridescence, KHR_materials_dispersion (branch matB)
+    float anisotropyStrength;  // 0: isotropic
+    vec3 anisotropyDirection;  // world, unit; 0: unknown (the isotropic lobe at the rms alpha)
 };
 
-SurfaceLayers noLayers() { return SurfaceLayers(0u, 1.0, vec3(1.0), 0.0, 0.0, vec3(0.0), 0.0); }
+SurfaceLayers noLayers() { return SurfaceLayers(0u, 1.0, vec3(1.0), 0.0, 0.0, vec3(0.0), 0.0, 0.0, vec3(0.0)); }
 
 SurfaceLayers materialLayers(GpuMaterial m) {
-    return SurfaceLayers(m.flags & kMaterialLayers, clamp(m.specular, 0.0, 1.0), max(m.specularColor, vec3(0.0)),
-                         clamp(m.clearcoat, 0.0, 1.0), clamp(m.clearcoatRoughness, 0.0, 1.0),
-                         clamp(m.sheenColor, vec3(0.0), vec3(1.0)), clamp(m.sheenRoughness, 0.0, 1.0));
+    return SurfaceLayers(m.flags & (kMaterialLayers | kMaterialAnisotropy), clamp(m.specular, 0.0, 1.0),
+                         max(m.specularColor, vec3(0.0)), clamp(m.clearcoat, 0.0, 1.0),
+                         clamp(m.clearcoatRoughness, 0.0, 1.0), clamp(m.sheenColor, vec3(0.0), vec3(1.0)),
+                         clamp(m.sheenRoughness, 0.0, 1.0),
+                         (m.flags & kMaterialAnisotropy) != 0u ? clamp(m.anisotropyStrength, 0.0, 1.0) : 0.0,
+                         vec3(0.0));
+}
+
+// The anisotropy direction from a tangent frame (t, b: glTF's tangent and bitangent), turned by anisotropyRotation.
+SurfaceLayers withAnisotropyFrame(SurfaceLayers s, GpuMaterial m, vec3 t, vec3 b) {
+    if (s.anisotropyStrength > 0.0) {
+        vec3 d = t * cos(m.anisotropyRotation) + b * sin(m.anisotropyRotation);
+        s.anisotropyDirection = dot(d, d) > 1e-12 ? normalize(d) : vec3(0.0);
+    }
+    return s;
+}
+
+// alpha_t = mix(alpha, 1, strength^2) and alpha_b = alpha of KHR_materials_anisotropy.
+vec2 anisotropicAlphas(SurfaceLayers s, float alpha) {
+    return vec2(mix(alpha, 1.0, s.anisotropyStrength * s.anisotropyStrength), alpha);
+}
+
+// The perceptual roughness of the rms alpha (isotropic stand-in for ambient light, energy and unknown frames).
+float anisotropicRoughness(SurfaceLayers s, float perceptualRoughness) {
+    if (s.anisotropyStrength <= 0.0) return perceptualRoughness;
+    float alpha = perceptualRoughness * perceptualRoughness;
+    vec2 a = anisotropicAlphas(s, alpha);
+    return sqrt(sqrt(0.5 * (a.x * a.x + a.y * a.y)));
+}
+
+// The reflection vector for the ambient lookup: the Khronos sample viewer's bent normal, tilted from n toward the
+// plane across the anisotropy direction as strength grows and roughness falls.
+vec3 anisotropicReflection(SurfaceLayers s, vec3 n, vec3 v, float perceptualRoughness) {
+    if (s.anisotropyStrength <= 0.0 || dot(s.anisotropyDirection, s.anisotropyDirection) < 0.5) return reflect(-v, n);
+    vec3 t = normalize(s.anisotropyDirection - n * dot(s.anisotropyDirection, n));
+    vec3 b = cross(n, t);
+    vec3 bent = cross(cross(b, v), b);
+    if (dot(bent, bent) < 1e-12) return reflect(-v, n);
+    float a = 1.0 - s.anisotropyStrength * (1.0 - perceptualRoughness);
+    a *= a;
+    a *= a;
+    bent = normalize(mix(normalize(bent), n, a));
+    return reflect(-v, bent);
+}
+
+// D * V of the base layer's GGX: anisotropic in the frame of the anisotropy direction, else isotropic (at the rms
+// alpha when the material is anisotropic but no direction is known).
+float baseDistributionVisibility(SurfaceLayers s, float alpha, vec3 n, vec3 v, vec3 l, vec3 h, float NdotL,
+                                 float NdotV, float NdotH) {
+    if (s.anisotropyStrength <= 0.0)
+        return distributionGgx(NdotH, alpha) * visibilitySmithGgxCorrelated(NdotL, NdotV, alpha);
+    vec2 a = anisotropicAlphas(s, alpha);
+    vec3 d = s.anisotropyDirection - n * dot(s.anisotropyDirection, n);
+    if (dot(d, d) < 1e-8) {
+        float rms = sqrt(0.5 * (a.x * a.x + a.y * a.y));
+        return distributionGgx(NdotH, rms) * visibilitySmithGgxCorrelated(NdotL, NdotV, rms);
+    }
+    vec3 t = normalize(d);
+    vec3 b = cross(n, t);
+    vec3 hl = vec3(dot(h, t), dot(h, b), NdotH);
+    vec3 vl = vec3(dot(v, t), dot(v, b), NdotV);
+    vec3 ll = vec3(dot(l, t), dot(l, b), NdotL);
+    return ptGgxAnisoD(hl, a.x, a.y) * ptGgxAnisoG2(vl, ll, a.x, a.y) / (4.0 * NdotL * NdotV);
 }
 
 vec3 layeredF0(SurfaceLayers s, vec3 baseColor, float metallic) {
@@ -56,7 +126,7 @@ vec3 layeredBrdfCosine(SurfaceLayers s, vec3 baseColor, float metallic, float pe
     vec3 fDielectric = f0d + (vec3(s.specular) - f0d) * m5;
     vec3 F = mix(fDielectric, baseColor + (1.0 - baseColor) * m5, metallic);
     vec3 diffuse = (1.0 - maxOf(fDielectric)) * baseColor * (1.0 - metallic) / kPi;
-    vec3 result = diffuse + F * distributionGgx(NdotH, alpha) * visibilitySmithGgxCorrelated(NdotL, NdotV, alpha);
+    vec3 result = diffuse + F * baseDistributionVisibility(s, alpha, n, v, l, h, NdotL, NdotV, NdotH);
     if ((s.flags & kMaterialSheen) != 0u) {
         float sheenAlpha = ptSheenAlpha(s.sheenRoughness);
         result *= max(1.0 - maxOf(s.sheenColor) * ptAlbedoSheen(NdotV, s.sheenRoughness), 0.0);

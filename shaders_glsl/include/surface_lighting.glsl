@@ -61,8 +61,12 @@ vec3 shadeSurface(GpuFrame f, uint64_t pointShadows, vec3 position, vec3 n, vec3
 
     float cr = clamp(layers.clearcoatRoughness, kMinRoughness, 1.0);
     vec3 r = reflect(-v, n);
-    vec3 ambient = ambientReflected(layers, n, v, baseColor, metallic, roughness, shIrradiance(f, n),
-                                    environmentRadiance(f, r, environmentLod(f, clamp(roughness, kMinRoughness, 1.0))),
+    // KHR_materials_anisotropy: the isotropic split-sum at the rms roughness along the bent reflection.
+    float ambientRoughness = anisotropicRoughness(layers, roughness);
+    vec3 rBase = anisotropicReflection(layers, n, v, clamp(roughness, kMinRoughness, 1.0));
+    vec3 ambient = ambientReflected(layers, n, v, baseColor, metallic, ambientRoughness, shIrradiance(f, n),
+                                    environmentRadiance(f, rBase,
+                                                        environmentLod(f, clamp(ambientRoughness, kMinRoughness, 1.0))),
                                     environmentRadiance(f, r, environmentLod(f, cr)));
     return radiance + ambient * occlusion;
 }

@@ -17,9 +17,13 @@ vec3 vxgiAmbientDelta(GpuFrame f, uint diffuseImage, uint specularImage, ivec2 p
     vec3 tracedSpecular = imageLoad(gImagesRgba16f[specularImage], pixel).rgb;
     vec3 r = reflect(-v, n);
     float cr = clamp(layers.clearcoatRoughness, kMinRoughness, 1.0);
-    vec3 environmentSpecular = environmentRadiance(f, r, environmentLod(f, clamp(roughness, kMinRoughness, 1.0)));
+    // KHR_materials_anisotropy: the lookup shadeSurface subtracts (rms roughness, bent reflection) cancels exactly.
+    float ambientRoughness = anisotropicRoughness(layers, roughness);
+    vec3 rBase = anisotropicReflection(layers, n, v, clamp(roughness, kMinRoughness, 1.0));
+    vec3 environmentSpecular =
+        environmentRadiance(f, rBase, environmentLod(f, clamp(ambientRoughness, kMinRoughness, 1.0)));
     vec3 environmentCoat = environmentRadiance(f, r, environmentLod(f, cr));
-    return ambientReflected(layers, n, v, baseColor, metallic, roughness, traced.rgb - shIrradiance(f, n),
+    return ambientReflected(layers, n, v, baseColor, metallic, ambientRoughness, traced.rgb - shIrradiance(f, n),
                             tracedSpecular - environmentSpecular, tracedSpecular - environmentCoat) *
            occlusion;
 }

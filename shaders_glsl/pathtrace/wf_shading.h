@@ -105,6 +105,11 @@ PtSurface wfEvaluateMaterial(GpuPtSceneDesc sc, WfHitPoint hit, vec3 wo, out boo
     }
     if (dot(n, hit.geometricNormal) < 0.0) n = -n;
     s.shadingNormal = n;
+    // KHR_materials_anisotropy (pathtrace::evaluateMaterial's twin; the texture is not read yet).
+    s.anisotropyStrength = clamp(pm.anisotropyStrength, 0.0, 1.0);
+    s.anisotropyDirection = s.anisotropyStrength > 0.0
+                                ? ptAnisotropyDirection(hit.tangent, hit.normal, pm.anisotropyRotation, vec2(1.0, 0.5))
+                                : vec3(0.0);
     unlit = (m.flags & kMaterialUnlit) != 0u;
     if (unlit) {
         s.emission = base.rgb;
@@ -114,6 +119,7 @@ PtSurface wfEvaluateMaterial(GpuPtSceneDesc sc, WfHitPoint hit, vec3 wo, out boo
         s.ior = 1.0;
         s.clearcoat = 0.0;
         s.sheenColor = vec3(0.0);
+        s.anisotropyStrength = 0.0;
     }
     return s;
 }

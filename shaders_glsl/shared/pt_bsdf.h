@@ -9,6 +9,8 @@
 //   multiscatter GGX energy compensation (pt_energy.h), sampled by its own tabulated density
 //   sheen        KHR_materials_sheen (pt_sheen.h), cosine-sampled
 //   clearcoat    KHR_materials_clearcoat, GGX visible normals of the coat roughness
+// KHR_materials_anisotropy makes the specular and transmission lobes' GGX anisotropic (the ptBase* hooks of
+// pt_bsdf_frame.h, pt_anisotropy.h).
 // The base lobes carry the layer weight of clearcoat and sheen. GGX alpha below kPtDeltaAlpha makes the specular
 // and transmission lobes (and the clearcoat) delta: ptEvalBsdf leaves them out and ptSampleBsdf flags them.
 #ifndef IDK_PT_BSDF_H
@@ -30,9 +32,9 @@ IDK_INLINE vec3 ptEvalLocal(PtBsdfFrame f, vec3 wi, float wiSide, IDK_OUT(float)
         vec3 base = f.baseColor * ((1.0f - f.metallic) * (1.0f - f.transmission) * pass * kPtInvPi * wi.z);
         pdf += f.pDiff * wi.z * kPtInvPi;
         if (!f.delta) {
-            float d = ptGgxD(h.z, f.alpha);
-            base += ptSpecularFresnel(f, cosOH) * (d * ptGgxG2(wo.z, wi.z, f.alpha) / (4.0f * wo.z));
-            pdf += f.pSpec * ptGgxG1(wo.z, f.alpha) * d / (4.0f * wo.z);
+            float d = ptBaseD(f, h);
+            base += ptSpecularFresnel(f, cosOH) * (d * ptBaseG2(f, wo, wi) / (4.0f * wo.z));
+            pdf += f.pSpec * ptBaseG1(f, wo) * d / (4.0f * wo.z);
             base += f.msColor * ((1.0f - ptAlbedoMetal(wi.z, f.roughness)) * wi.z);
             if (f.pMs > 0.0f) pdf += f.pMs * ptMsPdf(wi.z, f.roughness);
         }
@@ -55,19 +57,19 @@ IDK_INLINE vec3 ptEvalLocal(PtBsdfFrame f, vec3 wi, float wiSide, IDK_OUT(float)
             float cosIH = dot(wi, h);
             if (cosOH > 0.0f && cosIH < 0.0f) {
                 float denom = cosOH + f.eta * cosIH;
-                float d = ptGgxD(h.z, f.alpha);
+                float d = ptBaseD(f, h);
                 float pass = ptDielectricPass(f, cosOH);
-                float g2 = ptGgxG2(wo.z, -wi.z, f.alpha);
+                float g2 = ptBaseG2(f, wo, wi);
                 value += tint * (pass * d * g2 * (-cosIH) * cosOH / (wo.z * denom * denom));
-                pdf += f.pTrans * ptGgxVndfPdf(wo, h, f.alpha) * f.eta * f.eta * (-cosIH) / (denom * denom);
+                pdf += f.pTrans * ptBaseVndfPdf(f, wo, h) * f.eta * f.eta * (-cosIH) / (denom * denom);
             }
         } else {
             vec3 wr = vec3(wi.x, wi.y, -wi.z);
             vec3 h = normalize(wo + wr);
-            float d = ptGgxD(h.z, f.alpha);
+            float d = ptBaseD(f, h);
             float pass = ptDielectricPass(f, max(dot(wo, h), 0.0f));
-            value += tint * (pass * d * ptGgxG2(wo.z, wr.z, f.alpha) / (4.0f * wo.z));
-            pdf += f.pTrans * ptGgxG1(wo.z, f.alpha) * d / (4.0f * wo.z);
+            value += tint * (pass * d * ptBaseG2(f, wo, wr) / (4.0f * wo.z));
+            pdf += f.pTrans * ptBaseG1(f, wo) * d / (4.0f * wo.z);
         }
     }
     if (!ptFinite3(value) || !ptFinite(pdf)) {
@@ -137,7 +139,7 @@ IDK_INLINE uint ptSampleBsdf(PtSurface s, vec3 wo, vec3 u, IDK_OUT(vec3) wi, IDK
             deltaPdf = f.pSpec;
             deltaWeight = ptSpecularFresnel(f, o.z) * (f.layer / f.pSpec);
         } else {
-            vec3 h = ptSampleGgxVndf(o, f.alpha, u.y, u.z);
+            vec3 h = ptBaseSampleVndf(f, o, u.y, u.z);
             l = h * (2.0f * dot(o, h)) - o;
         }
     } else if (u.x < c3) {
@@ -148,7 +150,7 @@ IDK_INLINE uint ptSampleBsdf(PtSurface s, vec3 wo, vec3 u, IDK_OUT(vec3) wi, IDK
         l = ptSampleCosine(u.y, u.z);
     } else if (f.pTrans > 0.0f) {
         chosen = kPtLobeTransmission;
-        vec3 h = f.transDelta ? vec3(0.0f, 0.0f, 1.0f) : ptSampleGgxVndf(o, f.alpha, u.y, u.z);
+        vec3 h = f.transDelta ? vec3(0.0f, 0.0f, 1.0f) : ptBaseSampleVndf(f, o, u.y, u.z);
         float cosOH = dot(o, h);
         float pass = ptDielectricPass(f, cosOH);
         if (f.thick) {

@@ -11,11 +11,18 @@
 //              Fresnel curve of the IOR remapped to [0, 1] (w = (F_exact - f0) / (1 - f0)), so without the
 //              extension F is the exact dielectric Fresnel; beneath it Lambert diffuse / transmission weighted
 //              1 - specular * max(F). Multiple scattering: pt_energy.h.
+//              KHR_materials_anisotropy: the GGX of the reflection and transmission lobes becomes anisotropic
+//              (pt_anisotropy.h) in a frame whose tangent is the anisotropy direction; the energy compensation
+//              reads the isotropic tables at the root-mean-square alpha sqrt((alpha_t^2 + alpha_b^2) / 2), the
+//              mean over azimuths of the alpha Smith's Lambda sees (an approximation: the tables hold no
+//              anisotropy; tests/unit/pathtrace/anisotropy_test.cpp measures the white furnace). Clearcoat and
+//              sheen stay isotropic.
 #ifndef IDK_PT_BSDF_FRAME_H
 #define IDK_PT_BSDF_FRAME_H
 #include "pt_microfacet.h"
 #include "pt_energy.h"
 #include "pt_sheen.h"
+#include "pt_anisotropy.h"
 
 IDK_GPU_BEGIN
 
@@ -55,6 +62,10 @@ struct PtBsdfFrame {
     float pMs;
     float pSheen;
     float pCoat;
+    // KHR_materials_anisotropy, KHR_materials_iridescence, KHR_materials_dispersion (branch matB)
+    bool aniso;         // the GGX lobes are anisotropic: alphaT along t, alphaB along b (alpha is unused then)
+    float alphaT;
+    float alphaB;
 };
 
 IDK_INLINE float ptCoatFresnel(float c) { return ptFresnelSchlick(vec3(0.04f), c).x; }
@@ -74,6 +85,56 @@ IDK_INLINE float ptDielectricPass(PtBsdfFrame f, float c) {
 // The reflection lobe's Fresnel (energy compensation of refraction included), before the layer weight.
 IDK_INLINE vec3 ptSpecularFresnel(PtBsdfFrame f, float c) {
     return mix(ptDielectricFresnel(f, c) * f.dielScale, ptFresnelSchlick(f.baseColor, c), f.metallic);
+}
+
+// ---------------------------------------------------------------------------------------------------- GGX hooks
+// The base layer's GGX (reflection and transmission), isotropic or anisotropic; local directions. The isotropic
+// branch calls pt_microfacet.h exactly as before the extension existed.
+IDK_INLINE float ptBaseD(PtBsdfFrame f, vec3 h) {
+    return f.aniso ? ptGgxAnisoD(h, f.alphaT, f.alphaB) : ptGgxD(h.z, f.alpha);
+}
+IDK_INLINE float ptBaseG1(PtBsdfFrame f, vec3 w) {
+    return f.aniso ? ptGgxAnisoG1(w, f.alphaT, f.alphaB) : ptGgxG1(w.z, f.alpha);
+}
+// wi may lie below the surface (refraction): Lambda depends on its cosine squared only.
+IDK_INLINE float ptBaseG2(PtBsdfFrame f, vec3 wo, vec3 wi) {
+    return f.aniso ? ptGgxAnisoG2(wo, wi, f.alphaT, f.alphaB) : ptGgxG2(wo.z, abs(wi.z), f.alpha);
+}
+IDK_INLINE vec3 ptBaseSampleVndf(PtBsdfFrame f, vec3 wo, float u1, float u2) {
+    return f.aniso ? ptSampleGgxAnisoVndf(wo, f.alphaT, f.alphaB, u1, u2) : ptSampleGgxVndf(wo, f.alpha, u1, u2);
+}
+IDK_INLINE float ptBaseVndfPdf(PtBsdfFrame f, vec3 wo, vec3 h) {
+    return f.aniso ? ptGgxAnisoVndfPdf(wo, h, f.alphaT, f.alphaB) : ptGgxVndfPdf(wo, h, f.alpha);
+}
+
+// KHR_materials_anisotropy: alpha_t = mix(alpha, 1, strength^2), alpha_b = alpha, the frame's tangent turned to
+// the anisotropy direction (projected onto the shading normal's plane; the basis's own tangent when the surface
+// gives none), and the roughness the albedo tables read set to the root-mean-square alpha's (the mean over
+// azimuths of the projected alpha^2 that Lambda sees; closer in the white furnace than the geometric mean).
+IDK_INLINE void ptAnisotropySetup(PtSurface s, vec3 wo, IDK_INOUT(PtBsdfFrame) f) {
+    f.aniso = false;
+    f.alphaT = f.alpha;
+    f.alphaB = f.alpha;
+    float strength = ptSaturate(s.anisotropyStrength);
+    if (!(strength > 0.0f)) return;
+    float alpha = f.roughness * f.roughness;
+    float alphaT = mix(alpha, 1.0f, strength * strength);
+    if (alphaT < kPtDeltaAlpha) return;  // still a mirror: the delta lobes
+    f.aniso = true;
+    f.delta = false;
+    f.transDelta = false;
+    f.alphaT = alphaT;
+    f.alphaB = max(alpha, kPtDeltaAlpha);
+    f.alpha = sqrt(0.5f * (f.alphaT * f.alphaT + f.alphaB * f.alphaB));
+    f.roughness = sqrt(f.alpha);
+    vec3 d = ptFinite3(s.anisotropyDirection) ? s.anisotropyDirection : vec3(0.0f);
+    vec3 t = d - f.n * dot(d, f.n);
+    if (dot(t, t) > 1.0e-12f) {
+        f.t = normalize(t);
+        f.b = cross(f.n, f.t);
+        f.wo = ptToLocal(wo, f.t, f.b, f.n);
+        f.wo.z = max(f.wo.z, kPtMinCos);
+    }
 }
 
 // Turns the shading frame to wo's side; false when wo or the normals are unusable.
@@ -122,6 +183,9 @@ IDK_INLINE bool ptBsdfSetup(PtSurface s, vec3 wo, IDK_OUT(PtBsdfFrame) f) {
     f.delta = f.alpha < kPtDeltaAlpha;
     f.transDelta = f.delta;
     f.alpha = max(f.alpha, kPtDeltaAlpha);
+    f.aniso = false;
+    f.alphaT = f.alpha;
+    f.alphaB = f.alpha;
     f.specular = ptSaturate(s.specular);
     f.clearcoat = ptSaturate(s.clearcoat);
     float coatRoughness = ptSaturate(s.clearcoatRoughness);
@@ -148,6 +212,7 @@ IDK_INLINE bool ptBsdfSetup(PtSurface s, vec3 wo, IDK_OUT(PtBsdfFrame) f) {
     f.etaFresnel = ior;
     bool outside;
     if (!ptBsdfOrient(s, wo, f, outside)) return false;
+    ptAnisotropySetup(s, wo, f);
     if (f.thick) {
         f.eta = outside ? ior : 1.0f / ior;
         f.etaFresnel = f.eta;

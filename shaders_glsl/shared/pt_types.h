@@ -96,8 +96,11 @@ struct GpuPtMaterial {
     float clearcoatRoughness;
     vec3 sheenColor;
     float sheenRoughness;
+    // KHR_materials_anisotropy, KHR_materials_iridescence, KHR_materials_dispersion (branch matB)
+    float anisotropyStrength;   // anisotropyStrength, [0, 1]
+    float anisotropyRotation;   // anisotropyRotation, radians counter-clockwise from the tangent
 };
-IDK_GPU_SIZE(GpuPtMaterial, 100);
+IDK_GPU_SIZE(GpuPtMaterial, 108);
 
 // A surface at a hit, material already evaluated from its textures (both tracers fill it the same way).
 struct PtSurface {
@@ -120,8 +123,11 @@ struct PtSurface {
     float clearcoatRoughness;  // perceptual
     vec3 sheenColor;           // KHR_materials_sheen sheenColorFactor (linear; 0: no sheen)
     float sheenRoughness;      // perceptual
+    // KHR_materials_anisotropy, KHR_materials_iridescence, KHR_materials_dispersion (branch matB)
+    vec3 anisotropyDirection;  // world, unit tangent-plane direction of alpha_t (pt_anisotropy.h); 0: the BSDF's basis
+    float anisotropyStrength;  // [0, 1], texture applied; 0: isotropic GGX
 };
-IDK_GPU_SIZE(PtSurface, 128);  // also a buffer element (conformance probe)
+IDK_GPU_SIZE(PtSurface, 144);  // also a buffer element (conformance probe)
 
 // Outcome of sampling the BSDF.
 IDK_CONST(uint, kPtLobeNone, 0);          // no valid direction (absorbed)

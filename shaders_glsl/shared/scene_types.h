@@ -67,6 +67,8 @@ IDK_CONST(uint, kMaterialSpecular, 4u);     // KHR_materials_specular (factor or
 IDK_CONST(uint, kMaterialClearcoat, 8u);    // KHR_materials_clearcoat with clearcoatFactor > 0
 IDK_CONST(uint, kMaterialSheen, 16u);       // KHR_materials_sheen with a sheen colour above 0
 IDK_CONST(uint, kMaterialLayers, 28u);      // any of the three
+// KHR_materials_anisotropy, KHR_materials_iridescence, KHR_materials_dispersion (branch matB)
+IDK_CONST(uint, kMaterialAnisotropy, 128u);  // KHR_materials_anisotropy with anisotropyStrength > 0
 
 // glTF metallic-roughness material (core + KHR_materials_emissive_strength, KHR_texture_transform, and the
 // factors of KHR_materials_specular, _clearcoat, _sheen).
@@ -88,8 +90,11 @@ struct GpuMaterial {
     float clearcoatRoughness;
     vec3 sheenColor;           // KHR_materials_sheen sheenColorFactor
     float sheenRoughness;
+    // KHR_materials_anisotropy, KHR_materials_iridescence, KHR_materials_dispersion (branch matB)
+    float anisotropyStrength;  // KHR_materials_anisotropy anisotropyStrength (read when kMaterialAnisotropy)
+    float anisotropyRotation;  // radians, counter-clockwise from the tangent
 };
-IDK_GPU_SIZE(GpuMaterial, 276);
+IDK_GPU_SIZE(GpuMaterial, 284);
 
 IDK_CONST(uint, kLightDirectional, 0);
 IDK_CONST(uint, kLightPoint, 1);

@@ -91,6 +91,7 @@ void main() {
     float roughness = clamp(m.roughnessFactor * mr.g, 0.0, 1.0);
     float occlusion = 1.0 + m.occlusionStrength * (ao - 1.0);
     vec3 radiance = emissive + shadeSurface(f, p.pointShadows, inWorldPosition, n, v, baseColor.rgb, metallic,
-                                            roughness, occlusion, materialLayers(m));
+                                            roughness, occlusion,
+                                            haveFrame ? withAnisotropyFrame(materialLayers(m), m, t, b) : materialLayers(m));
     writeTransparent(vec4(radiance, baseColor.a));
 }

@@ -1,5 +1,5 @@
 // gltf_material_ext_test.cpp: the loader's BSDF material extensions (scene/gltf_material_ext.cpp): the factors of
-// KHR_materials_specular, _clearcoat, _sheen land in scene::Material; hostile values (out of range, non-finite,
+// KHR_materials_specular, _clearcoat, _sheen, _anisotropy land in scene::Material; hostile values (out of range, non-finite,
 // wrong types) are clamped or replaced with a warning naming the material; extension textures are reported (not
 // read yet), out-of-range texture indices too; materials without the extensions keep the neutral defaults; the
 // authored scenes/material_spheres.gltf loads with its four extension materials and no warnings;
@@ -77,6 +77,27 @@ TEST(GltfMaterialExt, HostileValuesAreClampedWithWarnings) {
     EXPECT_TRUE(anyWarningHas(s, "'hostile'", "sheenColorFactor"));
     EXPECT_TRUE(anyWarningHas(s, "clearcoatTexture", "not supported"));
     EXPECT_TRUE(anyWarningHas(s, "clearcoatNormalTexture", "texture 9"));
+}
+
+TEST(GltfMaterialExt, AnisotropyIsLoadedAndChecked) {
+    TempDir dir;
+    auto f = triangle();
+    f.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    f.doc["textures"] = json::parse(R"([{}])");
+    f.doc["materials"] = json::parse(R"([{"name": "brushed", "extensions": {
+        "KHR_materials_anisotropy": {"anisotropyStrength": 0.6, "anisotropyRotation": 1.25}}},
+        {"name": "hostile", "extensions": {"KHR_materials_anisotropy": {"anisotropyStrength": 7,
+            "anisotropyRotation": "north", "anisotropyTexture": {"index": 0}}}}, {"name": "plain"}])");
+    const Scene s = loadGltf(f.write(dir));
+    EXPECT_EQ(s.materials[0].anisotropyStrength, 0.6f);
+    EXPECT_EQ(s.materials[0].anisotropyRotation, 1.25f);
+    EXPECT_EQ(s.materials[1].anisotropyStrength, 1.0f);  // clamped
+    EXPECT_EQ(s.materials[1].anisotropyRotation, 0.0f);  // not a number: the default
+    EXPECT_EQ(s.materials[2].anisotropyStrength, 0.0f);
+    EXPECT_TRUE(anyWarningHas(s, "'hostile'", "anisotropyStrength"));
+    EXPECT_TRUE(anyWarningHas(s, "'hostile'", "anisotropyRotation"));
+    EXPECT_TRUE(anyWarningHas(s, "anisotropyTexture", "not supported"));
+    EXPECT_FALSE(anyWarningHas(s, "'brushed'", "anisotropy"));
 }
 
 TEST(GltfMaterialExt, AuthoredSceneLoadsWithoutWarnings) {

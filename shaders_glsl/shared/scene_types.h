@@ -54,7 +54,14 @@ IDK_CONST(uint, kSlotMetallicRoughness, 1);  // linear: G = roughness, B = metal
 IDK_CONST(uint, kSlotNormal, 2);             // linear: tangent-space normal, xy remapped to [-1, 1]
 IDK_CONST(uint, kSlotOcclusion, 3);          // linear: R
 IDK_CONST(uint, kSlotEmissive, 4);           // sRGB
-IDK_CONST(uint, kSlotCount, 5);
+// KHR_materials_specular / _clearcoat / _sheen textures (matA); white placeholders leave the factors unchanged.
+IDK_CONST(uint, kSlotSpecular, 5);            // linear: A scales specular
+IDK_CONST(uint, kSlotSpecularColor, 6);       // sRGB: RGB scales specularColor
+IDK_CONST(uint, kSlotClearcoat, 7);           // linear: R scales clearcoat
+IDK_CONST(uint, kSlotClearcoatRoughness, 8);  // linear: G scales clearcoatRoughness
+IDK_CONST(uint, kSlotSheenColor, 9);          // sRGB: RGB scales sheenColor
+IDK_CONST(uint, kSlotSheenRoughness, 10);     // linear: A scales sheenRoughness
+IDK_CONST(uint, kSlotCount, 11);
 
 IDK_CONST(uint, kAlphaOpaque, 0);
 IDK_CONST(uint, kAlphaMask, 1);
@@ -89,7 +96,7 @@ struct GpuMaterial {
     vec3 sheenColor;           // KHR_materials_sheen sheenColorFactor
     float sheenRoughness;
 };
-IDK_GPU_SIZE(GpuMaterial, 276);
+IDK_GPU_SIZE(GpuMaterial, 492);
 
 IDK_CONST(uint, kLightDirectional, 0);
 IDK_CONST(uint, kLightPoint, 1);

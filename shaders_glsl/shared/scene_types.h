@@ -76,7 +76,7 @@ IDK_CONST(uint, kMaterialSheen, 16u);       // KHR_materials_sheen with a sheen 
 IDK_CONST(uint, kMaterialLayers, 28u);      // any of the three
 
 // glTF metallic-roughness material (core + KHR_materials_emissive_strength, KHR_texture_transform, and the
-// factors of KHR_materials_specular, _clearcoat, _sheen).
+// factors and textures of KHR_materials_specular, _clearcoat, _sheen).
 struct GpuMaterial {
     vec4 baseColorFactor;  // linear RGBA
     vec3 emissiveFactor;   // linear, emissive strength applied

@@ -123,6 +123,7 @@ void FrameInputs::addPasses(FrameContext& f, render::GpuScene& s, const render::
     sb.colors = importBuffer(f.graph, "scene vertex colors", s.colors());
     sb.uv1 = importBuffer(f.graph, "scene uv1", s.uv1());
     sb.drawCount = s.drawCount();
+    sb.layerTexels = s.features().hasLayerTextures;
     if (s.materialsDirty() && sb.materials.valid()) {
         sb.materials = passes::addSceneUpdatePass(f.graph, sb.materials, s.materials());
         s.clearMaterialsDirty();

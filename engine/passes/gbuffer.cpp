@@ -1,5 +1,6 @@
 // gbuffer.cpp: rasterizes every (instance, primitive) of the GPU scene with ONE vkCmdDrawIndexedIndirect
-// (gl_DrawID selects instance and material) into albedo, normal, material and emissive targets plus depth.
+// (gl_DrawID selects instance and material) into albedo, normal, material and emissive targets plus depth, and
+// for scenes with KHR_materials_specular/_clearcoat/_sheen textures a layers target with their texels.
 // Ports IDKEngine's RasterPipeline G-buffer step (GBuffer/VertexPath/vertex.glsl + GBuffer/fragment.glsl).
 // Deviation: IDKEngine draws twice (single-sided with culling, then double-sided); here one draw with culling
 // off and back faces of single-sided materials rejected in the fragment shader. With GPU culling (passes/cull.cpp)
@@ -37,6 +38,8 @@ constexpr VkFormat kEmissiveFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kDepthCopyFormat = VK_FORMAT_R32_SFLOAT;  // gl_FragCoord.z of the kept fragment
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;      // attachment only, not stored
 constexpr VkFormat kIdFormat = VK_FORMAT_R32G32_UINT;        // surface IDs (optional): draw, triangle
+// Extension texels (optional, matA): packUnorm4x8 words of include/gbuffer_fragment.glsl.
+constexpr VkFormat kLayersFormat = VK_FORMAT_R32G32B32A32_UINT;
 
 VkRenderingAttachmentInfo colorAttachment(VkImageView view) {
     VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -80,6 +83,7 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
                 out->emissive = b.write(over.emissive, graph::Access::ColorReadWrite);
                 out->depth = b.write(over.depth, graph::Access::ColorReadWrite);
                 out->depthAttachment = b.write(over.depthAttachment, graph::Access::DepthWrite);
+                if (over.layers.valid()) out->layers = b.write(over.layers, graph::Access::ColorReadWrite);
             } else {
                 out->albedo = target(b, "gbuffer albedo", kAlbedoFormat, graph::Access::ColorWrite);
                 out->normal = target(b, "gbuffer normal", kNormalFormat, graph::Access::ColorWrite);
@@ -88,6 +92,7 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
                 out->depth = target(b, "gbuffer depth", kDepthCopyFormat, graph::Access::ColorWrite);
                 out->depthAttachment = target(b, "gbuffer depth attachment", kDepthFormat, graph::Access::DepthWrite);
                 if (ids.valid()) out->ids = b.write(ids, graph::Access::ColorWrite);
+                if (s.layerTexels) out->layers = target(b, "gbuffer layers", kLayersFormat, graph::Access::ColorWrite);
             }
             b.read(frame, graph::Access::StorageRead, kVs);
             if (s.drawCount == 0) return;
@@ -110,15 +115,20 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
             VkCommandBuffer cmd = pc.commandBuffer();
             VkExtent2D extent = pc.outputExtent();
             const bool writeIds = out->ids.valid();
+            const bool writeLayers = out->layers.valid();
 
             std::vector<VkRenderingAttachmentInfo> colors = {
                 colorAttachment(pc.view(out->albedo)), colorAttachment(pc.view(out->normal)),
                 colorAttachment(pc.view(out->material)), colorAttachment(pc.view(out->emissive)),
                 colorAttachment(pc.view(out->depth))};
             colors[4].clearValue.color = {{1.0f, 0.0f, 0.0f, 0.0f}};  // background depth
+            // Location 5: the layer texels; location 6: the surface IDs. Without the texels but with IDs, slot 5 is
+            // an attachment without a view (its writes are discarded, as Vulkan defines for VK_NULL_HANDLE).
+            if (writeLayers || writeIds)
+                colors.push_back(writeLayers ? colorAttachment(pc.view(out->layers)) : colorAttachment(VK_NULL_HANDLE));
             if (writeIds) {
                 colors.push_back(colorAttachment(pc.view(out->ids)));
-                colors[5].clearValue.color.uint32[0] = colors[5].clearValue.color.uint32[1] = UINT32_MAX;
+                colors[6].clearValue.color.uint32[0] = colors[6].clearValue.color.uint32[1] = UINT32_MAX;
             }
             if (load)
                 for (VkRenderingAttachmentInfo& a : colors) a.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
@@ -136,6 +146,7 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
                                                  : vk::ShaderId::gbuffer_gbuffer_vert;
                 desc.fragment = writeIds ? vk::ShaderId::gbuffer_gbuffer_ids_frag : vk::ShaderId::gbuffer_gbuffer_frag;
                 desc.colorFormats = {kAlbedoFormat, kNormalFormat, kMaterialFormat, kEmissiveFormat, kDepthCopyFormat};
+                if (writeLayers || writeIds) desc.colorFormats.push_back(writeLayers ? kLayersFormat : VK_FORMAT_UNDEFINED);
                 if (writeIds) desc.colorFormats.push_back(kIdFormat);
                 desc.depthFormat = kDepthFormat;
                 desc.depthCompare = VK_COMPARE_OP_LESS;  // scene::camera convention: depth 0 near, 1 far

@@ -84,12 +84,13 @@ PtMaterialHit evaluateMaterial(const PathTraceScene& pts, const PtHitPoint& hit,
     s.attenuationDistance = pm.attenuationDistance;
     s.emission = emissionAt(pts, hit, wo);
     s.geometricNormal = hit.geometricNormal;
-    s.specular = pm.specular;
-    s.specularColor = pm.specularColor;
-    s.clearcoat = pm.clearcoat;
-    s.clearcoatRoughness = pm.clearcoatRoughness;
-    s.sheenColor = pm.sheenColor;
-    s.sheenRoughness = pm.sheenRoughness;
+    // KHR_materials_specular / _clearcoat / _sheen: factor x texture channel (matA; wfEvaluateMaterial's twin).
+    s.specular = pm.specular * sampleRef(pts, m.specularTexture, hit, false).a;
+    s.specularColor = pm.specularColor * glm::vec3(sampleRef(pts, m.specularColorTexture, hit, true));
+    s.clearcoat = pm.clearcoat * sampleRef(pts, m.clearcoatTexture, hit, false).r;
+    s.clearcoatRoughness = pm.clearcoatRoughness * sampleRef(pts, m.clearcoatRoughnessTexture, hit, false).g;
+    s.sheenColor = pm.sheenColor * glm::vec3(sampleRef(pts, m.sheenColorTexture, hit, true));
+    s.sheenRoughness = pm.sheenRoughness * sampleRef(pts, m.sheenRoughnessTexture, hit, false).a;
 
     // Normal mapping in the vertex tangent frame (B = cross(N, T) * w), z rebuilt from the remapped xy.
     glm::vec3 n = hit.normal;

@@ -70,6 +70,13 @@ gpu::GpuMaterial packMaterial(const scene::Material& m, const TextureBindings& b
     g.slots[gpu::kSlotNormal] = slotFor(m.normalTexture, b.flatNormal, b);
     g.slots[gpu::kSlotOcclusion] = slotFor(m.occlusionTexture, b.white, b);
     g.slots[gpu::kSlotEmissive] = slotFor(m.emissiveTexture, b.white, b);
+    // KHR_materials_specular / _clearcoat / _sheen textures (matA): white placeholders multiply by 1.
+    g.slots[gpu::kSlotSpecular] = slotFor(m.specularTexture, b.white, b);
+    g.slots[gpu::kSlotSpecularColor] = slotFor(m.specularColorTexture, b.white, b);
+    g.slots[gpu::kSlotClearcoat] = slotFor(m.clearcoatTexture, b.white, b);
+    g.slots[gpu::kSlotClearcoatRoughness] = slotFor(m.clearcoatRoughnessTexture, b.white, b);
+    g.slots[gpu::kSlotSheenColor] = slotFor(m.sheenColorTexture, b.white, b);
+    g.slots[gpu::kSlotSheenRoughness] = slotFor(m.sheenRoughnessTexture, b.white, b);
     g.specular = m.specular;
     g.specularColor = m.specularColor;
     g.clearcoat = m.clearcoat;
@@ -79,7 +86,8 @@ gpu::GpuMaterial packMaterial(const scene::Material& m, const TextureBindings& b
     g.anisotropyStrength = m.anisotropyStrength;
     g.anisotropyRotation = m.anisotropyRotation;
     if (!m.unlit) {
-        if (m.specular != 1.0f || m.specularColor != glm::vec3(1.0f)) g.flags |= gpu::kMaterialSpecular;
+        if (m.specular != 1.0f || m.specularColor != glm::vec3(1.0f) || m.specularTexture || m.specularColorTexture)
+            g.flags |= gpu::kMaterialSpecular;
         if (m.clearcoat > 0.0f) g.flags |= gpu::kMaterialClearcoat;
         if (glm::any(glm::greaterThan(m.sheenColor, glm::vec3(0.0f)))) g.flags |= gpu::kMaterialSheen;
         if (m.anisotropyStrength > 0.0f) g.flags |= gpu::kMaterialAnisotropy;
@@ -90,10 +98,18 @@ gpu::GpuMaterial packMaterial(const scene::Material& m, const TextureBindings& b
 // The scene texture each slot of a material samples (UINT32_MAX: none), indexed by gpu::kSlot*.
 std::array<uint32_t, gpu::kSlotCount> slotTextures(const scene::Material& m) {
     const std::optional<scene::TextureRef>* refs[gpu::kSlotCount] = {
-        &m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture, &m.occlusionTexture, &m.emissiveTexture};
+        &m.baseColorTexture,   &m.metallicRoughnessTexture,  &m.normalTexture,       &m.occlusionTexture,
+        &m.emissiveTexture,    &m.specularTexture,           &m.specularColorTexture, &m.clearcoatTexture,
+        &m.clearcoatRoughnessTexture, &m.sheenColorTexture, &m.sheenRoughnessTexture};
     std::array<uint32_t, gpu::kSlotCount> t;
     for (uint32_t s = 0; s < gpu::kSlotCount; ++s) t[s] = *refs[s] ? (*refs[s])->texture : UINT32_MAX;
     return t;
+}
+
+// Slots whose texture holds colour (sampled through an sRGB view); the rest hold data.
+bool isColorSlot(uint32_t slot) {
+    return slot == gpu::kSlotBaseColor || slot == gpu::kSlotEmissive || slot == gpu::kSlotSpecularColor ||
+           slot == gpu::kSlotSheenColor;
 }
 
 gpu::GpuLight packLight(const scene::Light& l) {
@@ -331,14 +347,14 @@ void GpuScene::setTexture(uint32_t sceneTextureIndex, vk::SampledIndex texture,
 bool GpuScene::textureIsColor(uint32_t t) const {
     if (t >= data_.textureUses.size()) return false;
     return std::any_of(data_.textureUses[t].begin(), data_.textureUses[t].end(), [](const TextureSlotRef& u) {
-        return u.slot == gpu::kSlotBaseColor || u.slot == gpu::kSlotEmissive;
+        return isColorSlot(u.slot);
     });
 }
 
 bool GpuScene::textureIsData(uint32_t t) const {
     if (t >= data_.textureUses.size()) return false;
     return std::any_of(data_.textureUses[t].begin(), data_.textureUses[t].end(), [](const TextureSlotRef& u) {
-        return u.slot != gpu::kSlotBaseColor && u.slot != gpu::kSlotEmissive;
+        return !isColorSlot(u.slot);
     });
 }
 

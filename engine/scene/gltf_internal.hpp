@@ -153,7 +153,12 @@ std::optional<DracoGeometry> decodeDraco(const Ctx& ctx, const tinygltf::Primiti
 
 void loadTextures(const Ctx& ctx);    // gltf_materials.cpp: images (recorded, not decoded) and samplers
 void loadMaterials(const Ctx& ctx);   // gltf_materials.cpp
-// KHR_materials_specular, _clearcoat, _sheen of one material (gltf_material_ext.cpp); where names the material.
+// The texture reference `key` of an extension object (texCoord, KHR_texture_transform), as the core textures:
+// fail()s on a malformed or out-of-range reference; empty when absent (gltf_materials.cpp).
+std::optional<TextureRef> extensionTextureRef(const Ctx& ctx, const tinygltf::Value& object, const char* key,
+                                              const std::string& where);
+// KHR_materials_specular, _clearcoat, _sheen of one material and their textures (gltf_material_ext.cpp); where
+// names the material.
 void loadMaterialExtensions(const Ctx& ctx, const tinygltf::Material& src, const std::string& where, Material& mat);
 void loadMeshes(const Ctx& ctx);      // gltf_meshes.cpp: attributes, morph targets, tangents
 // KHR_materials_variants (material_variants.cpp): the file's variant names (before loadMeshes), a primitive's

@@ -1,8 +1,11 @@
 // gltf_material_ext.cpp: the BSDF material extensions of the loader: KHR_materials_specular, _clearcoat, _sheen,
 // _anisotropy.
 // Untrusted input: every factor is checked for type and finiteness and clamped to the range the specification
-// gives (out-of-range values warn, naming the material); a texture the extension names is checked for range like
-// the core ones, then ignored with a warning (the factors alone are used: extension textures are not bound yet).
+// gives (out-of-range values warn, naming the material). Their textures (specularTexture A, specularColorTexture
+// sRGB RGB, clearcoatTexture R, clearcoatRoughnessTexture G, sheenColorTexture sRGB RGB, sheenRoughnessTexture A)
+// become TextureRefs with texCoord and KHR_texture_transform like the core ones; a reference without an index or
+// out of range warns and is dropped (the factor alone is used). clearcoatNormalTexture is validated and ignored
+// with a warning: the coat shares the base layer's shading normal in every renderer.
 #include <algorithm>
 #include <cmath>
 
@@ -56,24 +59,28 @@ glm::vec3 rangedColor(const Ctx& ctx, const tinygltf::Value& ext, const char* ke
     return out;
 }
 
-// Texture references are validated like the core ones (index in range, an object with an index), then reported.
-void ignoredTextures(const Ctx& ctx, const tinygltf::Value& ext, std::initializer_list<const char*> keys,
-                     const std::string& where) {
-    for (const char* key : keys) {
-        if (!ext.Has(key)) continue;
-        const tinygltf::Value& info = ext.Get(key);
-        const auto index = info.IsObject() ? indexOr(ctx, info, "index", where + " " + key) : std::nullopt;
-        if (!index) {
-            ctx.warn(where + ": " + key + " has no texture index; ignored");
-            continue;
-        }
-        if (*index >= ctx.model.textures.size()) {
-            ctx.warn(where + ": " + key + " names texture " + std::to_string(*index) + " but the file has " +
-                     str(ctx.model.textures.size()) + "; ignored");
-            continue;
-        }
-        ctx.warn(where + ": " + key + " is not supported yet (the factor alone is used)");
+// A texture reference is checked (an object with an index inside the file's textures); bad ones warn and are
+// dropped, so that a broken extension texture never rejects a file whose core material is fine.
+bool validTextureInfo(const Ctx& ctx, const tinygltf::Value& ext, const char* key, const std::string& where) {
+    if (!ext.Has(key)) return false;
+    const tinygltf::Value& info = ext.Get(key);
+    const auto index = info.IsObject() ? indexOr(ctx, info, "index", where + " " + key) : std::nullopt;
+    if (!index) {
+        ctx.warn(where + ": " + key + " has no texture index; ignored");
+        return false;
     }
+    if (*index >= ctx.model.textures.size()) {
+        ctx.warn(where + ": " + key + " names texture " + std::to_string(*index) + " but the file has " +
+                 str(ctx.model.textures.size()) + "; ignored");
+        return false;
+    }
+    return true;
+}
+
+std::optional<TextureRef> extTexture(const Ctx& ctx, const tinygltf::Value& ext, const char* key,
+                                     const std::string& where) {
+    if (!validTextureInfo(ctx, ext, key, where)) return std::nullopt;
+    return extensionTextureRef(ctx, ext, key, where);
 }
 
 }  // namespace
@@ -85,19 +92,24 @@ void loadMaterialExtensions(const Ctx& ctx, const tinygltf::Material& src, const
         // The specification allows colours above 1 (f0 is clamped to 1 after the IOR's f0 scales it); cap at a
         // value no real IOR needs so that hostile files cannot make the maths overflow.
         mat.specularColor = rangedColor(ctx, *ext, "specularColorFactor", glm::vec3(1.0f), 0.0f, 1000.0f, w);
-        ignoredTextures(ctx, *ext, {"specularTexture", "specularColorTexture"}, w);
+        mat.specularTexture = extTexture(ctx, *ext, "specularTexture", w);
+        mat.specularColorTexture = extTexture(ctx, *ext, "specularColorTexture", w);
     }
     if (const auto* ext = extension(src.extensions, "KHR_materials_clearcoat"); ext && ext->IsObject()) {
         const std::string w = where + " KHR_materials_clearcoat";
         mat.clearcoat = rangedNumber(ctx, *ext, "clearcoatFactor", 0.0f, 0.0f, 1.0f, w);
         mat.clearcoatRoughness = rangedNumber(ctx, *ext, "clearcoatRoughnessFactor", 0.0f, 0.0f, 1.0f, w);
-        ignoredTextures(ctx, *ext, {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"}, w);
+        mat.clearcoatTexture = extTexture(ctx, *ext, "clearcoatTexture", w);
+        mat.clearcoatRoughnessTexture = extTexture(ctx, *ext, "clearcoatRoughnessTexture", w);
+        if (validTextureInfo(ctx, *ext, "clearcoatNormalTexture", w))
+            ctx.warn(w + ": clearcoatNormalTexture is not supported (the coat uses the base layer's normal)");
     }
     if (const auto* ext = extension(src.extensions, "KHR_materials_sheen"); ext && ext->IsObject()) {
         const std::string w = where + " KHR_materials_sheen";
         mat.sheenColor = rangedColor(ctx, *ext, "sheenColorFactor", glm::vec3(0.0f), 0.0f, 1.0f, w);
         mat.sheenRoughness = rangedNumber(ctx, *ext, "sheenRoughnessFactor", 0.0f, 0.0f, 1.0f, w);
-        ignoredTextures(ctx, *ext, {"sheenColorTexture", "sheenRoughnessTexture"}, w);
+        mat.sheenColorTexture = extTexture(ctx, *ext, "sheenColorTexture", w);
+        mat.sheenRoughnessTexture = extTexture(ctx, *ext, "sheenRoughnessTexture", w);
     }
     if (const auto* ext = extension(src.extensions, "KHR_materials_anisotropy"); ext && ext->IsObject()) {
         const std::string w = where + " KHR_materials_anisotropy";

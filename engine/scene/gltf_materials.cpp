@@ -238,4 +238,10 @@ void loadMaterials(const Ctx& ctx) {
     }
 }
 
+std::optional<TextureRef> extensionTextureRef(const Ctx& ctx, const tinygltf::Value& object, const char* key,
+                                              const std::string& where) {
+    const auto f = fieldsOf(ctx, object, key, where);
+    return f ? textureRef(ctx, *f, where + " " + key) : std::nullopt;
+}
+
 }  // namespace idk::scene::gltf

@@ -34,8 +34,13 @@ SceneFeatures Scene::features() const {
         f.hasBlend = f.hasBlend || m.alphaMode == AlphaMode::Blend;
         f.hasMask = f.hasMask || m.alphaMode == AlphaMode::Mask;
         const bool textured = m.baseColorTexture || m.metallicRoughnessTexture || m.normalTexture ||
-                              m.occlusionTexture || m.emissiveTexture || m.transmissionTexture || m.thicknessTexture;
+                              m.occlusionTexture || m.emissiveTexture || m.transmissionTexture || m.thicknessTexture ||
+                              m.specularTexture || m.specularColorTexture || m.clearcoatTexture ||
+                              m.clearcoatRoughnessTexture || m.sheenColorTexture || m.sheenRoughnessTexture;
         f.hasTextures = f.hasTextures || textured;
+        f.hasLayerTextures = f.hasLayerTextures || m.specularTexture || m.specularColorTexture ||
+                             m.clearcoatTexture || m.clearcoatRoughnessTexture || m.sheenColorTexture ||
+                             m.sheenRoughnessTexture;
         f.hasNormalMaps = f.hasNormalMaps || m.normalTexture.has_value();
         f.hasTransmission = f.hasTransmission || m.transmission > 0.0f || m.transmissionTexture.has_value();
         f.hasVolume = f.hasVolume || m.thickness > 0.0f;

@@ -95,13 +95,20 @@ struct Material {
     std::optional<TextureRef> thicknessTexture;
     float attenuationDistance = std::numeric_limits<float>::infinity();  // infinity: no absorption
     glm::vec3 attenuationColor{1.0f};
-    // BSDF extensions (factors; their textures are not read yet, the loader warns): gltf_material_ext.cpp.
+    // BSDF extensions: gltf_material_ext.cpp. Each texture multiplies its factor (channels as the extensions say).
     float specular = 1.0f;                 // KHR_materials_specular specularFactor, [0, 1]
     glm::vec3 specularColor{1.0f};         // specularColorFactor, linear, >= 0 (may exceed 1)
     float clearcoat = 0.0f;                // KHR_materials_clearcoat clearcoatFactor, [0, 1]
     float clearcoatRoughness = 0.0f;       // clearcoatRoughnessFactor, [0, 1]
     glm::vec3 sheenColor{0.0f};            // KHR_materials_sheen sheenColorFactor, linear, [0, 1]
     float sheenRoughness = 0.0f;           // sheenRoughnessFactor, [0, 1]
+    // KHR_materials_specular / _clearcoat / _sheen textures (matA), texCoord and KHR_texture_transform as above.
+    std::optional<TextureRef> specularTexture;            // linear, A scales specular
+    std::optional<TextureRef> specularColorTexture;       // sRGB, RGB scales specularColor
+    std::optional<TextureRef> clearcoatTexture;           // linear, R scales clearcoat
+    std::optional<TextureRef> clearcoatRoughnessTexture;  // linear, G scales clearcoatRoughness
+    std::optional<TextureRef> sheenColorTexture;          // sRGB, RGB scales sheenColor
+    std::optional<TextureRef> sheenRoughnessTexture;      // linear, A scales sheenRoughness
     // KHR_materials_anisotropy, KHR_materials_iridescence, KHR_materials_dispersion (branch matB)
     float anisotropyStrength = 0.0f;       // KHR_materials_anisotropy anisotropyStrength, [0, 1]
     float anisotropyRotation = 0.0f;       // anisotropyRotation, radians counter-clockwise from the tangent
@@ -273,6 +280,9 @@ struct SceneFeatures {
     bool hasShadowCastingLights = false;  // a placed light with nonzero intensity (every punctual light casts)
     uint32_t maxJoints = 0;               // largest skin of a drawn instance
     uint32_t maxMorphTargets = 0;         // largest morph target count of a drawn mesh
+    // KHR_materials_specular / _clearcoat / _sheen (matA): a drawn material has one of their textures (the
+    // G-buffer then carries the per-pixel texels to the lighting pass).
+    bool hasLayerTextures = false;
 };
 
 struct Scene {

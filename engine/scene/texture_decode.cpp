@@ -212,6 +212,12 @@ std::vector<TextureColorSpace> textureColorSpaces(const Scene& scene) {
         use(m.occlusionTexture, TextureColorSpace::Linear);
         use(m.transmissionTexture, TextureColorSpace::Linear);
         use(m.thicknessTexture, TextureColorSpace::Linear);
+        use(m.specularTexture, TextureColorSpace::Linear);
+        use(m.specularColorTexture, TextureColorSpace::Srgb);
+        use(m.clearcoatTexture, TextureColorSpace::Linear);
+        use(m.clearcoatRoughnessTexture, TextureColorSpace::Linear);
+        use(m.sheenColorTexture, TextureColorSpace::Srgb);
+        use(m.sheenRoughnessTexture, TextureColorSpace::Linear);
     }
     return spaces;
 }

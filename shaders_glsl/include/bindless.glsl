@@ -13,6 +13,7 @@ layout(set = 0, binding = kBindingStorageImages, rgba16f) uniform image2D gImage
 layout(set = 0, binding = kBindingStorageImages, rgba8) uniform image2D gImagesRgba8[];
 layout(set = 0, binding = kBindingStorageImages, r32f) uniform image2D gImagesR32f[];
 layout(set = 0, binding = kBindingStorageImages, r32ui) uniform uimage2D gImagesR32ui[];
+layout(set = 0, binding = kBindingStorageImages, rgba32ui) uniform uimage2D gImagesRgba32ui[];
 layout(set = 0, binding = kBindingSamplers) uniform sampler gSamplers[];
 
 // Declares `name[]`, the storage-buffer binding viewed as arrays of `type`: name[index].data[i].

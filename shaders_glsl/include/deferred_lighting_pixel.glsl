@@ -38,6 +38,13 @@ bool deferredLightingPixel(LightingPush p, GpuFrame f, ivec2 pixel, out vec4 res
     uint layered = uint(emissive.a + 0.5);  // 1 + material index for materials with BSDF extensions, else 0
     SurfaceLayers layers = layered > 0u && p.materials != 0 ? materialLayers(MaterialBuffer(p.materials).data[layered - 1u])
                                                             : noLayers();
+    if (layered > 0u && p.layers != kLightingNoLayers) {  // the extension textures' texels (gbuffer_fragment.glsl)
+        uvec4 packed = imageLoad(gImagesRgba32ui[p.layers], pixel);
+        vec4 scalars = unpackUnorm4x8(packed.x);
+        LayerTexels t = LayerTexels(scalars.x, srgbDecode(unpackUnorm4x8(packed.y).rgb), scalars.y, scalars.z,
+                                    srgbDecode(unpackUnorm4x8(packed.z).rgb), scalars.w);
+        layers = texturedLayers(layers, t);
+    }
     vec3 radiance = emissive.rgb;
     gShadowPixel = pixel;  // ray-traced shadows read their mask here (include/rt_shadows.glsl)
     radiance += shadeSurface(f, p.pointShadows, position, n, v, baseColor, metallic, roughness, occlusion, layers);

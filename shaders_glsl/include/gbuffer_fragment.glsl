@@ -22,8 +22,12 @@ layout(location = 1) out uint outNormal;    // R32UI: octahedral world normal (f
 layout(location = 2) out vec4 outMaterial;  // RGBA8: metallic, roughness, occlusion, lit (0: unlit)
 layout(location = 3) out vec4 outEmissive;  // RGBA16F: emitted radiance, alpha: layered material index + 1
 layout(location = 4) out float outDepth;    // R32F: the fragment's depth (what the depth test kept)
+// KHR_materials_specular / _clearcoat / _sheen texels (matA) of layered materials, for the lighting pass:
+// x = unorm8 (specular A, clearcoat R, clearcoatRoughness G, sheenRoughness A), y / z = sRGB-encoded unorm8
+// specularColor / sheenColor RGB. Discarded when the scene has no such texture (no attachment).
+layout(location = 5) out uvec4 outLayers;
 #ifdef GBUFFER_IDS
-layout(location = 5) out uvec2 outIds;      // RG32UI: the draw and its triangle (gl_PrimitiveID) of the kept fragment
+layout(location = 6) out uvec2 outIds;      // RG32UI: the draw and its triangle (gl_PrimitiveID) of the kept fragment
 #endif
 
 vec4 sampleSlot(GpuTextureSlot slot) { return sampleMaterialSlot(slot, inUv, inUv1); }
@@ -39,6 +43,11 @@ void main() {
     vec4 nt = sampleSlot(m.slots[kSlotNormal]);
     float ao = sampleSlot(m.slots[kSlotOcclusion]).r;
     vec3 emissive = m.emissiveFactor * sampleSlot(m.slots[kSlotEmissive]).rgb;
+    float specularT = 1.0, coatT = 1.0, coatRoughnessT = 1.0, sheenRoughnessT = 1.0;
+    vec3 specularColorT = vec3(1.0), sheenColorT = vec3(1.0);
+    if ((m.flags & kMaterialLayers) != 0u)  // uniform per draw: derivatives stay defined
+        sampleLayerTexels(m, inUv, inUv1, specularT, specularColorT, coatT, coatRoughnessT, sheenColorT,
+                          sheenRoughnessT);
 
     vec3 n = normalize(inNormal);
     vec3 t, b;
@@ -63,6 +72,9 @@ void main() {
     // is shaded without its extensions (a real renderer with more would add an R16UI target).
     bool layered = (m.flags & (kMaterialLayers | kMaterialAnisotropy)) != 0u && materialIndex < 2047u;
     outEmissive = vec4(emissive, layered ? float(materialIndex + 1u) : 0.0);
+    outLayers = uvec4(packUnorm4x8(vec4(specularT, coatT, coatRoughnessT, sheenRoughnessT)),
+                      packUnorm4x8(vec4(srgbEncode(clamp(specularColorT, 0.0, 1.0)), 0.0)),
+                      packUnorm4x8(vec4(srgbEncode(clamp(sheenColorT, 0.0, 1.0)), 0.0)), 0u);
     outDepth = gl_FragCoord.z;
 #ifdef GBUFFER_IDS
     outIds = uvec2(inDraw, uint(gl_PrimitiveID));

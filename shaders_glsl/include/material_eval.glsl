@@ -14,6 +14,20 @@ vec4 sampleMaterialSlot(GpuTextureSlot slot, vec2 uv0, vec2 uv1) {
     return texture(sampler2D(gTextures2D[nonuniformEXT(t)], gSamplers[nonuniformEXT(s)]), st);
 }
 
+// The KHR_materials_specular / _clearcoat / _sheen texture channels of a fragment (matA), in the LayerTexels order
+// of material_layers.glsl: specular A, specularColor RGB, clearcoat R, clearcoatRoughness G, sheenColor RGB,
+// sheenRoughness A (colour slots are sRGB views, so RGB arrives linear). Call in uniform control flow.
+void sampleLayerTexels(GpuMaterial m, vec2 uv0, vec2 uv1, out float specular, out vec3 specularColor,
+                       out float clearcoat, out float clearcoatRoughness, out vec3 sheenColor,
+                       out float sheenRoughness) {
+    specular = sampleMaterialSlot(m.slots[kSlotSpecular], uv0, uv1).a;
+    specularColor = sampleMaterialSlot(m.slots[kSlotSpecularColor], uv0, uv1).rgb;
+    clearcoat = sampleMaterialSlot(m.slots[kSlotClearcoat], uv0, uv1).r;
+    clearcoatRoughness = sampleMaterialSlot(m.slots[kSlotClearcoatRoughness], uv0, uv1).g;
+    sheenColor = sampleMaterialSlot(m.slots[kSlotSheenColor], uv0, uv1).rgb;
+    sheenRoughness = sampleMaterialSlot(m.slots[kSlotSheenRoughness], uv0, uv1).a;
+}
+
 // Tangent (t) and glTF bitangent (b) for the unit normal n; false when no frame exists (degenerate UVs).
 bool materialTangentFrame(vec3 n, vec4 tangent, vec3 worldPosition, vec2 uv, out vec3 t, out vec3 b) {
     if (tangent.w != 0.0) {  // vertex tangents: B = cross(N, T) * w (glTF 2.0, 3.7.2.1)

@@ -103,6 +103,31 @@ float baseDistributionVisibility(SurfaceLayers s, float alpha, vec3 n, vec3 v, v
     return ptGgxAnisoD(hl, a.x, a.y) * ptGgxAnisoG2(vl, ll, a.x, a.y) / (4.0 * NdotL * NdotV);
 }
 
+// The extension textures' channels at a fragment (matA): specularTexture A, specularColorTexture RGB (linear,
+// decoded from sRGB), clearcoatTexture R, clearcoatRoughnessTexture G, sheenColorTexture RGB, sheenRoughnessTexture
+// A; 1 where a material has no such texture (white placeholder slots).
+struct LayerTexels {
+    float specular;
+    vec3 specularColor;
+    float clearcoat;
+    float clearcoatRoughness;
+    vec3 sheenColor;
+    float sheenRoughness;
+};
+
+LayerTexels noLayerTexels() { return LayerTexels(1.0, vec3(1.0), 1.0, 1.0, vec3(1.0), 1.0); }
+
+// The factors times the texels, as pathtrace::evaluateMaterial and wfEvaluateMaterial scale them.
+SurfaceLayers texturedLayers(SurfaceLayers s, LayerTexels t) {
+    s.specular = clamp(s.specular * t.specular, 0.0, 1.0);
+    s.specularColor = max(s.specularColor * t.specularColor, vec3(0.0));
+    s.clearcoat = clamp(s.clearcoat * t.clearcoat, 0.0, 1.0);
+    s.clearcoatRoughness = clamp(s.clearcoatRoughness * t.clearcoatRoughness, 0.0, 1.0);
+    s.sheenColor = clamp(s.sheenColor * t.sheenColor, vec3(0.0), vec3(1.0));
+    s.sheenRoughness = clamp(s.sheenRoughness * t.sheenRoughness, 0.0, 1.0);
+    return s;
+}
+
 vec3 layeredF0(SurfaceLayers s, vec3 baseColor, float metallic) {
     return mix(min(vec3(0.04) * s.specularColor, vec3(1.0)) * s.specular, baseColor, metallic);
 }

@@ -82,12 +82,26 @@ PtSurface wfEvaluateMaterial(GpuPtSceneDesc sc, WfHitPoint hit, vec3 wo, out boo
     s.attenuationDistance = pm.attenuationDistance;
     s.emission = wfEmissionAt(m, hit, wo);
     s.geometricNormal = hit.geometricNormal;
+    // KHR_materials_specular / _clearcoat / _sheen: factor x texture channel (matA; white placeholder slots
+    // leave the factor). Only materials with the extension's flag sample: the rest keep the defaults.
     s.specular = pm.specular;
     s.specularColor = pm.specularColor;
     s.clearcoat = pm.clearcoat;
     s.clearcoatRoughness = pm.clearcoatRoughness;
     s.sheenColor = pm.sheenColor;
     s.sheenRoughness = pm.sheenRoughness;
+    if ((m.flags & kMaterialSpecular) != 0u) {
+        s.specular *= wfSampleSlot(m.slots[kSlotSpecular], hit).a;
+        s.specularColor *= wfSampleSlot(m.slots[kSlotSpecularColor], hit).rgb;
+    }
+    if ((m.flags & kMaterialClearcoat) != 0u) {
+        s.clearcoat *= wfSampleSlot(m.slots[kSlotClearcoat], hit).r;
+        s.clearcoatRoughness *= wfSampleSlot(m.slots[kSlotClearcoatRoughness], hit).g;
+    }
+    if ((m.flags & kMaterialSheen) != 0u) {
+        s.sheenColor *= wfSampleSlot(m.slots[kSlotSheenColor], hit).rgb;
+        s.sheenRoughness *= wfSampleSlot(m.slots[kSlotSheenRoughness], hit).a;
+    }
     // Normal mapping in the vertex tangent frame (B = cross(N, T) * w), z rebuilt from the remapped xy. A slot
     // without a normal texture samples the flat placeholder (xy = 0), which leaves n unchanged.
     vec3 n = hit.normal;

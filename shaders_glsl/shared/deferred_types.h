@@ -47,7 +47,8 @@ IDK_GPU_SIZE(GBufferPush, 56);
 // the sampled-image array while a pass writes it would trip the synchronization validation of the layers we
 // run (1.3.239 treats every element of a bindless array as accessed), and storage loads are exact anyway.
 // Formats: albedo RGBA8 (sRGB-encoded by the shader), normal R32UI (octahedral, packSnorm2x16), material
-// RGBA8, emissive RGBA16F, depth R32F (gl_FragCoord.z; the depth attachment itself is transient).
+// RGBA8, emissive RGBA16F, depth R32F (gl_FragCoord.z; the depth attachment itself is transient), and only for
+// scenes with BSDF-extension textures layers RGBA32UI (include/gbuffer_fragment.glsl packs the texels).
 
 // deferred_lighting.comp: G-buffer and output (bindless storage-image indices).
 struct LightingPush {
@@ -65,9 +66,12 @@ struct LightingPush {
     uint vxgiDiffuse;            // RGBA16F VXGI irradiance (include/vxgi_ambient.glsl), kNoVxgi: GI off
     uint vxgiSpecular;           // RGBA16F VXGI reflection radiance
     uint ssr;                    // RGBA16F screen-space reflections (shared/ssr_types.h), kSsrNoImage: off
+    uint layers;                 // RGBA32UI G-buffer extension texels (matA), kLightingNoLayers: none
+    uint pad;                    // keeps the C++ size (8-byte aligned) equal to the scalar layout's
 };
-IDK_GPU_SIZE(LightingPush, 72);
+IDK_GPU_SIZE(LightingPush, 80);
 IDK_CONST(uint, kLightingNoAo, 0xFFFFFFFFu);
+IDK_CONST(uint, kLightingNoLayers, 0xFFFFFFFFu);
 
 // sky.comp: writes the environment where depth == 1.
 struct SkyPush {

@@ -54,7 +54,14 @@ IDK_CONST(uint, kSlotMetallicRoughness, 1);  // linear: G = roughness, B = metal
 IDK_CONST(uint, kSlotNormal, 2);             // linear: tangent-space normal, xy remapped to [-1, 1]
 IDK_CONST(uint, kSlotOcclusion, 3);          // linear: R
 IDK_CONST(uint, kSlotEmissive, 4);           // sRGB
-IDK_CONST(uint, kSlotCount, 5);
+// KHR_materials_specular / _clearcoat / _sheen textures (matA); white placeholders leave the factors unchanged.
+IDK_CONST(uint, kSlotSpecular, 5);            // linear: A scales specular
+IDK_CONST(uint, kSlotSpecularColor, 6);       // sRGB: RGB scales specularColor
+IDK_CONST(uint, kSlotClearcoat, 7);           // linear: R scales clearcoat
+IDK_CONST(uint, kSlotClearcoatRoughness, 8);  // linear: G scales clearcoatRoughness
+IDK_CONST(uint, kSlotSheenColor, 9);          // sRGB: RGB scales sheenColor
+IDK_CONST(uint, kSlotSheenRoughness, 10);     // linear: A scales sheenRoughness
+IDK_CONST(uint, kSlotCount, 11);
 
 IDK_CONST(uint, kAlphaOpaque, 0);
 IDK_CONST(uint, kAlphaMask, 1);
@@ -71,7 +78,7 @@ IDK_CONST(uint, kMaterialLayers, 28u);      // any of the three
 IDK_CONST(uint, kMaterialAnisotropy, 128u);  // KHR_materials_anisotropy with anisotropyStrength > 0
 
 // glTF metallic-roughness material (core + KHR_materials_emissive_strength, KHR_texture_transform, and the
-// factors of KHR_materials_specular, _clearcoat, _sheen).
+// factors and textures of KHR_materials_specular, _clearcoat, _sheen).
 struct GpuMaterial {
     vec4 baseColorFactor;  // linear RGBA
     vec3 emissiveFactor;   // linear, emissive strength applied
@@ -94,7 +101,7 @@ struct GpuMaterial {
     float anisotropyStrength;  // KHR_materials_anisotropy anisotropyStrength (read when kMaterialAnisotropy)
     float anisotropyRotation;  // radians, counter-clockwise from the tangent
 };
-IDK_GPU_SIZE(GpuMaterial, 284);
+IDK_GPU_SIZE(GpuMaterial, 500);
 
 IDK_CONST(uint, kLightDirectional, 0);
 IDK_CONST(uint, kLightPoint, 1);

@@ -27,7 +27,7 @@ struct VrsLightingRatePush {
     LightingPush lighting;      // lighting.vrsRates: the rates (the fragment shades its cell's anchor pixel)
     DeviceAddress invocations;  // uint: fragment invocations, counted with an atomic (shadingInvocations)
 };
-IDK_GPU_SIZE(VrsLightingRatePush, 80);
+IDK_GPU_SIZE(VrsLightingRatePush, 88);
 
 IDK_GPU_END
 #endif

@@ -60,6 +60,10 @@ void main() {
     vec4 nt = sampleMaterialSlot(m.slots[kSlotNormal], inUv, inUv1);
     float ao = sampleMaterialSlot(m.slots[kSlotOcclusion], inUv, inUv1).r;
     vec3 emissive = m.emissiveFactor * sampleMaterialSlot(m.slots[kSlotEmissive], inUv, inUv1).rgb;
+    LayerTexels layerTexels = noLayerTexels();  // KHR_materials_specular / _clearcoat / _sheen textures (matA)
+    if ((m.flags & kMaterialLayers) != 0u)      // uniform per draw: derivatives stay defined
+        sampleLayerTexels(m, inUv, inUv1, layerTexels.specular, layerTexels.specularColor, layerTexels.clearcoat,
+                          layerTexels.clearcoatRoughness, layerTexels.sheenColor, layerTexels.sheenRoughness);
     vec3 n = normalize(inNormal);
     vec3 t, b;
     bool haveFrame = materialTangentFrame(n, inTangent, inWorldPosition, inUv, t, b);
@@ -92,6 +96,7 @@ void main() {
     float occlusion = 1.0 + m.occlusionStrength * (ao - 1.0);
     vec3 radiance = emissive + shadeSurface(f, p.pointShadows, inWorldPosition, n, v, baseColor.rgb, metallic,
                                             roughness, occlusion,
-                                            haveFrame ? withAnisotropyFrame(materialLayers(m), m, t, b) : materialLayers(m));
+                                            haveFrame ? withAnisotropyFrame(texturedLayers(materialLayers(m), layerTexels), m, t, b)
+                                                      : texturedLayers(materialLayers(m), layerTexels));
     writeTransparent(vec4(radiance, baseColor.a));
 }

@@ -30,7 +30,9 @@ std::string primitiveProblem(const scene::Scene& s, const scene::Primitive& p) {
 
 std::string materialProblem(const scene::Scene& s, const scene::Material& m) {
     for (const auto* ref : {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture, &m.occlusionTexture,
-                            &m.emissiveTexture, &m.transmissionTexture, &m.thicknessTexture})
+                            &m.emissiveTexture, &m.transmissionTexture, &m.thicknessTexture, &m.specularTexture,
+                            &m.specularColorTexture, &m.clearcoatTexture, &m.clearcoatRoughnessTexture,
+                            &m.sheenColorTexture, &m.sheenRoughnessTexture})
         if (*ref && (*ref)->texture >= s.textures.size()) return "material texture index out of range";
     return {};
 }

@@ -1,7 +1,9 @@
 // gltf_material_ext_test.cpp: the loader's BSDF material extensions (scene/gltf_material_ext.cpp): the factors of
-// KHR_materials_specular, _clearcoat, _sheen, _anisotropy land in scene::Material; hostile values (out of range, non-finite,
-// wrong types) are clamped or replaced with a warning naming the material; extension textures are reported (not
-// read yet), out-of-range texture indices too; materials without the extensions keep the neutral defaults; the
+// KHR_materials_specular, _clearcoat, _sheen, _anisotropy land in scene::Material; hostile values (out of range,
+// non-finite, wrong types) are clamped or replaced with a warning naming the material; extension textures load as
+// TextureRefs with texCoord and KHR_texture_transform (bad references warn and are dropped; anisotropyTexture is
+// reported, not read yet); ToyCar's clearcoat texture loads without a warning; materials without the extensions
+// keep the neutral defaults; the
 // authored scenes/material_spheres.gltf loads with its four extension materials and no warnings;
 // KHR_materials_variants: mappings select materials by variant name, bad mappings warn, unknown names throw
 // listing the variants.
@@ -75,7 +77,8 @@ TEST(GltfMaterialExt, HostileValuesAreClampedWithWarnings) {
     EXPECT_TRUE(anyWarningHas(s, "'hostile'", "clearcoatFactor"));
     EXPECT_TRUE(anyWarningHas(s, "'hostile'", "clearcoatRoughnessFactor"));
     EXPECT_TRUE(anyWarningHas(s, "'hostile'", "sheenColorFactor"));
-    EXPECT_TRUE(anyWarningHas(s, "clearcoatTexture", "not supported"));
+    EXPECT_TRUE(m.clearcoatTexture.has_value());  // texture 0 exists: loaded even though the factor is clamped
+    EXPECT_FALSE(anyWarningHas(s, "clearcoatTexture", "not supported"));
     EXPECT_TRUE(anyWarningHas(s, "clearcoatNormalTexture", "texture 9"));
 }
 
@@ -98,6 +101,49 @@ TEST(GltfMaterialExt, AnisotropyIsLoadedAndChecked) {
     EXPECT_TRUE(anyWarningHas(s, "'hostile'", "anisotropyRotation"));
     EXPECT_TRUE(anyWarningHas(s, "anisotropyTexture", "not supported"));
     EXPECT_FALSE(anyWarningHas(s, "'brushed'", "anisotropy"));
+}
+
+TEST(GltfMaterialExt, ExtensionTexturesAreLoaded) {
+    TempDir dir;
+    auto f = triangle();
+    f.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    f.doc["textures"] = json::parse(R"([{}, {}, {}])");
+    f.doc["materials"] = json::parse(R"([{"name": "textured", "extensions": {
+        "KHR_materials_specular": {"specularTexture": {"index": 0},
+                                   "specularColorTexture": {"index": 1, "texCoord": 1}},
+        "KHR_materials_clearcoat": {"clearcoatFactor": 1, "clearcoatTexture": {"index": 2},
+            "clearcoatRoughnessTexture": {"index": 1, "extensions": {"KHR_texture_transform":
+                {"offset": [0.5, 0.25], "scale": [2, 3], "rotation": 0.5}}},
+            "clearcoatNormalTexture": {"index": 0}},
+        "KHR_materials_sheen": {"sheenColorFactor": [1, 1, 1], "sheenColorTexture": {"index": 2},
+                                "sheenRoughnessTexture": {"index": 7}}}}])");
+    const Scene s = loadGltf(f.write(dir));
+    const Material& m = s.materials[0];
+    ASSERT_TRUE(m.specularTexture && m.specularColorTexture && m.clearcoatTexture && m.clearcoatRoughnessTexture &&
+                m.sheenColorTexture);
+    EXPECT_EQ(m.specularTexture->texture, 0u);
+    EXPECT_EQ(m.specularColorTexture->texture, 1u);
+    EXPECT_EQ(m.specularColorTexture->texCoord, 1u);
+    EXPECT_EQ(m.clearcoatTexture->texture, 2u);
+    EXPECT_EQ(m.clearcoatRoughnessTexture->offset, glm::vec2(0.5f, 0.25f));
+    EXPECT_EQ(m.clearcoatRoughnessTexture->scale, glm::vec2(2.0f, 3.0f));
+    EXPECT_EQ(m.clearcoatRoughnessTexture->rotation, 0.5f);
+    EXPECT_EQ(m.sheenColorTexture->texture, 2u);
+    EXPECT_FALSE(m.sheenRoughnessTexture.has_value());  // texture 7 of 3: dropped with a warning
+    EXPECT_TRUE(anyWarningHas(s, "'textured'", "sheenRoughnessTexture names texture 7"));
+    EXPECT_TRUE(anyWarningHas(s, "'textured'", "clearcoatNormalTexture is not supported"));
+    EXPECT_TRUE(s.features().hasTextures);
+}
+
+TEST(GltfMaterialExt, ToyCarClearcoatTextureLoadsWithoutWarnings) {
+    const Scene car = loadGltf(test::sharedScene("ToyCar/glTF/ToyCar.gltf"));
+    bool coatTexture = false;
+    for (const Material& m : car.materials) coatTexture |= m.clearcoat == 1.0f && m.clearcoatTexture.has_value();
+    EXPECT_TRUE(coatTexture);
+    for (const std::string& w : car.warnings) {
+        EXPECT_EQ(w.find("KHR_materials"), std::string::npos) << w;
+        EXPECT_EQ(w.find("not supported"), std::string::npos) << w;
+    }
 }
 
 TEST(GltfMaterialExt, AuthoredSceneLoadsWithoutWarnings) {

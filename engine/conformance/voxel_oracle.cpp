@@ -27,18 +27,28 @@ int dominantAxis(const glm::dvec3& n) {
     return a.y >= a.z ? 1 : 2;
 }
 
+// The radiance a fragment of quad q at p leaves (the brighter side's) and its facing, as voxelize_fragment.glsl.
 glm::dvec3 radiance(const PlacedQuad& q, const glm::dvec3& n, const glm::dvec3& p, const glm::dvec3& emission,
-                    const std::vector<OracleLight>& lights) {
-    glm::dvec3 sum(0.0);
+                    const std::vector<OracleLight>& lights, glm::dvec4& facing) {
+    glm::dvec3 front(0.0), back(0.0);
     for (const OracleLight& light : lights) {
         glm::dvec3 d = light.position - p;
         double d2 = glm::dot(d, d);
         glm::dvec3 l = d / std::sqrt(d2);
         double c = glm::dot(n, l);
-        if (q.doubleSided) c = std::abs(c);
-        if (c > 0.0) sum += light.intensity * (c / d2);
+        if (c > 0.0) front += light.intensity * (c / d2);
+        else if (q.doubleSided && c < 0.0) back += light.intensity * (-c / d2);
     }
-    return glm::dvec3(q.baseColor) / kPi * sum + emission;
+    front = glm::dvec3(q.baseColor) / kPi * front + emission;
+    back = glm::dvec3(q.baseColor) / kPi * back + (q.doubleSided ? emission : glm::dvec3(0.0));
+    const glm::dvec3 y(0.2126, 0.7152, 0.0722);
+    const double lf = glm::dot(front, y), lb = glm::dot(back, y);
+    if (lb > lf) {
+        facing = glm::dvec4(-n, lf / lb);
+        return back;
+    }
+    facing = glm::dvec4(n, lf > 0.0 ? lb / lf : (q.doubleSided ? 1.0 : 0.0));
+    return front;
 }
 
 }  // namespace
@@ -84,8 +94,10 @@ std::vector<OracleVoxel> voxelizeOnCpu(const std::vector<PlacedQuad>& quads, con
                     o.ambiguous = true;
                     continue;
                 }
-                glm::dvec3 value = radiance(q, nrm, p, emission, lights);
+                glm::dvec4 facing;
+                glm::dvec3 value = radiance(q, nrm, p, emission, lights, facing);
                 o.sum += value;
+                o.facing += facing;
                 o.max = glm::max(o.max, value);
                 ++o.count;
             }
@@ -94,8 +106,8 @@ std::vector<OracleVoxel> voxelizeOnCpu(const std::vector<PlacedQuad>& quads, con
     return grid;
 }
 
-std::vector<glm::vec4> readVoxelGrid(vk::Context& ctx, const vk::Image& grid) {
-    const std::vector<uint8_t> bytes = vk::readbackImage(ctx, grid, VK_IMAGE_LAYOUT_GENERAL);  // RGBA16F, x fastest
+std::vector<glm::vec4> readVoxelGrid(vk::Context& ctx, const vk::Image& grid, VkImageLayout layout) {
+    const std::vector<uint8_t> bytes = vk::readbackImage(ctx, grid, layout);  // RGBA16F level 0, x fastest
     std::vector<uint16_t> halves(bytes.size() / sizeof(uint16_t));
     std::memcpy(halves.data(), bytes.data(), halves.size() * sizeof(uint16_t));
     std::vector<glm::vec4> out(halves.size() / 4);

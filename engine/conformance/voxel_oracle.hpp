@@ -19,6 +19,7 @@ namespace idk::conformance {
 struct OracleVoxel {
     glm::dvec3 sum{0.0};
     glm::dvec3 max{0.0};
+    glm::dvec4 facing{0.0};  // sum of the fragments' facings
     uint32_t count = 0;
     bool ambiguous = false;
 };
@@ -32,8 +33,9 @@ struct OracleLight {
 std::vector<OracleVoxel> voxelizeOnCpu(const std::vector<PlacedQuad>& quads, const std::vector<glm::vec3>& emissive,
                                        const std::vector<OracleLight>& lights, const passes::VoxelGridBox& box);
 
-// The RGBA16F voxel grid a frame left in GENERAL layout (level 0), as RGBA floats, x fastest; the GPU side of
-// every comparison with the oracle (the registry's vxgi checks and the gl-interop rung's tests).
-std::vector<glm::vec4> readVoxelGrid(vk::Context& ctx, const vk::Image& grid);
+// The RGBA16F voxel grid a frame left in `layout` (GENERAL for the grid; level 0), as RGBA floats, x fastest; the
+// GPU side of every comparison with the oracle (the registry's vxgi checks and the gl-interop rung's tests).
+std::vector<glm::vec4> readVoxelGrid(vk::Context& ctx, const vk::Image& grid,
+                                     VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL);
 
 }  // namespace idk::conformance

@@ -6,8 +6,11 @@
 //  * "vxgi/voxelize" on each rung of "vxgi-atomics": occupancy agrees with the oracle on >= 99.5% of the voxels
 //    either marks (the oracle's tie-free design makes it 100% here); each occupied voxel's rgb is the oracle's MEAN
 //    of its fragments (native: float atomic add + count; gl-interop: fragment records added by GL float atomics,
-//    merged by Vulkan) or MAX (fallback: three r32ui + max) within 0.2% (+1e-5); empty voxels are all-zero.
-//  * "vxgi/rungs agree": both rungs give the same grid (within 1e-3 relative) on the voxels holding one fragment.
+//    merged by Vulkan) or MAX (fallback: r32ui + max) within 0.2% (+1e-5); on one-fragment voxels the six
+//    directional level-0 voxels are the oracle's radiance seen by its quad's facing (one-sided ceiling: dark from
+//    above) within the same tolerance; empty voxels are all-zero in the grid and the directional volumes.
+//  * "vxgi/rungs agree": both rungs give the same grid and directional level 0 (within 1e-3 relative) on the
+//    voxels holding one fragment.
 //  * "vxgi/thin wall" on each rung of "conservative-raster" (native VK_EXT_conservative_rasterization, fallback
 //    geometry-shader dilation): a wall one voxel thin whose edges stop inside voxels: every voxel column along its
 //    normal that the wall touches holds a wall voxel (no holes), and no column it does not touch does; centre
@@ -20,7 +23,9 @@
 
 #include "conformance/conformance.hpp"
 #include "conformance/voxel_oracle.hpp"
+#include "graph/barrier_planner.hpp"
 #include "render/renderer.hpp"
+#include "shared/vxgi_cone.h"
 #include "vk/transfer.hpp"
 
 namespace idk::conformance {
@@ -65,6 +70,7 @@ scene::Scene toScene(const VoxelScene& t) {
 
 struct Grid {
     std::vector<glm::vec4> voxels;  // empty when the frame made no grid
+    std::array<std::vector<glm::vec4>, 6> directions;  // level 0 of the directional volumes (+x -x +y -y +z -z)
     passes::VoxelGridBox box;
 };
 
@@ -83,7 +89,14 @@ Grid voxelize(vk::Context& ctx, vk::ShaderLibrary& shaders, const VoxelScene& t,
     camera.position = {0.0f, 0.0f, 0.9f};
     renderer.renderOffscreen(camera, 16, 16);
     Grid g;
-    if (const vk::Image* grid = renderer.vxgi().grid()) g.voxels = readVoxelGrid(ctx, *grid);
+    if (const vk::Image* grid = renderer.vxgi().grid()) {
+        g.voxels = readVoxelGrid(ctx, *grid);
+        // The directional volumes end where the cone tracer sampled them (the feature's final use).
+        const VkImageLayout sampled = graph::stateAfterAccess(graph::Access::SampledRead, graph::ResourceKind::Image,
+                                                              VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT)
+                                          .layout;
+        for (uint32_t d = 0; d < 6; ++d) g.directions[d] = readVoxelGrid(ctx, renderer.vxgi().directions()[d].image, sampled);
+    }
     g.box = renderer.vxgi().box();
     return g;
 }
@@ -92,7 +105,8 @@ Grid voxelize(vk::Context& ctx, vk::ShaderLibrary& shaders, const VoxelScene& t,
 void expectMatchesOracle(Verdict& v, const Grid& g, const VoxelScene& t, bool useMax) {
     const std::vector<OracleVoxel> oracle = voxelizeOnCpu(t.quads, t.emissive, {t.light}, g.box);
     if (!v.expectEq(g.voxels.size(), oracle.size(), "voxel count")) return;
-    size_t either = 0, agree = 0, compared = 0, multi = 0, ambiguous = 0, nonZeroEmpty = 0, partial = 0;
+    size_t either = 0, agree = 0, compared = 0, multi = 0, ambiguous = 0, nonZeroEmpty = 0, partial = 0,
+           directional = 0;
     for (size_t i = 0; i < oracle.size(); ++i) {
         const OracleVoxel& o = oracle[i];
         const glm::vec4& c = g.voxels[i];
@@ -103,6 +117,7 @@ void expectMatchesOracle(Verdict& v, const Grid& g, const VoxelScene& t, bool us
         const bool gpu = c.a > 0.0f, cpu = o.count > 0;
         if (!gpu && !cpu) {
             nonZeroEmpty += c != glm::vec4(0.0f);
+            for (const std::vector<glm::vec4>& d : g.directions) nonZeroEmpty += d[i] != glm::vec4(0.0f);
             continue;
         }
         ++either;
@@ -119,7 +134,25 @@ void expectMatchesOracle(Verdict& v, const Grid& g, const VoxelScene& t, bool us
                          ", oracle " + std::to_string(want[k]));
         }
         ++compared;
+        if (o.count != 1) continue;
+        // One fragment: each directional level-0 voxel is the oracle's radiance seen along its direction by the
+        // quad's facing (vxgiVoxelTowards, shared with the cone tracer's C++ side).
+        ++directional;
+        for (uint32_t k = 0; k < 6; ++k) {
+            const glm::vec4 expected = gpu::vxgiVoxelTowards(glm::vec4(glm::vec3(want), 1.0f), glm::vec4(o.facing), k);
+            const glm::vec4& got = g.directions[k][i];
+            for (int ch = 0; ch < 4; ++ch) {
+                const double err = std::abs(double(got[ch]) - expected[ch]);
+                v.recordError(err / (std::abs(expected[ch]) + kAbsTolerance / kRelTolerance));
+                v.expect(err <= kRelTolerance * std::abs(expected[ch]) + kAbsTolerance,
+                         "voxel " + std::to_string(i) + " direction " + std::to_string(k) + " channel " +
+                             std::to_string(ch) + ": gpu " + std::to_string(got[ch]) + ", oracle " +
+                             std::to_string(expected[ch]));
+            }
+        }
     }
+    v.expect(directional > 10000, "too few one-fragment voxels for the directional check (" +
+                                      std::to_string(directional) + ")");
     const double agreement = either ? double(agree) / double(either) : 0.0;
     v.expect(agreement >= 0.995, "occupancy agrees on " + std::to_string(100.0 * agreement) + "% of the voxels (>= 99.5%)");
     v.expectEq(nonZeroEmpty, size_t(0), "empty voxels that are not zero");
@@ -157,12 +190,16 @@ void rungsAgree(CheckEnv& env, Verdict& v) {
     for (size_t i = 0; i < oracle.size(); ++i) {
         if (oracle[i].count != 1 || oracle[i].ambiguous) continue;
         ++single;
-        const glm::vec4 &a = grids[0].voxels[i], &b = grids[1].voxels[i];
-        for (int c = 0; c < 4; ++c) {  // the two fragment shaders are compiled apart: allow one fp16 rounding step
-            v.recordError(std::abs(a[c] - b[c]) / std::max(std::abs(b[c]), 1e-6f));
-            v.expect(std::abs(a[c] - b[c]) <= 1e-3f * std::abs(b[c]), "voxel " + std::to_string(i) + " channel " +
-                                                                           std::to_string(c) + ": native " + std::to_string(a[c]) +
-                                                                           ", fallback " + std::to_string(b[c]));
+        for (uint32_t k = 0; k < 7; ++k) {  // the grid, then the six directional level-0 volumes
+            const glm::vec4& a = k == 0 ? grids[0].voxels[i] : grids[0].directions[k - 1][i];
+            const glm::vec4& b = k == 0 ? grids[1].voxels[i] : grids[1].directions[k - 1][i];
+            for (int c = 0; c < 4; ++c) {  // the two fragment shaders are compiled apart: allow one fp16 rounding step
+                v.recordError(std::abs(a[c] - b[c]) / std::max(std::abs(b[c]), 1e-6f));
+                v.expect(std::abs(a[c] - b[c]) <= 1e-3f * std::abs(b[c]) + 1e-6f,
+                         "voxel " + std::to_string(i) + (k == 0 ? " grid" : " direction " + std::to_string(k - 1)) +
+                             " channel " + std::to_string(c) + ": native " + std::to_string(a[c]) + ", fallback " +
+                             std::to_string(b[c]));
+            }
         }
     }
     v.expect(single > 1000, "too few one-fragment voxels to compare (" + std::to_string(single) + ")");
@@ -219,7 +256,8 @@ void thinWall(CheckEnv& env, Verdict& v) {
 
 std::vector<Check> vxgiChecks() {
     return {
-        {"vxgi/voxelize", "vxgi-atomics", "occupancy >= 99.5%; rgb within 0.2% (+1e-5) of the oracle's mean or max",
+        {"vxgi/voxelize", "vxgi-atomics",
+         "occupancy >= 99.5%; rgb and directional level 0 within 0.2% (+1e-5) of the oracle's mean or max",
          voxelizeOnRung},
         {"vxgi/rungs agree", "", "one-fragment voxels within 1e-3 relative", rungsAgree},
         {"vxgi/thin wall", "conservative-raster", "no holes, nothing outside the wall's columns", thinWall},

@@ -38,8 +38,8 @@ public:
     const passes::VoxelGridBox& box() const noexcept { return box_; }
     // The gl-interop rung's state (record capacity, last frame's overflow) or nullptr on the other rungs.
     passes::VxgiGlAccumulator* glAccumulator() const noexcept { return gl_.get(); }
-    // The six directional mip volumes (+x -x +y -y +z -z; left where the cone tracer sampled them): tests read
-    // them back for the CPU cone tracer.
+    // The six directional volumes (+x -x +y -y +z -z, level 0 the voxels seen along each; left where the cone
+    // tracer sampled them): tests read them back for the CPU cone tracer.
     const std::array<VoxelVolume, 6>& directions() const noexcept { return directions_; }
 
 private:
@@ -48,7 +48,7 @@ private:
     scene::Aabb bounds_;
     passes::VoxelGridBox box_;
     VoxelVolume grid_;                      // level 0: the voxelized radiance and coverage
-    std::array<VoxelVolume, 6> directions_; // anisotropic mips (+x -x +y -y +z -z), level k = grid level k + 1
+    std::array<VoxelVolume, 6> directions_; // anisotropic volumes (+x -x +y -y +z -z), levels 0 .. log2(size)
     vk::SamplerIndex sampler_;
     graph::TextureHandle directionHandles_[6];  // this frame's imports
     std::unique_ptr<passes::VxgiGlAccumulator> gl_;  // "vxgi-atomics" gl-interop rung only

@@ -1,6 +1,7 @@
 // vxgi_voxelize.cpp: voxelization of the scene's direct diffuse light into a 3D grid: clear the accumulators, draw
 // the scene once per projection axis into an attachment-less N x N render pass whose fragments write their voxel
-// with image atomics, and merge the accumulators into the RGBA16F grid. Ports IDKEngine's Voxelizer.cs (its
+// with image atomics (radiance and facing), and merge the accumulators into the RGBA16F grid and the directional
+// volumes' level 0. Ports IDKEngine's Voxelizer.cs (its
 // 3-draw fallback; the rung of write conflicts follows the "vxgi-atomics" ladder). On its gl-interop rung the
 // fragments append records instead, "vxgi_gl_accumulate" (vxgi_gl_accumulate.cpp) adds them with GL float atomics
 // into a shared sums buffer, and the merge averages those.
@@ -19,7 +20,7 @@ namespace idk::passes {
 namespace {
 
 struct Accumulators {
-    graph::TextureHandle images[4];
+    graph::TextureHandle images[8];
     uint32_t count = 0;
     graph::BufferHandle records, sums;  // gl-interop rung: the shared buffers instead of images
 };
@@ -41,7 +42,8 @@ vk::ShaderId fragmentShader(uint32_t mode, bool dilated) {
 }  // namespace
 
 graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
-                                       const VoxelizeInputs& in, graph::TextureHandle grid, IndirectDrawLog* log) {
+                                       const VoxelizeInputs& in, graph::TextureHandle grid,
+                                       std::array<graph::TextureHandle, 6>& directions, IndirectDrawLog* log) {
     const uint32_t mode = modeOf(in.atomics);
     const uint32_t n = in.box.size;
     VxgiGlAccumulator* gl = in.gl;
@@ -64,8 +66,11 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             desc.format = mode == gpu::kVoxelAtomicsFloatAdd ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32_UINT;
             desc.sizeMode = graph::SizeMode::Absolute;
             desc.extent = {n, n, n};
-            acc->count = mode == gpu::kVoxelAtomicsFloatAdd ? 4 : 3;
-            const char* names[4] = {"vxgi accum r", "vxgi accum g", "vxgi accum b", "vxgi accum count"};
+            // r, g, b, the facing's x, y, z, w, and the float-add rung's count (kVoxelAccum*)
+            acc->count = mode == gpu::kVoxelAtomicsFloatAdd ? 8 : 7;
+            const char* names[8] = {"vxgi accum r",        "vxgi accum g",        "vxgi accum b",
+                                    "vxgi accum facing x", "vxgi accum facing y", "vxgi accum facing z",
+                                    "vxgi accum facing w", "vxgi accum count"};
             for (uint32_t i = 0; i < acc->count; ++i)
                 acc->images[i] = b.write(b.create(names[i], desc), graph::Access::TransferDst);
         },
@@ -165,6 +170,7 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
     if (gl) acc->sums = gl->addPass(graph, acc->records, acc->sums);
 
     auto written = std::make_shared<graph::TextureHandle>();
+    const std::array<uint32_t, 6> level0 = in.directionLevel0;
     graph.addPass(
         "vxgi_merge",
         [&](graph::PassBuilder& b) {
@@ -172,9 +178,11 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             for (uint32_t i = 0; i < acc->count; ++i) b.read(acc->images[i], graph::Access::StorageRead, kCs);
             if (acc->sums.valid()) b.read(acc->sums, graph::Access::StorageRead, kCs);
             *written = b.write(grid, graph::Access::StorageWrite, kCs);
+            // Level 0 through its own view; the graph tracks each volume whole (the mips read it next).
+            for (graph::TextureHandle& d : directions) d = b.write(d, graph::Access::StorageReadWrite, kCs);
             b.sideEffect();  // the grid is persistent state: later frames and readers outside the graph use it
         },
-        [&ctx, &shaders, acc, written, n, mode, gl](graph::PassContext& pc) {
+        [&ctx, &shaders, acc, written, n, mode, gl, level0](graph::PassContext& pc) {
             VkCommandBuffer cmd = pc.commandBuffer();
             vk::ComputePipelineDesc desc;
             desc.shader = vk::ShaderId::vxgi_merge_comp;
@@ -186,6 +194,7 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             for (uint32_t i = 0; i < acc->count; ++i) push.accum[i] = pc.texture(acc->images[i]).storageIndex;
             if (gl) push.accum[0] = gl->sumsIndex();
             push.grid = pc.texture(*written).storageIndex;
+            for (uint32_t d = 0; d < 6; ++d) push.directions[d] = level0[d];
             push.gridSize = n;
             push.mode = mode;
             vk::pushConstants(cmd, ctx, push);

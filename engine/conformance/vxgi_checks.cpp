@@ -11,6 +11,8 @@
 //    above) within the same tolerance; empty voxels are all-zero in the grid and the directional volumes.
 //  * "vxgi/rungs agree": both rungs give the same grid and directional level 0 (within 1e-3 relative) on the
 //    voxels holding one fragment.
+//  * "vxgi/ray-traced shadows": with --shadows raytraced, the scene plus a blocker over the floor against the oracle
+//    with hard shadows (the voxelization's shadow rays through the BVH), as "vxgi/voxelize" on the chosen rung.
 //  * "vxgi/thin wall" on each rung of "conservative-raster" (native VK_EXT_conservative_rasterization, fallback
 //    geometry-shader dilation): a wall one voxel thin whose edges stop inside voxels: every voxel column along its
 //    normal that the wall touches holds a wall voxel (no holes), and no column it does not touch does; centre
@@ -76,10 +78,12 @@ struct Grid {
 
 // One 16x16 HDR frame with VXGI on (its voxelization runs the context's chosen rungs), no shadows (the oracle has
 // none); the grid read back.
-Grid voxelize(vk::Context& ctx, vk::ShaderLibrary& shaders, const VoxelScene& t, frame::VoxelRaster raster) {
+Grid voxelize(vk::Context& ctx, vk::ShaderLibrary& shaders, const VoxelScene& t, frame::VoxelRaster raster,
+              bool rayTracedShadows = false) {
     render::RenderSettings settings;
     settings.output = render::OutputKind::Hdr;
-    settings.pointShadows.maxLights = 0;
+    settings.pointShadows.maxLights = rayTracedShadows ? 4 : 0;
+    settings.lightShadows.rayTraced = rayTracedShadows;
     settings.vxgi.mode = frame::GiMode::Vxgi;
     settings.vxgi.voxels = kVoxels;
     settings.vxgi.raster = raster;
@@ -102,8 +106,8 @@ Grid voxelize(vk::Context& ctx, vk::ShaderLibrary& shaders, const VoxelScene& t,
 }
 
 // A GPU grid against the oracle: `useMax` picks the oracle's max (r32ui rung) or mean (float-add rung).
-void expectMatchesOracle(Verdict& v, const Grid& g, const VoxelScene& t, bool useMax) {
-    const std::vector<OracleVoxel> oracle = voxelizeOnCpu(t.quads, t.emissive, {t.light}, g.box);
+void expectMatchesOracle(Verdict& v, const Grid& g, const VoxelScene& t, bool useMax, bool shadowed = false) {
+    const std::vector<OracleVoxel> oracle = voxelizeOnCpu(t.quads, t.emissive, {t.light}, g.box, shadowed);
     if (!v.expectEq(g.voxels.size(), oracle.size(), "voxel count")) return;
     size_t either = 0, agree = 0, compared = 0, multi = 0, ambiguous = 0, nonZeroEmpty = 0, partial = 0,
            directional = 0;
@@ -205,6 +209,25 @@ void rungsAgree(CheckEnv& env, Verdict& v) {
     v.expect(single > 1000, "too few one-fragment voxels to compare (" + std::to_string(single) + ")");
 }
 
+// --shadows raytraced: the voxels' light is shadowed by rays through the BVH (there is no shadow table when the
+// voxelization runs). The voxel scene with a blocker between the light and the floor against the oracle with hard
+// shadows; the oracle's unshadowed grid must differ in many voxels, or the check could not fail.
+void rayTracedShadows(CheckEnv& env, Verdict& v) {
+    VoxelScene t = makeVoxelScene();
+    t.quads.push_back(placedQuad({0.2f, 0.05f, 0.1f}, {0, 1, 0}, {0.27f, 0.23f}, {0.5f, 0.5f, 0.5f}, true));
+    t.emissive.push_back(glm::vec3(0.0f));
+    const Grid g = voxelize(env.ctx, env.shaders, t, frame::VoxelRaster::Centre, true);
+    if (!v.expect(!g.voxels.empty(), "no grid")) return;
+    expectMatchesOracle(v, g, t, env.ctx.ladder("vxgi-atomics").chosen == vk::Rung::Fallback, true);
+    const std::vector<OracleVoxel> lit = voxelizeOnCpu(t.quads, t.emissive, {t.light}, g.box, false);
+    const std::vector<OracleVoxel> shadowed = voxelizeOnCpu(t.quads, t.emissive, {t.light}, g.box, true);
+    size_t darker = 0;
+    for (size_t i = 0; i < lit.size(); ++i)
+        darker += lit[i].count > 0 && !shadowed[i].ambiguous && shadowed[i].count == lit[i].count &&
+                  glm::length(shadowed[i].sum) < 0.5 * glm::length(lit[i].sum);
+    v.expect(darker > 500, "the blocker should shadow many voxels (" + std::to_string(darker) + ")");
+}
+
 // Over the voxel columns along x (inner ones, away from the box's walls): those the wall's rectangle touches at all,
 // those of them holding a wall voxel (the wall's x layer or a neighbour), and untouched ones holding one.
 struct Columns {
@@ -261,6 +284,7 @@ std::vector<Check> vxgiChecks() {
          voxelizeOnRung},
         {"vxgi/rungs agree", "", "one-fragment voxels within 1e-3 relative", rungsAgree},
         {"vxgi/thin wall", "conservative-raster", "no holes, nothing outside the wall's columns", thinWall},
+        {"vxgi/ray-traced shadows", "", "as vxgi/voxelize against the oracle with hard shadows", rayTracedShadows},
     };
 }
 

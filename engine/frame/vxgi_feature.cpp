@@ -33,7 +33,7 @@ void VxgiFeature::setScene(const render::GpuScene& scene) {
     bounds_ = render::sceneBounds(scene.data(), render::meshBounds(scene.data()));
 }
 
-void VxgiFeature::addPasses(FrameContext& f) {
+void VxgiFeature::addPasses(FrameContext& f, const std::optional<passes::VoxelShadowRays>& rays) {
     const VxgiSettings& s = f.settings.vxgi;
     if (s.mode != GiMode::Vxgi) {
         release();  // --gi none holds nothing
@@ -79,6 +79,7 @@ void VxgiFeature::addPasses(FrameContext& f) {
     if (f.settings.vxgi.raster == VoxelRaster::Conservative)
         in.conservative = f.ctx.ladder("conservative-raster").chosen;
     for (uint32_t d = 0; d < 6; ++d) in.directionLevel0[d] = directions_[d].levelStorage[0].value;
+    in.shadowRays = rays;
     std::array<graph::TextureHandle, 6> handles;
     for (uint32_t d = 0; d < 6; ++d) handles[d] = directionHandles_[d];
     f.voxelGrid = passes::addVoxelizePasses(f.graph, f.ctx, f.shaders, in, grid, handles, &f.log);

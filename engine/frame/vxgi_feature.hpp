@@ -31,7 +31,9 @@ public:
     VxgiFeature& operator=(const VxgiFeature&) = delete;
 
     void setScene(const render::GpuScene& scene);
-    void addPasses(FrameContext& f);       // voxelization; nothing unless settings.vxgi.mode == Vxgi
+    // Voxelization; nothing unless settings.vxgi.mode == Vxgi. `rays`: --shadows raytraced's BVH (the lights are
+    // then shadowed by rays, there being no shadow table yet).
+    void addPasses(FrameContext& f, const std::optional<passes::VoxelShadowRays>& rays = std::nullopt);
     void addConeTracing(FrameContext& f);  // after the G-buffer: mips + cone tracing into f.indirectLight
     // The grid of the last frame (RGBA16F, size^3; left in GENERAL layout) or nullptr: tests read it back.
     const vk::Image* grid() const noexcept { return grid_.image.image ? &grid_.image : nullptr; }

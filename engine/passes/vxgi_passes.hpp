@@ -20,6 +20,15 @@ struct VoxelGridBox {
     uint32_t size = 64;
 };
 
+// --shadows raytraced: the BVH the voxelization's shadow rays walk (frame/rt_shadow_feature.hpp builds it), and
+// how many of the lights of nonzero intensity cast (render::shadowCasters).
+struct VoxelShadowRays {
+    uint64_t sceneDesc = 0;  // GpuPtSceneDesc
+    uint32_t casters = 0;
+    uint32_t blasStack = 32, tlasStack = 32;  // the traversal's stack sizes (specialization constants)
+    bool hasAlpha = false;                   // alpha-tested or blended materials: opacity tested along the ray
+};
+
 // vxgi_voxelize.cpp: "vxgi_clear" zeroes the write-conflict accumulators (transient 3D images of the atomic rung's
 // formats), "vxgi_voxelize" rasterizes the scene three times (one orthographic projection per axis; each triangle
 // keeps the fragments of its dominant axis) and adds every fragment's outgoing diffuse radiance to its voxel,
@@ -37,6 +46,7 @@ struct VoxelizeInputs {
     // none: pixel-centre rasterization (thin voxelization).
     std::optional<vk::Rung> conservative;
     std::array<uint32_t, 6> directionLevel0{};  // storage indices of the directional volumes' level-0 views
+    std::optional<VoxelShadowRays> shadowRays;  // --shadows raytraced (then `shadows` has no table yet)
 };
 graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                        const VoxelizeInputs& inputs, graph::TextureHandle grid,

@@ -9,11 +9,13 @@
 // (overestimate) where the device has it, else voxelize.geom's triangle dilation, so thin walls never leak.
 #include "passes/vxgi_passes.hpp"
 
+#include <algorithm>
 #include <memory>
 #include <stdexcept>
 
 #include "passes/rendering.hpp"
 #include "passes/vxgi_gl_accumulate.hpp"
+#include "shared/pt_wavefront.h"
 #include "shared/vxgi_types.h"
 
 namespace idk::passes {
@@ -92,6 +94,7 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
     const graph::BufferHandle table = in.shadows.table;
     const VoxelGridBox box = in.box;
     const std::optional<vk::Rung> conservative = in.conservative;
+    const std::optional<VoxelShadowRays> rays = in.shadowRays;
     graph.addPass(
         "vxgi_voxelize",
         [&](graph::PassBuilder& b) {
@@ -117,7 +120,7 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             if (s.colors.valid()) b.read(s.colors, graph::Access::StorageRead, kVs);
             if (s.uv1.valid()) b.read(s.uv1, graph::Access::StorageRead, kVs);
         },
-        [&ctx, &shaders, s, frame, table, box, acc, mode, conservative, log, gl](graph::PassContext& pc) {
+        [&ctx, &shaders, s, frame, table, box, acc, mode, conservative, rays, log, gl](graph::PassContext& pc) {
             if (s.drawCount == 0) return;
             VkCommandBuffer cmd = pc.commandBuffer();
             // No attachments: the fragments' only output is their atomics (the render area sets the raster grid).
@@ -135,6 +138,10 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             desc.depthWrite = false;
             desc.cull = VK_CULL_MODE_NONE;  // both faces: a wall seen from behind in the projection still fills
             desc.pushBytes = sizeof(gpu::VoxelizePush);
+            if (rays)
+                desc.spec = {{gpu::kSpecPtHasAlpha, rays->hasAlpha ? 1u : 0u},
+                             {gpu::kSpecPtStackSize, std::max(rays->blasStack, 1u)},
+                             {gpu::kSpecPtTlasStackSize, std::max(rays->tlasStack, 1u)}};
             vk::bindPipeline(cmd, shaders.graphics(desc));
             ctx.bindless().bind(cmd);
             gpu::VoxelizePush push{};
@@ -146,6 +153,10 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             push.colors = s.colors.valid() ? pc.buffer(s.colors).address : 0;
             push.uv1 = s.uv1.valid() ? pc.buffer(s.uv1).address : 0;
             push.pointShadows = table.valid() ? pc.buffer(table).address : 0;
+            if (rays && rays->casters > 0) {  // the BVH and its scene are static buffers, read by address
+                push.pointShadows = rays->sceneDesc;
+                push.rayShadows = rays->casters;
+            }
             push.gridMin = box.gridMin;
             push.voxelSize = box.voxelSize;
             push.gridSize = box.size;

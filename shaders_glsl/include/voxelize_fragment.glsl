@@ -1,7 +1,7 @@
 // voxelize_fragment.glsl: the fragment side of voxelization shared by the atomic rungs (voxelize_float.frag,
 // voxelize_uint.frag): keeps a fragment only in the draw of its triangle's dominant axis (so each triangle is
 // rasterized once, in the projection where it covers the most voxels), evaluates the material and the radiance
-// the surface leaves diffusely (every punctual light times its shadow: cube, cascades or spot map; times
+// the surface leaves diffusely (every punctual light times its shadow: cube, cascades, spot map or a shadow ray; times
 // albedo / pi, plus emission) on each side it radiates from, and finds its voxel. Ports IDKEngine's VXGI/Voxelize fragment shader, without its fudge terms (0.02 albedo ambient):
 // the voxel holds exactly the outgoing diffuse radiance of first-bounce light, which the cone tracer gathers.
 #ifndef IDK_VOXELIZE_FRAGMENT_GLSL
@@ -16,6 +16,11 @@
 #include "rt_shadow_types.h"
 #include "vxgi_types.h"
 #include "voxel_images.glsl"
+// --shadows raytraced: shadow rays through the path tracer's BVH (the mask pass's traversal; our BVH on every
+// rung: a GPU with VK_KHR_ray_query would trace these with it, as rt_shadows/mask_rq does).
+#define WF_CUSTOM_PUSH
+#include "../pathtrace/wf_stage_spec.h"
+#include "../pathtrace/wf_trace.h"
 
 layout(push_constant, scalar) uniform Push { VoxelizePush p; };
 
@@ -75,7 +80,11 @@ bool voxelFragment(out ivec3 voxel, out vec3 radiance, out vec4 facing) {
     } else {
         GpuFrame f = FrameBuffer(p.frame).frame;
         LightBuffer lights = LightBuffer(f.lights);
+        uint caster = 0u;  // render::shadowCasters: lights of nonzero intensity, in order
         for (uint i = 0; i < f.lightCount; ++i) {
+            bool casts = any(greaterThan(lights.data[i].intensity, vec3(0.0)));
+            bool rayShadowed = casts && caster < p.rayShadows;
+            if (casts) ++caster;
             vec3 l;
             vec3 incident = lightIncidence(lights.data[i], inWorldPosition, l);
             // A double-sided surface is lit on whichever side faces the light; a single-sided one on its front.
@@ -84,7 +93,16 @@ bool voxelFragment(out ivec3 voxel, out vec3 radiance, out vec4 facing) {
             float cosine = max(dot(side, l), 0.0);
             if (cosine <= 0.0) continue;
             float visibility = 1.0;
-            if (p.pointShadows != 0) {
+            if (rayShadowed) {
+                // One hard shadow ray from the fragment (offset off its plane by the mask pass's relative 1e-4)
+                // to the light; a sphere light's soft shadow is left to the screen-space mask.
+                vec3 origin = inWorldPosition + side * (1e-4 * max(1.0, length(inWorldPosition)));
+                bool directional = lights.data[i].type == kLightDirectional;
+                float tMax = directional ? 1e30 : distance(origin, lights.data[i].position);
+                GpuPtSceneDesc scene = WfSceneRef(p.pointShadows).d;
+                uint salt = wfHash(floatBitsToUint(inWorldPosition.x) ^ wfHash(floatBitsToUint(inWorldPosition.z) + i));
+                if (wfOccluded(scene, origin, l, tMax, salt)) visibility = 0.0;
+            } else if (p.pointShadows != 0 && p.rayShadows == 0u) {
                 GpuPointShadow s = PointShadowBuffer(p.pointShadows).data[i];
                 // As shadeSurface: a light with maps (directional cascades, spot) stores its 2D-array index in
                 // `cube`; ray-traced masks are per screen pixel and mean nothing here (such lights stay unshadowed).

@@ -45,7 +45,8 @@ struct VoxelizePush {
     DeviceAddress materials;     // GpuMaterial[]
     DeviceAddress colors;        // vec4[] per vertex, 0: none
     DeviceAddress uv1;           // vec2[] per vertex, 0: none
-    DeviceAddress pointShadows;  // GpuPointShadow[lightCount], 0: no light casts one
+    DeviceAddress pointShadows;  // GpuPointShadow[lightCount], 0: no light casts one; with rayShadows > 0 the
+                                 // ray-traced shadows' scene instead (GpuPtSceneDesc: our BVH)
     vec3 gridMin;                // world position of the grid's corner
     float voxelSize;             // world size of one voxel (the grid is a cube of gridSize voxels per side)
     uint gridSize;
@@ -53,8 +54,11 @@ struct VoxelizePush {
     uint accum[8];               // bindless storage indices: r, g, b, the facing's 4 (kVoxelAccumFacing) and the
                                  // count for kVoxelAtomicsFloatAdd (kVoxelAccumCount); kVoxelAtomicsGlRecords:
                                  // [0] the record buffer's storage-buffer index, [1] its capacity in records
+    uint rayShadows;             // --shadows raytraced: the first rayShadows lights of nonzero intensity (the
+                                 // mask pass's casters) are shadowed by a ray through the BVH; 0: by the table
+    uint pad;
 };
-IDK_GPU_SIZE(VoxelizePush, 120);
+IDK_GPU_SIZE(VoxelizePush, 128);  // Vulkan's guaranteed push-constant size: nothing more fits
 
 // merge.comp: accumulators -> the RGBA16F grid (rgb radiance, alpha coverage, seen from every side) and level 0 of
 // the six directional volumes (the voxel seen travelling along +x -x +y -y +z -z: vxgiVoxelTowards).

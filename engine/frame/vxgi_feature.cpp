@@ -2,6 +2,7 @@
 #include "frame/vxgi_feature.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "render/draw_bounds.hpp"
 #include "vk/check.hpp"
@@ -16,6 +17,18 @@ passes::VoxelGridBox fitVoxelGrid(const scene::Aabb& bounds, uint32_t n) {
     const float side = std::max({extent.x, extent.y, extent.z, 1e-3f}) * float(n) / float(n - 1);
     box.voxelSize = side / float(n);
     box.gridMin = (bounds.min + bounds.max) * 0.5f - glm::vec3(side * 0.5f);
+    return box;
+}
+
+float voxelGridStep(const passes::VoxelGridBox& box) {
+    return box.voxelSize * float(std::max(box.size / 8u, 1u));
+}
+
+passes::VoxelGridBox followCamera(const passes::VoxelGridBox& fit, glm::vec3 camera) {
+    passes::VoxelGridBox box = fit;
+    const double step = double(voxelGridStep(fit));
+    const double half = 0.5 * double(fit.voxelSize) * double(fit.size);
+    for (int a = 0; a < 3; ++a) box.gridMin[a] = float(std::floor((double(camera[a]) - half) / step) * step);
     return box;
 }
 
@@ -57,6 +70,7 @@ void VxgiFeature::addPasses(FrameContext& f, const std::optional<passes::VoxelSh
         sampler_ = ctx_.bindless().addSampler(sampler);
     }
     box_ = fitVoxelGrid(bounds_, s.voxels);
+    if (s.grid == VoxelGridPlacement::Camera) box_ = followCamera(box_, f.camera.position);
 
     // The grid ends each frame in GENERAL (storage) where the merge and the mip passes used it; tests read it
     // back from there. The directional mips end where the cone tracer sampled them.

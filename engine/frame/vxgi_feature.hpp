@@ -2,7 +2,8 @@
 // volumes (created only while --gi vxgi is on, re-created when the size changes) whose cube fits the scene's
 // bounds; adds the voxelization passes before the G-buffer and the mip + cone-tracing passes after it
 // (passes/vxgi_passes.hpp); fills FrameContext::voxelGrid / voxelBox / indirectLight. Ports IDKEngine's
-// VXGI/Voxelizer.cs (its grid box is set by hand or follows the camera; here it fits the scene).
+// VXGI/Voxelizer.cs (its grid box is set by hand or follows the camera; here it fits the scene or follows the camera
+// in quantised steps, --gi-grid).
 #pragma once
 #include "frame/frame_context.hpp"
 #include "frame/voxel_volume.hpp"
@@ -22,6 +23,13 @@ namespace idk::frame {
 // margin on each side so that surfaces on the bounds lie on voxel centres, not on voxel faces. (The cone tracer
 // samples with clamp-to-edge, so a wall on the bounds does not fade into the border at coarse levels.)
 passes::VoxelGridBox fitVoxelGrid(const scene::Aabb& bounds, uint32_t n);
+
+// --gi-grid camera: `fit`'s cube (its size and voxel size) centred on `camera`, its corner snapped down to a whole
+// multiple of the step (fit.size / 8 voxels, the coarsest cell the cones read; vxgiMarchNext's lod cap), computed
+// in double from the world origin so that equal steps give equal corners.
+passes::VoxelGridBox followCamera(const passes::VoxelGridBox& fit, glm::vec3 camera);
+// The step (world units) the camera-following grid moves by.
+float voxelGridStep(const passes::VoxelGridBox& box);
 
 class VxgiFeature {
 public:

@@ -139,6 +139,11 @@ std::vector<SettingOption> buildTable() {
                  OptionKind::Choice, 0.0, 0.0, {"fit", "camera"},
                  [](const RenderSettings& s) { return double(s.vxgi.grid); },
                  [](RenderSettings& s, double v) { s.vxgi.grid = frame::VoxelGridPlacement(v); }});
+    t.push_back({"--gi-voxel-draws", "Global illumination", "voxel draws",
+                 "VXGI voxelization: three draws (one per axis) or single (a geometry shader picks each triangle's axis)",
+                 OptionKind::Choice, 0.0, 0.0, {"three", "single"},
+                 [](const RenderSettings& s) { return double(s.vxgi.draws); },
+                 [](RenderSettings& s, double v) { s.vxgi.draws = frame::VoxelDraws(v); }});
     // Directional cascades and spot maps (frame/point_shadow_feature.cpp, render/light_shadow_maps.hpp).
     t.push_back({"--shadow-cascades", "Shadows", "cascades", "cascaded shadow maps per directional light",
                  OptionKind::Integer, 1.0, 4.0, {},

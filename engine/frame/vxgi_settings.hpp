@@ -18,6 +18,10 @@ enum class VoxelRaster : uint8_t { Conservative, Centre };
 // level the cones read shifts by whole cells too; the original's quantised follow).
 enum class VoxelGridPlacement : uint8_t { Fit, Camera };
 
+// How voxelization projects triangles: Three draws, one per axis, each keeping its axis's triangles (IDKEngine's
+// measured-fastest fallback), or a Single draw whose geometry shader projects each triangle along its dominant axis.
+enum class VoxelDraws : uint8_t { Three, Single };
+
 struct VxgiSettings {
     GiMode mode = GiMode::None;  // None: nothing allocated, compiled or dispatched
     uint32_t voxels = 128;       // grid size per side (64..512)
@@ -25,6 +29,7 @@ struct VxgiSettings {
     float stepFactor = 0.5f;     // cone march step in sampled cells (sampling only: opacity is step-corrected)
     VoxelRaster raster = VoxelRaster::Conservative;
     VoxelGridPlacement grid = VoxelGridPlacement::Fit;
+    VoxelDraws draws = VoxelDraws::Three;
 };
 
 }  // namespace idk::frame

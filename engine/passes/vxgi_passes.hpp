@@ -47,6 +47,7 @@ struct VoxelizeInputs {
     std::optional<vk::Rung> conservative;
     std::array<uint32_t, 6> directionLevel0{};  // storage indices of the directional volumes' level-0 views
     std::optional<VoxelShadowRays> shadowRays;  // --shadows raytraced (then `shadows` has no table yet)
+    bool singleDraw = false;  // one draw, a geometry shader projects each triangle along its dominant axis
 };
 graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                        const VoxelizeInputs& inputs, graph::TextureHandle grid,

@@ -95,6 +95,7 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
     const VoxelGridBox box = in.box;
     const std::optional<vk::Rung> conservative = in.conservative;
     const std::optional<VoxelShadowRays> rays = in.shadowRays;
+    const bool singleDraw = in.singleDraw;
     graph.addPass(
         "vxgi_voxelize",
         [&](graph::PassBuilder& b) {
@@ -120,7 +121,8 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             if (s.colors.valid()) b.read(s.colors, graph::Access::StorageRead, kVs);
             if (s.uv1.valid()) b.read(s.uv1, graph::Access::StorageRead, kVs);
         },
-        [&ctx, &shaders, s, frame, table, box, acc, mode, conservative, rays, log, gl](graph::PassContext& pc) {
+        [&ctx, &shaders, s, frame, table, box, acc, mode, conservative, rays, singleDraw, log,
+         gl](graph::PassContext& pc) {
             if (s.drawCount == 0) return;
             VkCommandBuffer cmd = pc.commandBuffer();
             // No attachments: the fragments' only output is their atomics (the render area sets the raster grid).
@@ -134,6 +136,7 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
                 desc.geometry = vk::ShaderId::vxgi_voxelize_geom;
                 desc.fragment = fragmentShader(mode, true);
             }
+            if (singleDraw && !desc.geometry) desc.geometry = vk::ShaderId::vxgi_voxelize_axis_geom;
             desc.depthTest = false;
             desc.depthWrite = false;
             desc.cull = VK_CULL_MODE_NONE;  // both faces: a wall seen from behind in the projection still fills
@@ -166,10 +169,12 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
                 push.accum[1] = gl->capacity();
             }
             vkCmdBindIndexBuffer(cmd, pc.vkBuffer(s.indices), 0, VK_INDEX_TYPE_UINT32);
-            // Three draws, one per projection axis (IDKEngine's measured-fastest fallback): a real GPU with
-            // VK_NV_geometry_shader_passthrough + VK_NV_viewport_swizzle would do it in one.
-            for (uint32_t axis = 0; axis < 3; ++axis) {
-                push.axis = axis;
+            // Three draws, one per projection axis (IDKEngine's measured-fastest fallback), or one whose geometry
+            // shader picks each triangle's axis: a real GPU with VK_NV_geometry_shader_passthrough +
+            // VK_NV_viewport_swizzle would do the single draw without re-emitting the triangles.
+            const uint32_t draws = singleDraw ? 1 : 3;
+            for (uint32_t axis = 0; axis < draws; ++axis) {
+                push.axis = singleDraw ? gpu::kVoxelAxisDominant : axis;
                 vk::pushConstants(cmd, ctx, push);
                 vkCmdDrawIndexedIndirect(cmd, pc.vkBuffer(s.drawCommands), 0, s.drawCount,
                                          sizeof(VkDrawIndexedIndirectCommand));

@@ -16,6 +16,7 @@
 #include "rt_shadow_types.h"
 #include "vxgi_types.h"
 #include "voxel_images.glsl"
+#include "voxelize_projection.glsl"
 // --shadows raytraced: shadow rays through the path tracer's BVH (the mask pass's traversal; our BVH on every
 // rung: a GPU with VK_KHR_ray_query would trace these with it, as rt_shadows/mask_rq does).
 #define WF_CUSTOM_PUSH
@@ -35,12 +36,6 @@ layout(location = 6) in vec2 inUv1;
 layout(location = 7) flat in vec4 inBounds;  // voxelize.geom's dilated triangle: its original NDC bounds + 1/2 pixel
 #endif
 
-// Dominant axis of a plane's normal: the largest |component|, the lower axis on ties (the CPU oracle's rule).
-uint dominantAxis(vec3 n) {
-    vec3 a = abs(n);
-    if (a.x >= a.y && a.x >= a.z) return 0u;
-    return a.y >= a.z ? 1u : 2u;
-}
 
 float luminanceOf(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
@@ -58,7 +53,7 @@ bool voxelFragment(out ivec3 voxel, out vec3 radiance, out vec4 facing) {
     voxel = ivec3(0);
     radiance = vec3(0.0);
     facing = vec4(0.0);
-    if (dominantAxis(geometric) != p.axis) return false;
+    if (p.axis != kVoxelAxisDominant && dominantAxis(geometric) != p.axis) return false;
 #ifdef IDK_VOXELIZE_DILATED
     // Keep a pixel only where its square overlaps the triangle's bounds: cuts the dilation's overshoot at sharp
     // corners. The viewport is the plain N x N one (no y flip), so NDC = pixel / N * 2 - 1.

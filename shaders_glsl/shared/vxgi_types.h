@@ -36,7 +36,9 @@ IDK_CONST(uint, kVoxelAccumFacing, 3u);
 IDK_CONST(uint, kVoxelAccumCount, 7u);
 IDK_CONST(float, kVoxelFacingBias, 2.0f);  // r32ui rung: facing + 2 is positive, so its float bits order like it
 
-// voxelize.vert / voxelize_*.frag: one draw per projection axis (0 x, 1 y, 2 z).
+// voxelize.vert / voxelize_*.frag: one draw per projection axis (0 x, 1 y, 2 z), or one draw with axis
+// kVoxelAxisDominant whose geometry shader projects each triangle along its own dominant axis (--gi-voxel-draws).
+IDK_CONST(uint, kVoxelAxisDominant, 3u);
 struct VoxelizePush {
     DeviceAddress frame;         // GpuFrame (lights)
     DeviceAddress vertices;      // GpuVertex[]
@@ -50,7 +52,7 @@ struct VoxelizePush {
     vec3 gridMin;                // world position of the grid's corner
     float voxelSize;             // world size of one voxel (the grid is a cube of gridSize voxels per side)
     uint gridSize;
-    uint axis;                   // this draw's projection axis
+    uint axis;                   // this draw's projection axis, or kVoxelAxisDominant
     uint accum[8];               // bindless storage indices: r, g, b, the facing's 4 (kVoxelAccumFacing) and the
                                  // count for kVoxelAtomicsFloatAdd (kVoxelAccumCount); kVoxelAtomicsGlRecords:
                                  // [0] the record buffer's storage-buffer index, [1] its capacity in records

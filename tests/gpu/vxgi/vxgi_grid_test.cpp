@@ -6,6 +6,9 @@
 //    of the overlap equals the one 8 voxels over in the first grid (occupancy exactly; rgb within one fp16 step:
 //    the fragments' world positions are interpolated from a corner that differs in its last float bits);
 //  * --gi-grid fit does not move with the camera.
+//  * --gi-voxel-draws single (one draw, a geometry shader projects each triangle along its dominant axis) gives the
+//    three-draw grid: same occupancy, rgba within one fp16 step, with centre raster and with the dilating geometry
+//    shader (conservative raster's fallback rung; the native rung where the device has it).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -51,14 +54,17 @@ Grid render(render::Renderer& r, vk::Context& ctx, glm::vec3 position) {
     return g;
 }
 
-render::RenderSettings gridSettings(frame::VoxelGridPlacement placement) {
+render::RenderSettings gridSettings(frame::VoxelGridPlacement placement,
+                                    frame::VoxelRaster raster = frame::VoxelRaster::Centre,
+                                    frame::VoxelDraws draws = frame::VoxelDraws::Three) {
     render::RenderSettings s;
     s.output = render::OutputKind::Hdr;
     s.pointShadows.maxLights = 0;
     s.vxgi.mode = frame::GiMode::Vxgi;
     s.vxgi.voxels = kVoxels;
-    s.vxgi.raster = frame::VoxelRaster::Centre;
+    s.vxgi.raster = raster;
     s.vxgi.grid = placement;
+    s.vxgi.draws = draws;
     return s;
 }
 
@@ -121,6 +127,34 @@ TEST_F(VxgiGridTest, FitGridIgnoresTheCamera) {
     const Grid c = render(rc, ctx(), a.box.gridMin + glm::vec3(0.5f * a.box.voxelSize * float(kVoxels)));
     for (int k = 0; k < 3; ++k) EXPECT_LE(std::abs(c.box.gridMin[k] - a.box.gridMin[k]), frame::voxelGridStep(a.box));
     EXPECT_EQ(c.box.voxelSize, a.box.voxelSize);
+}
+
+TEST_F(VxgiGridTest, SingleDrawGivesTheThreeDrawGrid) {
+    for (frame::VoxelRaster raster : {frame::VoxelRaster::Centre, frame::VoxelRaster::Conservative}) {
+        Grid grids[2];
+        for (int single = 0; single < 2; ++single) {
+            render::Renderer r(ctx(), shaders(),
+                               gridSettings(frame::VoxelGridPlacement::Fit, raster,
+                                            single ? frame::VoxelDraws::Single : frame::VoxelDraws::Three));
+            r.setScene(gridScene());
+            grids[single] = render(r, ctx(), glm::vec3(0.1f, 0.2f, 0.3f));
+        }
+        const char* what = raster == frame::VoxelRaster::Centre ? "centre raster" : "conservative raster";
+        ASSERT_EQ(grids[0].voxels.size(), grids[1].voxels.size());
+        size_t occupied = 0, occupancyDiff = 0, valueDiff = 0;
+        for (size_t i = 0; i < grids[0].voxels.size(); ++i) {
+            const glm::vec4 &a = grids[0].voxels[i], &b = grids[1].voxels[i];
+            occupied += a.a > 0.0f;
+            if ((a.a > 0.0f) != (b.a > 0.0f)) {
+                ++occupancyDiff;
+                continue;
+            }
+            for (int k = 0; k < 4; ++k) valueDiff += std::abs(a[k] - b[k]) > 1e-3f * std::abs(a[k]) + 1e-6f;
+        }
+        EXPECT_GT(occupied, 5000u) << what;
+        EXPECT_EQ(occupancyDiff, 0u) << what;
+        EXPECT_EQ(valueDiff, 0u) << what;
+    }
 }
 
 }  // namespace

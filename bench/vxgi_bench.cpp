@@ -12,6 +12,10 @@
 //    pt_extrapolated = 1); pt_time_ratio = that time / the frame's time.
 // BM_VxgiCornell/N: one rasterized frame with --gi vxgi at N^3 voxels (warm renderer: the voxelization, mips and
 // cone tracing run every frame), GPU pass times as counters. BM_VxgiCornellOff: the same frame with --gi none.
+// BM_VxgiVoxelizeDraws/D: the Cornell frame at 64^3 voxelized by three draws (D = 0, one per axis) or one draw whose
+// geometry shader projects each triangle along its dominant axis (D = 1): the two rasterisation strategies lavapipe
+// runs (pass_ms.vxgi_voxelize); the native form of the single draw (VK_NV_geometry_shader_passthrough +
+// VK_NV_viewport_swizzle) is not written.
 // BM_VxgiPathTraced/S: the path tracer at S spp and the reference's depth (the peer: the time for its own error).
 // BM_VxgiShared/K/N, BM_VxgiSharedOff/K, BM_VxgiSharedPathTraced/K/S: the same three on shared scene K
 // (../shared/scenes, default camera, no texture streaming in either renderer): 0 EmissiveStrengthTest (emitters
@@ -135,7 +139,7 @@ core::ImageRgba32f rasterDirect(const scene::Scene& scene) {
 }
 
 void rasterFrames(benchmark::State& state, int k, frame::GiMode gi, uint32_t voxels, const char* settingsText,
-                  const std::string& peer) {
+                  const std::string& peer, frame::VoxelDraws draws = frame::VoxelDraws::Three) {
     if (!requireDevice(state)) return;
     scene::Scene scene = loadScene(k);
     const Reference& ref = reference(k, scene);
@@ -144,6 +148,7 @@ void rasterFrames(benchmark::State& state, int k, frame::GiMode gi, uint32_t vox
     settings.output = render::OutputKind::Hdr;
     settings.vxgi.mode = gi;
     settings.vxgi.voxels = voxels;
+    settings.vxgi.draws = draws;
     context()->clearConsultedLadders();
     double gpuMs = 0.0, error = 0.0, indirect = 0.0, wallMs = 0.0;
     std::map<std::string, double> passMs;
@@ -187,6 +192,16 @@ void BM_VxgiCornell(benchmark::State& state) {
     rasterFrames(state, -1, frame::GiMode::Vxgi, voxels, text.c_str(), "BM_VxgiPathTraced/4");
 }
 BENCHMARK(BM_VxgiCornell)->Arg(64)->Arg(128)->Arg(256)->UseRealTime()->MinTime(0.5)->Unit(benchmark::kMillisecond);
+
+void BM_VxgiVoxelizeDraws(benchmark::State& state) {
+    const bool single = state.range(0) == 1;
+    const std::string text = std::string("--gi vxgi --voxels 64 --gi-voxel-draws ") + (single ? "single" : "three") +
+                             ", 1 frame, warm (pass_ms.vxgi_voxelize: the rasterisation strategy)";
+    rasterFrames(state, -1, frame::GiMode::Vxgi, 64, text.c_str(),
+                 single ? "BM_VxgiVoxelizeDraws/0" : "BM_VxgiVoxelizeDraws/1",
+                 single ? frame::VoxelDraws::Single : frame::VoxelDraws::Three);
+}
+BENCHMARK(BM_VxgiVoxelizeDraws)->Arg(0)->Arg(1)->UseRealTime()->MinTime(0.5)->Unit(benchmark::kMillisecond);
 
 void BM_VxgiCornellOff(benchmark::State& state) {
     rasterFrames(state, -1, frame::GiMode::None, 64, "--gi none (SH9 + split-sum ambient), 1 frame, warm",

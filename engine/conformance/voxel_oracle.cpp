@@ -27,24 +27,59 @@ int dominantAxis(const glm::dvec3& n) {
     return a.y >= a.z ? 1 : 2;
 }
 
+// The radiance a fragment of quad q at p leaves (the brighter side's) and its facing, as voxelize_fragment.glsl.
+// With `occluders`: whether the segment p -> light is blocked by one of them (true), and `tie` set when it passes
+// within `margin` of an occluder's edge (the GPU's float ray decides those).
+bool blocked(const std::vector<PlacedQuad>& occluders, const glm::dvec3& p, const glm::dvec3& l, double dist,
+             double margin, bool& tie) {
+    bool hit = false;
+    for (const PlacedQuad& q : occluders) {
+        const glm::dvec3 n = glm::normalize(glm::dvec3(q.normal));
+        const double dn = glm::dot(l, n);
+        if (std::abs(dn) < 1e-12) continue;
+        const double t = glm::dot(glm::dvec3(q.centre) - p, n) / dn;
+        if (t <= 1e-6 || t >= dist - 1e-6) continue;
+        glm::dvec3 ax, ay;
+        quadAxes(n, ax, ay);
+        const glm::dvec3 r = p + l * t - glm::dvec3(q.centre);
+        const double ex = double(q.halfSize.x) - std::abs(glm::dot(r, ax));
+        const double ey = double(q.halfSize.y) - std::abs(glm::dot(r, ay));
+        if (std::abs(ex) < margin || std::abs(ey) < margin) tie = true;
+        hit = hit || (ex > 0.0 && ey > 0.0);
+    }
+    return hit;
+}
+
 glm::dvec3 radiance(const PlacedQuad& q, const glm::dvec3& n, const glm::dvec3& p, const glm::dvec3& emission,
-                    const std::vector<OracleLight>& lights) {
-    glm::dvec3 sum(0.0);
+                    const std::vector<OracleLight>& lights, glm::dvec4& facing,
+                    const std::vector<PlacedQuad>* occluders, double margin, bool& tie) {
+    glm::dvec3 front(0.0), back(0.0);
     for (const OracleLight& light : lights) {
         glm::dvec3 d = light.position - p;
         double d2 = glm::dot(d, d);
         glm::dvec3 l = d / std::sqrt(d2);
+        if (occluders && blocked(*occluders, p, l, std::sqrt(d2), margin, tie)) continue;
         double c = glm::dot(n, l);
-        if (q.doubleSided) c = std::abs(c);
-        if (c > 0.0) sum += light.intensity * (c / d2);
+        if (c > 0.0) front += light.intensity * (c / d2);
+        else if (q.doubleSided && c < 0.0) back += light.intensity * (-c / d2);
     }
-    return glm::dvec3(q.baseColor) / kPi * sum + emission;
+    front = glm::dvec3(q.baseColor) / kPi * front + emission;
+    back = glm::dvec3(q.baseColor) / kPi * back + (q.doubleSided ? emission : glm::dvec3(0.0));
+    const glm::dvec3 y(0.2126, 0.7152, 0.0722);
+    const double lf = glm::dot(front, y), lb = glm::dot(back, y);
+    if (lb > lf) {
+        facing = glm::dvec4(-n, lf / lb);
+        return back;
+    }
+    facing = glm::dvec4(n, lf > 0.0 ? lb / lf : (q.doubleSided ? 1.0 : 0.0));
+    return front;
 }
 
 }  // namespace
 
 std::vector<OracleVoxel> voxelizeOnCpu(const std::vector<PlacedQuad>& quads, const std::vector<glm::vec3>& emissive,
-                                       const std::vector<OracleLight>& lights, const passes::VoxelGridBox& box) {
+                                       const std::vector<OracleLight>& lights, const passes::VoxelGridBox& box,
+                                       bool shadowed) {
     const int n = int(box.size);
     const double v = box.voxelSize;
     const glm::dvec3 gmin(box.gridMin);
@@ -84,8 +119,16 @@ std::vector<OracleVoxel> voxelizeOnCpu(const std::vector<PlacedQuad>& quads, con
                     o.ambiguous = true;
                     continue;
                 }
-                glm::dvec3 value = radiance(q, nrm, p, emission, lights);
+                glm::dvec4 facing;
+                bool shadowTie = false;
+                glm::dvec3 value =
+                    radiance(q, nrm, p, emission, lights, facing, shadowed ? &quads : nullptr, 1e-3 * v, shadowTie);
+                if (shadowTie) {
+                    o.ambiguous = true;
+                    continue;
+                }
                 o.sum += value;
+                o.facing += facing;
                 o.max = glm::max(o.max, value);
                 ++o.count;
             }
@@ -94,8 +137,8 @@ std::vector<OracleVoxel> voxelizeOnCpu(const std::vector<PlacedQuad>& quads, con
     return grid;
 }
 
-std::vector<glm::vec4> readVoxelGrid(vk::Context& ctx, const vk::Image& grid) {
-    const std::vector<uint8_t> bytes = vk::readbackImage(ctx, grid, VK_IMAGE_LAYOUT_GENERAL);  // RGBA16F, x fastest
+std::vector<glm::vec4> readVoxelGrid(vk::Context& ctx, const vk::Image& grid, VkImageLayout layout) {
+    const std::vector<uint8_t> bytes = vk::readbackImage(ctx, grid, layout);  // RGBA16F level 0, x fastest
     std::vector<uint16_t> halves(bytes.size() / sizeof(uint16_t));
     std::memcpy(halves.data(), bytes.data(), halves.size() * sizeof(uint16_t));
     std::vector<glm::vec4> out(halves.size() / 4);

@@ -2,9 +2,10 @@
 // voxelization passes. It does what the GPU does, exactly: each quad is projected along the dominant axis of its
 // normal onto the grid's N x N raster; every voxel-centre sample inside the quad gives one "fragment" at the
 // quad's point there, whose voxel is found along the axis; the fragment carries the outgoing diffuse radiance of
-// the quad at that point (albedo / pi times each unshadowed point light's irradiance, plus emission). Samples
+// the quad at that point (albedo / pi times each point light's irradiance, plus emission; for a double-sided quad
+// the brighter side's) and its facing (shared/vxgi_types.h, as the voxelization shader computes it). Samples
 // within 1e-4 voxel of a quad edge or of a voxel face along the axis are "ambiguous" (the GPU's tie rules decide
-// them) and mark their voxels so the comparison leaves them out.
+// them) and mark their voxels so the comparison leaves them out. Unshadowed unless asked (see voxelizeOnCpu).
 #pragma once
 #include <glm/glm.hpp>
 
@@ -19,6 +20,7 @@ namespace idk::conformance {
 struct OracleVoxel {
     glm::dvec3 sum{0.0};
     glm::dvec3 max{0.0};
+    glm::dvec4 facing{0.0};  // sum of the fragments' facings
     uint32_t count = 0;
     bool ambiguous = false;
 };
@@ -28,12 +30,16 @@ struct OracleLight {
     glm::dvec3 intensity{0.0};  // colour * candela
 };
 
-// quads[i] with emission emissive[i] (linear radiance; missing entries: none).
+// quads[i] with emission emissive[i] (linear radiance; missing entries: none). `shadowed`: each light is blocked
+// where a quad lies between the fragment and it (hard shadows, as the voxelization's shadow rays); a ray that
+// passes within 1e-3 voxel of a quad's edge marks its voxel ambiguous.
 std::vector<OracleVoxel> voxelizeOnCpu(const std::vector<PlacedQuad>& quads, const std::vector<glm::vec3>& emissive,
-                                       const std::vector<OracleLight>& lights, const passes::VoxelGridBox& box);
+                                       const std::vector<OracleLight>& lights, const passes::VoxelGridBox& box,
+                                       bool shadowed = false);
 
-// The RGBA16F voxel grid a frame left in GENERAL layout (level 0), as RGBA floats, x fastest; the GPU side of
-// every comparison with the oracle (the registry's vxgi checks and the gl-interop rung's tests).
-std::vector<glm::vec4> readVoxelGrid(vk::Context& ctx, const vk::Image& grid);
+// The RGBA16F voxel grid a frame left in `layout` (GENERAL for the grid; level 0), as RGBA floats, x fastest; the
+// GPU side of every comparison with the oracle (the registry's vxgi checks and the gl-interop rung's tests).
+std::vector<glm::vec4> readVoxelGrid(vk::Context& ctx, const vk::Image& grid,
+                                     VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL);
 
 }  // namespace idk::conformance

@@ -6,8 +6,13 @@
 //  * "vxgi/voxelize" on each rung of "vxgi-atomics": occupancy agrees with the oracle on >= 99.5% of the voxels
 //    either marks (the oracle's tie-free design makes it 100% here); each occupied voxel's rgb is the oracle's MEAN
 //    of its fragments (native: float atomic add + count; gl-interop: fragment records added by GL float atomics,
-//    merged by Vulkan) or MAX (fallback: three r32ui + max) within 0.2% (+1e-5); empty voxels are all-zero.
-//  * "vxgi/rungs agree": both rungs give the same grid (within 1e-3 relative) on the voxels holding one fragment.
+//    merged by Vulkan) or MAX (fallback: r32ui + max) within 0.2% (+1e-5); on one-fragment voxels the six
+//    directional level-0 voxels are the oracle's radiance seen by its quad's facing (one-sided ceiling: dark from
+//    above) within the same tolerance; empty voxels are all-zero in the grid and the directional volumes.
+//  * "vxgi/rungs agree": both rungs give the same grid and directional level 0 (within 1e-3 relative) on the
+//    voxels holding one fragment.
+//  * "vxgi/ray-traced shadows": with --shadows raytraced, the scene plus a blocker over the floor against the oracle
+//    with hard shadows (the voxelization's shadow rays through the BVH), as "vxgi/voxelize" on the chosen rung.
 //  * "vxgi/thin wall" on each rung of "conservative-raster" (native VK_EXT_conservative_rasterization, fallback
 //    geometry-shader dilation): a wall one voxel thin whose edges stop inside voxels: every voxel column along its
 //    normal that the wall touches holds a wall voxel (no holes), and no column it does not touch does; centre
@@ -20,7 +25,9 @@
 
 #include "conformance/conformance.hpp"
 #include "conformance/voxel_oracle.hpp"
+#include "graph/barrier_planner.hpp"
 #include "render/renderer.hpp"
+#include "shared/vxgi_cone.h"
 #include "vk/transfer.hpp"
 
 namespace idk::conformance {
@@ -65,15 +72,18 @@ scene::Scene toScene(const VoxelScene& t) {
 
 struct Grid {
     std::vector<glm::vec4> voxels;  // empty when the frame made no grid
+    std::array<std::vector<glm::vec4>, 6> directions;  // level 0 of the directional volumes (+x -x +y -y +z -z)
     passes::VoxelGridBox box;
 };
 
 // One 16x16 HDR frame with VXGI on (its voxelization runs the context's chosen rungs), no shadows (the oracle has
 // none); the grid read back.
-Grid voxelize(vk::Context& ctx, vk::ShaderLibrary& shaders, const VoxelScene& t, frame::VoxelRaster raster) {
+Grid voxelize(vk::Context& ctx, vk::ShaderLibrary& shaders, const VoxelScene& t, frame::VoxelRaster raster,
+              bool rayTracedShadows = false) {
     render::RenderSettings settings;
     settings.output = render::OutputKind::Hdr;
-    settings.pointShadows.maxLights = 0;
+    settings.pointShadows.maxLights = rayTracedShadows ? 4 : 0;
+    settings.lightShadows.rayTraced = rayTracedShadows;
     settings.vxgi.mode = frame::GiMode::Vxgi;
     settings.vxgi.voxels = kVoxels;
     settings.vxgi.raster = raster;
@@ -83,16 +93,24 @@ Grid voxelize(vk::Context& ctx, vk::ShaderLibrary& shaders, const VoxelScene& t,
     camera.position = {0.0f, 0.0f, 0.9f};
     renderer.renderOffscreen(camera, 16, 16);
     Grid g;
-    if (const vk::Image* grid = renderer.vxgi().grid()) g.voxels = readVoxelGrid(ctx, *grid);
+    if (const vk::Image* grid = renderer.vxgi().grid()) {
+        g.voxels = readVoxelGrid(ctx, *grid);
+        // The directional volumes end where the cone tracer sampled them (the feature's final use).
+        const VkImageLayout sampled = graph::stateAfterAccess(graph::Access::SampledRead, graph::ResourceKind::Image,
+                                                              VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT)
+                                          .layout;
+        for (uint32_t d = 0; d < 6; ++d) g.directions[d] = readVoxelGrid(ctx, renderer.vxgi().directions()[d].image, sampled);
+    }
     g.box = renderer.vxgi().box();
     return g;
 }
 
 // A GPU grid against the oracle: `useMax` picks the oracle's max (r32ui rung) or mean (float-add rung).
-void expectMatchesOracle(Verdict& v, const Grid& g, const VoxelScene& t, bool useMax) {
-    const std::vector<OracleVoxel> oracle = voxelizeOnCpu(t.quads, t.emissive, {t.light}, g.box);
+void expectMatchesOracle(Verdict& v, const Grid& g, const VoxelScene& t, bool useMax, bool shadowed = false) {
+    const std::vector<OracleVoxel> oracle = voxelizeOnCpu(t.quads, t.emissive, {t.light}, g.box, shadowed);
     if (!v.expectEq(g.voxels.size(), oracle.size(), "voxel count")) return;
-    size_t either = 0, agree = 0, compared = 0, multi = 0, ambiguous = 0, nonZeroEmpty = 0, partial = 0;
+    size_t either = 0, agree = 0, compared = 0, multi = 0, ambiguous = 0, nonZeroEmpty = 0, partial = 0,
+           directional = 0;
     for (size_t i = 0; i < oracle.size(); ++i) {
         const OracleVoxel& o = oracle[i];
         const glm::vec4& c = g.voxels[i];
@@ -103,6 +121,7 @@ void expectMatchesOracle(Verdict& v, const Grid& g, const VoxelScene& t, bool us
         const bool gpu = c.a > 0.0f, cpu = o.count > 0;
         if (!gpu && !cpu) {
             nonZeroEmpty += c != glm::vec4(0.0f);
+            for (const std::vector<glm::vec4>& d : g.directions) nonZeroEmpty += d[i] != glm::vec4(0.0f);
             continue;
         }
         ++either;
@@ -119,7 +138,25 @@ void expectMatchesOracle(Verdict& v, const Grid& g, const VoxelScene& t, bool us
                          ", oracle " + std::to_string(want[k]));
         }
         ++compared;
+        if (o.count != 1) continue;
+        // One fragment: each directional level-0 voxel is the oracle's radiance seen along its direction by the
+        // quad's facing (vxgiVoxelTowards, shared with the cone tracer's C++ side).
+        ++directional;
+        for (uint32_t k = 0; k < 6; ++k) {
+            const glm::vec4 expected = gpu::vxgiVoxelTowards(glm::vec4(glm::vec3(want), 1.0f), glm::vec4(o.facing), k);
+            const glm::vec4& got = g.directions[k][i];
+            for (int ch = 0; ch < 4; ++ch) {
+                const double err = std::abs(double(got[ch]) - expected[ch]);
+                v.recordError(err / (std::abs(expected[ch]) + kAbsTolerance / kRelTolerance));
+                v.expect(err <= kRelTolerance * std::abs(expected[ch]) + kAbsTolerance,
+                         "voxel " + std::to_string(i) + " direction " + std::to_string(k) + " channel " +
+                             std::to_string(ch) + ": gpu " + std::to_string(got[ch]) + ", oracle " +
+                             std::to_string(expected[ch]));
+            }
+        }
     }
+    v.expect(directional > 10000, "too few one-fragment voxels for the directional check (" +
+                                      std::to_string(directional) + ")");
     const double agreement = either ? double(agree) / double(either) : 0.0;
     v.expect(agreement >= 0.995, "occupancy agrees on " + std::to_string(100.0 * agreement) + "% of the voxels (>= 99.5%)");
     v.expectEq(nonZeroEmpty, size_t(0), "empty voxels that are not zero");
@@ -157,15 +194,38 @@ void rungsAgree(CheckEnv& env, Verdict& v) {
     for (size_t i = 0; i < oracle.size(); ++i) {
         if (oracle[i].count != 1 || oracle[i].ambiguous) continue;
         ++single;
-        const glm::vec4 &a = grids[0].voxels[i], &b = grids[1].voxels[i];
-        for (int c = 0; c < 4; ++c) {  // the two fragment shaders are compiled apart: allow one fp16 rounding step
-            v.recordError(std::abs(a[c] - b[c]) / std::max(std::abs(b[c]), 1e-6f));
-            v.expect(std::abs(a[c] - b[c]) <= 1e-3f * std::abs(b[c]), "voxel " + std::to_string(i) + " channel " +
-                                                                           std::to_string(c) + ": native " + std::to_string(a[c]) +
-                                                                           ", fallback " + std::to_string(b[c]));
+        for (uint32_t k = 0; k < 7; ++k) {  // the grid, then the six directional level-0 volumes
+            const glm::vec4& a = k == 0 ? grids[0].voxels[i] : grids[0].directions[k - 1][i];
+            const glm::vec4& b = k == 0 ? grids[1].voxels[i] : grids[1].directions[k - 1][i];
+            for (int c = 0; c < 4; ++c) {  // the two fragment shaders are compiled apart: allow one fp16 rounding step
+                v.recordError(std::abs(a[c] - b[c]) / std::max(std::abs(b[c]), 1e-6f));
+                v.expect(std::abs(a[c] - b[c]) <= 1e-3f * std::abs(b[c]) + 1e-6f,
+                         "voxel " + std::to_string(i) + (k == 0 ? " grid" : " direction " + std::to_string(k - 1)) +
+                             " channel " + std::to_string(c) + ": native " + std::to_string(a[c]) + ", fallback " +
+                             std::to_string(b[c]));
+            }
         }
     }
     v.expect(single > 1000, "too few one-fragment voxels to compare (" + std::to_string(single) + ")");
+}
+
+// --shadows raytraced: the voxels' light is shadowed by rays through the BVH (there is no shadow table when the
+// voxelization runs). The voxel scene with a blocker between the light and the floor against the oracle with hard
+// shadows; the oracle's unshadowed grid must differ in many voxels, or the check could not fail.
+void rayTracedShadows(CheckEnv& env, Verdict& v) {
+    VoxelScene t = makeVoxelScene();
+    t.quads.push_back(placedQuad({0.2f, 0.05f, 0.1f}, {0, 1, 0}, {0.27f, 0.23f}, {0.5f, 0.5f, 0.5f}, true));
+    t.emissive.push_back(glm::vec3(0.0f));
+    const Grid g = voxelize(env.ctx, env.shaders, t, frame::VoxelRaster::Centre, true);
+    if (!v.expect(!g.voxels.empty(), "no grid")) return;
+    expectMatchesOracle(v, g, t, env.ctx.ladder("vxgi-atomics").chosen == vk::Rung::Fallback, true);
+    const std::vector<OracleVoxel> lit = voxelizeOnCpu(t.quads, t.emissive, {t.light}, g.box, false);
+    const std::vector<OracleVoxel> shadowed = voxelizeOnCpu(t.quads, t.emissive, {t.light}, g.box, true);
+    size_t darker = 0;
+    for (size_t i = 0; i < lit.size(); ++i)
+        darker += lit[i].count > 0 && !shadowed[i].ambiguous && shadowed[i].count == lit[i].count &&
+                  glm::length(shadowed[i].sum) < 0.5 * glm::length(lit[i].sum);
+    v.expect(darker > 500, "the blocker should shadow many voxels (" + std::to_string(darker) + ")");
 }
 
 // Over the voxel columns along x (inner ones, away from the box's walls): those the wall's rectangle touches at all,
@@ -219,10 +279,12 @@ void thinWall(CheckEnv& env, Verdict& v) {
 
 std::vector<Check> vxgiChecks() {
     return {
-        {"vxgi/voxelize", "vxgi-atomics", "occupancy >= 99.5%; rgb within 0.2% (+1e-5) of the oracle's mean or max",
+        {"vxgi/voxelize", "vxgi-atomics",
+         "occupancy >= 99.5%; rgb and directional level 0 within 0.2% (+1e-5) of the oracle's mean or max",
          voxelizeOnRung},
         {"vxgi/rungs agree", "", "one-fragment voxels within 1e-3 relative", rungsAgree},
         {"vxgi/thin wall", "conservative-raster", "no holes, nothing outside the wall's columns", thinWall},
+        {"vxgi/ray-traced shadows", "", "as vxgi/voxelize against the oracle with hard shadows", rayTracedShadows},
     };
 }
 

@@ -48,7 +48,7 @@ graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Fe
     // Shadows before the G-buffer: the installed validation layer counts every draw that uses the bindless
     // sampled array (the G-buffer's) as reading the cubes, so their write must not follow such a draw.
     x.pointShadows.addPasses(f, scene);                               // f.pointShadows
-    x.vxgi.addPasses(f);                                              // f.voxelGrid (--gi vxgi)
+    x.vxgi.addPasses(f, x.rtShadows.voxelShadowRays(f));              // f.voxelGrid (--gi vxgi)
     f.gbuffer = x.culling.addGBuffer(f, scene);                       // GPU culling; f.depthPyramid
     x.rtShadows.addPasses(f, scene);                                  // f.pointShadows (--shadows raytraced)
     x.temporal.addMotionVectors(f, scene);                            // f.motionVectors

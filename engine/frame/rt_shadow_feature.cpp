@@ -80,6 +80,19 @@ void RtShadowFeature::ensureGeometry(vk::Context& ctx, const scene::Scene& sourc
     geometry_ = std::move(g);
 }
 
+std::optional<passes::VoxelShadowRays> RtShadowFeature::voxelShadowRays(const FrameContext& f) const {
+    if (!f.settings.lightShadows.rayTraced || !geometry_ || !f.lights) return std::nullopt;
+    const size_t casters = render::shadowCasters(*f.lights, f.settings.pointShadows.maxLights).size();
+    if (casters == 0) return std::nullopt;
+    passes::VoxelShadowRays r;
+    r.sceneDesc = geometry_->desc.address;
+    r.casters = uint32_t(std::min<size_t>(casters, gpu::kRtShadowMaxLights));  // as the mask pass's
+    r.blasStack = geometry_->geometry.blasStackSize;
+    r.tlasStack = geometry_->geometry.tlasStackSize;
+    r.hasAlpha = geometry_->hasAlpha;
+    return r;
+}
+
 void RtShadowFeature::addPasses(FrameContext& f, const render::GpuScene&) {
     if (!f.settings.lightShadows.rayTraced) return;
     std::vector<uint32_t> casters = render::shadowCasters(*f.lights, f.settings.pointShadows.maxLights);

@@ -8,8 +8,10 @@
 // ShadowMode.RayTraced (reference 2.12).
 #pragma once
 #include <memory>
+#include <optional>
 
 #include "frame/frame_context.hpp"
+#include "passes/vxgi_passes.hpp"
 #include "render/gpu_scene.hpp"
 #include "scene/scene.hpp"
 
@@ -29,6 +31,9 @@ public:
                         const render::RenderSettings& settings);
     void addPasses(FrameContext& f, const render::GpuScene& scene);
     bool rayQuery() const noexcept;  // the rung the geometry was built for (false: our BVH)
+    // What the voxelization's shadow rays need this frame (--shadows raytraced with casters and the geometry
+    // built), else nothing: VXGI voxelizes before the mask pass exists.
+    std::optional<passes::VoxelShadowRays> voxelShadowRays(const FrameContext& f) const;
 
 private:
     struct Geometry;

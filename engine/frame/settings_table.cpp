@@ -133,6 +133,17 @@ std::vector<SettingOption> buildTable() {
                  OptionKind::Choice, 0.0, 0.0, {"conservative", "centre"},
                  [](const RenderSettings& s) { return double(s.vxgi.raster); },
                  [](RenderSettings& s, double v) { s.vxgi.raster = frame::VoxelRaster(v); }});
+    t.push_back({"--gi-grid", "Global illumination", "voxel grid",
+                 "VXGI grid placement: fit (the scene's bounds) or camera (same size, follows the camera in steps of "
+                 "1/8 of the grid)",
+                 OptionKind::Choice, 0.0, 0.0, {"fit", "camera"},
+                 [](const RenderSettings& s) { return double(s.vxgi.grid); },
+                 [](RenderSettings& s, double v) { s.vxgi.grid = frame::VoxelGridPlacement(v); }});
+    t.push_back({"--gi-voxel-draws", "Global illumination", "voxel draws",
+                 "VXGI voxelization: three draws (one per axis) or single (a geometry shader picks each triangle's axis)",
+                 OptionKind::Choice, 0.0, 0.0, {"three", "single"},
+                 [](const RenderSettings& s) { return double(s.vxgi.draws); },
+                 [](RenderSettings& s, double v) { s.vxgi.draws = frame::VoxelDraws(v); }});
     // Directional cascades and spot maps (frame/point_shadow_feature.cpp, render/light_shadow_maps.hpp).
     t.push_back({"--shadow-cascades", "Shadows", "cascades", "cascaded shadow maps per directional light",
                  OptionKind::Integer, 1.0, 4.0, {},

@@ -2,6 +2,7 @@
 #include "frame/vxgi_feature.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "render/draw_bounds.hpp"
 #include "vk/check.hpp"
@@ -19,6 +20,18 @@ passes::VoxelGridBox fitVoxelGrid(const scene::Aabb& bounds, uint32_t n) {
     return box;
 }
 
+float voxelGridStep(const passes::VoxelGridBox& box) {
+    return box.voxelSize * float(std::max(box.size / 8u, 1u));
+}
+
+passes::VoxelGridBox followCamera(const passes::VoxelGridBox& fit, glm::vec3 camera) {
+    passes::VoxelGridBox box = fit;
+    const double step = double(voxelGridStep(fit));
+    const double half = 0.5 * double(fit.voxelSize) * double(fit.size);
+    for (int a = 0; a < 3; ++a) box.gridMin[a] = float(std::floor((double(camera[a]) - half) / step) * step);
+    return box;
+}
+
 VxgiFeature::~VxgiFeature() { release(); }
 
 void VxgiFeature::release() {
@@ -33,7 +46,7 @@ void VxgiFeature::setScene(const render::GpuScene& scene) {
     bounds_ = render::sceneBounds(scene.data(), render::meshBounds(scene.data()));
 }
 
-void VxgiFeature::addPasses(FrameContext& f) {
+void VxgiFeature::addPasses(FrameContext& f, const std::optional<passes::VoxelShadowRays>& rays) {
     const VxgiSettings& s = f.settings.vxgi;
     if (s.mode != GiMode::Vxgi) {
         release();  // --gi none holds nothing
@@ -42,12 +55,14 @@ void VxgiFeature::addPasses(FrameContext& f) {
     if (grid_.image.image && grid_.image.extent.width != s.voxels) release();
     if (!grid_.image.image) {
         grid_.create(ctx_, "vxgi voxel grid", s.voxels, 1);
-        const uint32_t half = s.voxels / 2;
+        // Directional volumes of the grid's size: level 0 is the voxels seen along each direction (anisotropic
+        // from the start, by the surfaces' facing), levels up to 1^3. 6 x 8 bytes x 8/7 per voxel: 512^3 takes
+        // 7.4 GB on a real GPU, where an implementation would keep level 0 sparse or drop to half precision.
         uint32_t levels = 1;
-        while ((half >> levels) > 0) ++levels;
+        while ((s.voxels >> levels) > 0) ++levels;
         const char* names[6] = {"vxgi mips +x", "vxgi mips -x", "vxgi mips +y", "vxgi mips -y", "vxgi mips +z",
                                 "vxgi mips -z"};
-        for (uint32_t d = 0; d < 6; ++d) directions_[d].create(ctx_, names[d], half, levels);
+        for (uint32_t d = 0; d < 6; ++d) directions_[d].create(ctx_, names[d], s.voxels, levels);
         vk::SamplerDesc sampler;
         // Clamp to edge: a coarse cell holding a wall on the grid's bounds reads as that wall up to the march's end
         // (one cell outside), where a transparent border would blend it away by up to half.
@@ -55,6 +70,7 @@ void VxgiFeature::addPasses(FrameContext& f) {
         sampler_ = ctx_.bindless().addSampler(sampler);
     }
     box_ = fitVoxelGrid(bounds_, s.voxels);
+    if (s.grid == VoxelGridPlacement::Camera) box_ = followCamera(box_, f.camera.position);
 
     // The grid ends each frame in GENERAL (storage) where the merge and the mip passes used it; tests read it
     // back from there. The directional mips end where the cone tracer sampled them.
@@ -76,7 +92,13 @@ void VxgiFeature::addPasses(FrameContext& f) {
     }
     if (f.settings.vxgi.raster == VoxelRaster::Conservative)
         in.conservative = f.ctx.ladder("conservative-raster").chosen;
-    f.voxelGrid = passes::addVoxelizePasses(f.graph, f.ctx, f.shaders, in, grid, &f.log);
+    for (uint32_t d = 0; d < 6; ++d) in.directionLevel0[d] = directions_[d].levelStorage[0].value;
+    in.shadowRays = rays;
+    in.singleDraw = s.draws == VoxelDraws::Single;
+    std::array<graph::TextureHandle, 6> handles;
+    for (uint32_t d = 0; d < 6; ++d) handles[d] = directionHandles_[d];
+    f.voxelGrid = passes::addVoxelizePasses(f.graph, f.ctx, f.shaders, in, grid, handles, &f.log);
+    for (uint32_t d = 0; d < 6; ++d) directionHandles_[d] = handles[d];
     f.voxelBox = box_;
 }
 

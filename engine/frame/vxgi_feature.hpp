@@ -2,7 +2,8 @@
 // volumes (created only while --gi vxgi is on, re-created when the size changes) whose cube fits the scene's
 // bounds; adds the voxelization passes before the G-buffer and the mip + cone-tracing passes after it
 // (passes/vxgi_passes.hpp); fills FrameContext::voxelGrid / voxelBox / indirectLight. Ports IDKEngine's
-// VXGI/Voxelizer.cs (its grid box is set by hand or follows the camera; here it fits the scene).
+// VXGI/Voxelizer.cs (its grid box is set by hand or follows the camera; here it fits the scene or follows the camera
+// in quantised steps, --gi-grid).
 #pragma once
 #include "frame/frame_context.hpp"
 #include "frame/voxel_volume.hpp"
@@ -23,6 +24,13 @@ namespace idk::frame {
 // samples with clamp-to-edge, so a wall on the bounds does not fade into the border at coarse levels.)
 passes::VoxelGridBox fitVoxelGrid(const scene::Aabb& bounds, uint32_t n);
 
+// --gi-grid camera: `fit`'s cube (its size and voxel size) centred on `camera`, its corner snapped down to a whole
+// multiple of the step (fit.size / 8 voxels, the coarsest cell the cones read; vxgiMarchNext's lod cap), computed
+// in double from the world origin so that equal steps give equal corners.
+passes::VoxelGridBox followCamera(const passes::VoxelGridBox& fit, glm::vec3 camera);
+// The step (world units) the camera-following grid moves by.
+float voxelGridStep(const passes::VoxelGridBox& box);
+
 class VxgiFeature {
 public:
     explicit VxgiFeature(vk::Context& ctx) : ctx_(ctx) {}
@@ -31,15 +39,17 @@ public:
     VxgiFeature& operator=(const VxgiFeature&) = delete;
 
     void setScene(const render::GpuScene& scene);
-    void addPasses(FrameContext& f);       // voxelization; nothing unless settings.vxgi.mode == Vxgi
+    // Voxelization; nothing unless settings.vxgi.mode == Vxgi. `rays`: --shadows raytraced's BVH (the lights are
+    // then shadowed by rays, there being no shadow table yet).
+    void addPasses(FrameContext& f, const std::optional<passes::VoxelShadowRays>& rays = std::nullopt);
     void addConeTracing(FrameContext& f);  // after the G-buffer: mips + cone tracing into f.indirectLight
     // The grid of the last frame (RGBA16F, size^3; left in GENERAL layout) or nullptr: tests read it back.
     const vk::Image* grid() const noexcept { return grid_.image.image ? &grid_.image : nullptr; }
     const passes::VoxelGridBox& box() const noexcept { return box_; }
     // The gl-interop rung's state (record capacity, last frame's overflow) or nullptr on the other rungs.
     passes::VxgiGlAccumulator* glAccumulator() const noexcept { return gl_.get(); }
-    // The six directional mip volumes (+x -x +y -y +z -z; left where the cone tracer sampled them): tests read
-    // them back for the CPU cone tracer.
+    // The six directional volumes (+x -x +y -y +z -z, level 0 the voxels seen along each; left where the cone
+    // tracer sampled them): tests read them back for the CPU cone tracer.
     const std::array<VoxelVolume, 6>& directions() const noexcept { return directions_; }
 
 private:
@@ -48,7 +58,7 @@ private:
     scene::Aabb bounds_;
     passes::VoxelGridBox box_;
     VoxelVolume grid_;                      // level 0: the voxelized radiance and coverage
-    std::array<VoxelVolume, 6> directions_; // anisotropic mips (+x -x +y -y +z -z), level k = grid level k + 1
+    std::array<VoxelVolume, 6> directions_; // anisotropic volumes (+x -x +y -y +z -z), levels 0 .. log2(size)
     vk::SamplerIndex sampler_;
     graph::TextureHandle directionHandles_[6];  // this frame's imports
     std::unique_ptr<passes::VxgiGlAccumulator> gl_;  // "vxgi-atomics" gl-interop rung only

@@ -16,19 +16,18 @@ IndirectLightImages addConeTracePasses(graph::RenderGraph& graph, vk::Context& c
     constexpr VkPipelineStageFlags2 kCs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
     graph::TextureHandle grid = in.grid;
     std::array<graph::TextureHandle, 6> dirs = in.directions;
-    for (uint32_t level = 0; level < in.directionLevels.size(); ++level) {
+    for (uint32_t level = 1; level < in.directionLevels.size(); ++level) {
         gpu::VoxelMipPush push{};
         for (uint32_t d = 0; d < 6; ++d) {
-            push.src[d] = level == 0 ? in.gridStorage : in.directionLevels[level - 1][d];
+            push.src[d] = in.directionLevels[level - 1][d];
             push.dst[d] = in.directionLevels[level][d];
         }
-        push.dstSize = std::max(1u, (in.box.size / 2) >> level);
+        push.dstSize = std::max(1u, in.box.size >> level);
         graph.addPass(
-            "vxgi_mip " + std::to_string(level + 1),
+            "vxgi_mip " + std::to_string(level),
             // Levels are read and written through views the graph does not see: each directional volume is one
             // read-write resource, so consecutive levels get a full barrier between them.
             [&](graph::PassBuilder& b) {
-                if (level == 0) b.read(grid, graph::Access::StorageRead, kCs);
                 for (graph::TextureHandle& d : dirs) d = b.write(d, graph::Access::StorageReadWrite, kCs);
             },
             [&ctx, &shaders, push](graph::PassContext& pc) {
@@ -53,7 +52,7 @@ IndirectLightImages addConeTracePasses(graph::RenderGraph& graph, vk::Context& c
     base.gridMin = in.box.gridMin;
     base.voxelSize = in.box.voxelSize;
     base.gridSize = in.box.size;
-    base.maxLod = float(in.directionLevels.size());
+    base.maxLod = float(in.directionLevels.size() - 1);
     for (uint32_t d = 0; d < 6; ++d) base.directions[d] = in.directionSampled[d];
     base.grid = in.gridSampled;
     base.stepFactor = in.stepFactor;

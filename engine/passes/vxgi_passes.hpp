@@ -20,10 +20,20 @@ struct VoxelGridBox {
     uint32_t size = 64;
 };
 
+// --shadows raytraced: the BVH the voxelization's shadow rays walk (frame/rt_shadow_feature.hpp builds it), and
+// how many of the lights of nonzero intensity cast (render::shadowCasters).
+struct VoxelShadowRays {
+    uint64_t sceneDesc = 0;  // GpuPtSceneDesc
+    uint32_t casters = 0;
+    uint32_t blasStack = 32, tlasStack = 32;  // the traversal's stack sizes (specialization constants)
+    bool hasAlpha = false;                   // alpha-tested or blended materials: opacity tested along the ray
+};
+
 // vxgi_voxelize.cpp: "vxgi_clear" zeroes the write-conflict accumulators (transient 3D images of the atomic rung's
 // formats), "vxgi_voxelize" rasterizes the scene three times (one orthographic projection per axis; each triangle
 // keeps the fragments of its dominant axis) and adds every fragment's outgoing diffuse radiance to its voxel,
-// "vxgi_merge" resolves them into `grid` (RGBA16F, size^3, mip 0). Returns the grid's new version.
+// "vxgi_merge" resolves them into `grid` (RGBA16F, size^3, mip 0) and into level 0 of the six directional volumes
+// (`directions`, updated to their new versions). Returns the grid's new version.
 struct VoxelizeInputs {
     SceneBuffers scene;
     graph::BufferHandle frame;
@@ -35,12 +45,16 @@ struct VoxelizeInputs {
     // Ladder "conservative-raster": Native VK_EXT_conservative_rasterization, Fallback geometry-shader dilation;
     // none: pixel-centre rasterization (thin voxelization).
     std::optional<vk::Rung> conservative;
+    std::array<uint32_t, 6> directionLevel0{};  // storage indices of the directional volumes' level-0 views
+    std::optional<VoxelShadowRays> shadowRays;  // --shadows raytraced (then `shadows` has no table yet)
+    bool singleDraw = false;  // one draw, a geometry shader projects each triangle along its dominant axis
 };
 graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
-                                       const VoxelizeInputs& inputs, graph::TextureHandle grid, IndirectDrawLog* log);
+                                       const VoxelizeInputs& inputs, graph::TextureHandle grid,
+                                       std::array<graph::TextureHandle, 6>& directions, IndirectDrawLog* log);
 
-// vxgi_cone_trace.cpp: "vxgi_mip L" (one pass per level of the six directional volumes, each from the level
-// below: the grid for L = 0), then "vxgi_cone_trace": per G-buffer pixel inside the grid, diffuse irradiance from a
+// vxgi_cone_trace.cpp: "vxgi_mip L" (one pass per level L >= 1 of the six directional volumes, each from the
+// level below; the voxelization's merge wrote level 0), then "vxgi_cone_trace": per G-buffer pixel inside the grid, diffuse irradiance from a
 // cosine-weighted cone set and the reflection cone's radiance (transient RGBA16F, render resolution).
 struct ConeTraceInputs {
     GBufferOutputs gbuffer;
@@ -48,7 +62,7 @@ struct ConeTraceInputs {
     graph::TextureHandle environment;
     graph::TextureHandle grid;           // after the voxelization (level 0 only)
     uint32_t gridStorage = 0, gridSampled = 0;
-    // Anisotropic mips, one volume per direction (+x -x +y -y +z -z), level k = the grid's level k + 1:
+    // Anisotropic volumes, one per direction (+x -x +y -y +z -z), levels 0 (the merge's) to log2(size):
     // the frame's handles, their sampled indices, and the storage index of each level's view per direction.
     std::array<graph::TextureHandle, 6> directions;
     std::array<uint32_t, 6> directionSampled{};

@@ -1,6 +1,7 @@
 // vxgi_voxelize.cpp: voxelization of the scene's direct diffuse light into a 3D grid: clear the accumulators, draw
 // the scene once per projection axis into an attachment-less N x N render pass whose fragments write their voxel
-// with image atomics, and merge the accumulators into the RGBA16F grid. Ports IDKEngine's Voxelizer.cs (its
+// with image atomics (radiance and facing), and merge the accumulators into the RGBA16F grid and the directional
+// volumes' level 0. Ports IDKEngine's Voxelizer.cs (its
 // 3-draw fallback; the rung of write conflicts follows the "vxgi-atomics" ladder). On its gl-interop rung the
 // fragments append records instead, "vxgi_gl_accumulate" (vxgi_gl_accumulate.cpp) adds them with GL float atomics
 // into a shared sums buffer, and the merge averages those.
@@ -8,18 +9,20 @@
 // (overestimate) where the device has it, else voxelize.geom's triangle dilation, so thin walls never leak.
 #include "passes/vxgi_passes.hpp"
 
+#include <algorithm>
 #include <memory>
 #include <stdexcept>
 
 #include "passes/rendering.hpp"
 #include "passes/vxgi_gl_accumulate.hpp"
+#include "shared/pt_wavefront.h"
 #include "shared/vxgi_types.h"
 
 namespace idk::passes {
 namespace {
 
 struct Accumulators {
-    graph::TextureHandle images[4];
+    graph::TextureHandle images[8];
     uint32_t count = 0;
     graph::BufferHandle records, sums;  // gl-interop rung: the shared buffers instead of images
 };
@@ -41,7 +44,8 @@ vk::ShaderId fragmentShader(uint32_t mode, bool dilated) {
 }  // namespace
 
 graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
-                                       const VoxelizeInputs& in, graph::TextureHandle grid, IndirectDrawLog* log) {
+                                       const VoxelizeInputs& in, graph::TextureHandle grid,
+                                       std::array<graph::TextureHandle, 6>& directions, IndirectDrawLog* log) {
     const uint32_t mode = modeOf(in.atomics);
     const uint32_t n = in.box.size;
     VxgiGlAccumulator* gl = in.gl;
@@ -64,8 +68,11 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             desc.format = mode == gpu::kVoxelAtomicsFloatAdd ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32_UINT;
             desc.sizeMode = graph::SizeMode::Absolute;
             desc.extent = {n, n, n};
-            acc->count = mode == gpu::kVoxelAtomicsFloatAdd ? 4 : 3;
-            const char* names[4] = {"vxgi accum r", "vxgi accum g", "vxgi accum b", "vxgi accum count"};
+            // r, g, b, the facing's x, y, z, w, and the float-add rung's count (kVoxelAccum*)
+            acc->count = mode == gpu::kVoxelAtomicsFloatAdd ? 8 : 7;
+            const char* names[8] = {"vxgi accum r",        "vxgi accum g",        "vxgi accum b",
+                                    "vxgi accum facing x", "vxgi accum facing y", "vxgi accum facing z",
+                                    "vxgi accum facing w", "vxgi accum count"};
             for (uint32_t i = 0; i < acc->count; ++i)
                 acc->images[i] = b.write(b.create(names[i], desc), graph::Access::TransferDst);
         },
@@ -87,6 +94,8 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
     const graph::BufferHandle table = in.shadows.table;
     const VoxelGridBox box = in.box;
     const std::optional<vk::Rung> conservative = in.conservative;
+    const std::optional<VoxelShadowRays> rays = in.shadowRays;
+    const bool singleDraw = in.singleDraw;
     graph.addPass(
         "vxgi_voxelize",
         [&](graph::PassBuilder& b) {
@@ -112,7 +121,8 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             if (s.colors.valid()) b.read(s.colors, graph::Access::StorageRead, kVs);
             if (s.uv1.valid()) b.read(s.uv1, graph::Access::StorageRead, kVs);
         },
-        [&ctx, &shaders, s, frame, table, box, acc, mode, conservative, log, gl](graph::PassContext& pc) {
+        [&ctx, &shaders, s, frame, table, box, acc, mode, conservative, rays, singleDraw, log,
+         gl](graph::PassContext& pc) {
             if (s.drawCount == 0) return;
             VkCommandBuffer cmd = pc.commandBuffer();
             // No attachments: the fragments' only output is their atomics (the render area sets the raster grid).
@@ -126,10 +136,15 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
                 desc.geometry = vk::ShaderId::vxgi_voxelize_geom;
                 desc.fragment = fragmentShader(mode, true);
             }
+            if (singleDraw && !desc.geometry) desc.geometry = vk::ShaderId::vxgi_voxelize_axis_geom;
             desc.depthTest = false;
             desc.depthWrite = false;
             desc.cull = VK_CULL_MODE_NONE;  // both faces: a wall seen from behind in the projection still fills
             desc.pushBytes = sizeof(gpu::VoxelizePush);
+            if (rays)
+                desc.spec = {{gpu::kSpecPtHasAlpha, rays->hasAlpha ? 1u : 0u},
+                             {gpu::kSpecPtStackSize, std::max(rays->blasStack, 1u)},
+                             {gpu::kSpecPtTlasStackSize, std::max(rays->tlasStack, 1u)}};
             vk::bindPipeline(cmd, shaders.graphics(desc));
             ctx.bindless().bind(cmd);
             gpu::VoxelizePush push{};
@@ -141,6 +156,10 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             push.colors = s.colors.valid() ? pc.buffer(s.colors).address : 0;
             push.uv1 = s.uv1.valid() ? pc.buffer(s.uv1).address : 0;
             push.pointShadows = table.valid() ? pc.buffer(table).address : 0;
+            if (rays && rays->casters > 0) {  // the BVH and its scene are static buffers, read by address
+                push.pointShadows = rays->sceneDesc;
+                push.rayShadows = rays->casters;
+            }
             push.gridMin = box.gridMin;
             push.voxelSize = box.voxelSize;
             push.gridSize = box.size;
@@ -150,10 +169,12 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
                 push.accum[1] = gl->capacity();
             }
             vkCmdBindIndexBuffer(cmd, pc.vkBuffer(s.indices), 0, VK_INDEX_TYPE_UINT32);
-            // Three draws, one per projection axis (IDKEngine's measured-fastest fallback): a real GPU with
-            // VK_NV_geometry_shader_passthrough + VK_NV_viewport_swizzle would do it in one.
-            for (uint32_t axis = 0; axis < 3; ++axis) {
-                push.axis = axis;
+            // Three draws, one per projection axis (IDKEngine's measured-fastest fallback), or one whose geometry
+            // shader picks each triangle's axis: a real GPU with VK_NV_geometry_shader_passthrough +
+            // VK_NV_viewport_swizzle would do the single draw without re-emitting the triangles.
+            const uint32_t draws = singleDraw ? 1 : 3;
+            for (uint32_t axis = 0; axis < draws; ++axis) {
+                push.axis = singleDraw ? gpu::kVoxelAxisDominant : axis;
                 vk::pushConstants(cmd, ctx, push);
                 vkCmdDrawIndexedIndirect(cmd, pc.vkBuffer(s.drawCommands), 0, s.drawCount,
                                          sizeof(VkDrawIndexedIndirectCommand));
@@ -165,6 +186,7 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
     if (gl) acc->sums = gl->addPass(graph, acc->records, acc->sums);
 
     auto written = std::make_shared<graph::TextureHandle>();
+    const std::array<uint32_t, 6> level0 = in.directionLevel0;
     graph.addPass(
         "vxgi_merge",
         [&](graph::PassBuilder& b) {
@@ -172,9 +194,11 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             for (uint32_t i = 0; i < acc->count; ++i) b.read(acc->images[i], graph::Access::StorageRead, kCs);
             if (acc->sums.valid()) b.read(acc->sums, graph::Access::StorageRead, kCs);
             *written = b.write(grid, graph::Access::StorageWrite, kCs);
+            // Level 0 through its own view; the graph tracks each volume whole (the mips read it next).
+            for (graph::TextureHandle& d : directions) d = b.write(d, graph::Access::StorageReadWrite, kCs);
             b.sideEffect();  // the grid is persistent state: later frames and readers outside the graph use it
         },
-        [&ctx, &shaders, acc, written, n, mode, gl](graph::PassContext& pc) {
+        [&ctx, &shaders, acc, written, n, mode, gl, level0](graph::PassContext& pc) {
             VkCommandBuffer cmd = pc.commandBuffer();
             vk::ComputePipelineDesc desc;
             desc.shader = vk::ShaderId::vxgi_merge_comp;
@@ -186,6 +210,7 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             for (uint32_t i = 0; i < acc->count; ++i) push.accum[i] = pc.texture(acc->images[i]).storageIndex;
             if (gl) push.accum[0] = gl->sumsIndex();
             push.grid = pc.texture(*written).storageIndex;
+            for (uint32_t d = 0; d < 6; ++d) push.directions[d] = level0[d];
             push.gridSize = n;
             push.mode = mode;
             vk::pushConstants(cmd, ctx, push);

@@ -2,7 +2,8 @@
 // vxgi_accumulate.comp.glsl (OpenGL, compiled by the GL driver at run time, not SPIR-V): the gl-interop rung of
 // "vxgi-atomics" (engine/passes/vxgi_gl_accumulate.cpp). Adds each record the voxelization appended (layout:
 // shaders_glsl/shared/vxgi_types.h, kVoxelRecord*) into its voxel's sums with GL_NV_shader_atomic_float's float
-// atomicAdd on Vulkan memory: premultiplied r, g, b, coverage and a count (kVoxelSumWords = 5 per voxel). Vulkan's
+// atomicAdd on Vulkan memory: premultiplied r, g, b, coverage, the facing's 4 components and a count
+// (kVoxelSumWords = 9 per voxel). Vulkan's
 // merge pass averages them. The count of records comes from the header (word 0 counts every fragment, also those
 // past the capacity): with semaphore hand-offs (engine/gl/gl_sync.hpp) the host does not know it when it
 // dispatches, and dispatches for the whole capacity.
@@ -12,7 +13,7 @@ layout(std430, binding = 0) readonly buffer Records { uint records[]; };
 layout(std430, binding = 1) buffer Sums { float sums[]; };
 uniform uint capacity;    // records the buffer holds
 uniform uint voxelCount;  // n^3: a record's voxel index is below it
-const uint kHeaderWords = 4u, kRecordWords = 5u, kSumWords = 5u;
+const uint kHeaderWords = 4u, kRecordWords = 9u, kSumWords = 9u;
 
 void main() {
     // 2D dispatch: more records than one dimension's 65535 groups of 64 hold.
@@ -22,6 +23,6 @@ void main() {
     uint voxel = records[base];
     if (voxel >= voxelCount) return;
     uint dst = voxel * kSumWords;
-    for (uint c = 0u; c < 4u; ++c) atomicAdd(sums[dst + c], uintBitsToFloat(records[base + 1u + c]));
-    atomicAdd(sums[dst + 4u], 1.0);
+    for (uint c = 0u; c < 8u; ++c) atomicAdd(sums[dst + c], uintBitsToFloat(records[base + 1u + c]));
+    atomicAdd(sums[dst + 8u], 1.0);
 }

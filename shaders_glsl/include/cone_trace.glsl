@@ -12,14 +12,12 @@ vec4 sampleVolume(ConeTracePush c, uint volume, vec3 uvw, float lod) {
     return textureLod(sampler3D(gTextures3D[nonuniformEXT(volume)], gSamplers[nonuniformEXT(c.gridSampler)]), uvw, lod);
 }
 
-// The grid seen along `dir` at `lod` (grid levels; level L >= 1 is directional mip L - 1).
+// The grid seen along `dir` at `lod` (grid levels: level L of the directional volumes).
 vec4 sampleVoxels(ConeTracePush c, vec3 uvw, vec3 dir, float lod) {
-    float l = max(lod - 1.0, 0.0);
-    vec4 sx = sampleVolume(c, c.directions[vxgiDirectionIndex(dir, 0u)], uvw, l);
-    vec4 sy = sampleVolume(c, c.directions[vxgiDirectionIndex(dir, 1u)], uvw, l);
-    vec4 sz = sampleVolume(c, c.directions[vxgiDirectionIndex(dir, 2u)], uvw, l);
-    vec4 level0 = lod < 1.0 ? sampleVolume(c, c.grid, uvw, 0.0) : vec4(0.0);
-    return vxgiCombine(dir, sx, sy, sz, level0, lod);
+    vec4 sx = sampleVolume(c, c.directions[vxgiDirectionIndex(dir, 0u)], uvw, lod);
+    vec4 sy = sampleVolume(c, c.directions[vxgiDirectionIndex(dir, 1u)], uvw, lod);
+    vec4 sz = sampleVolume(c, c.directions[vxgiDirectionIndex(dir, 2u)], uvw, lod);
+    return vxgiCombine(dir, sx, sy, sz);
 }
 
 // Radiance arriving at the receiver `origin` (geometric normal `plane`) through the cone (unit axis `dir`, tangent

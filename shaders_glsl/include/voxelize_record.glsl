@@ -6,7 +6,7 @@
 
 IDK_BINDLESS_BUFFER(gVoxelRecords, uint);
 
-void appendVoxelRecord(ivec3 voxel, vec3 radiance) {
+void appendVoxelRecord(ivec3 voxel, vec3 radiance, vec4 facing) {
     // One atomic per fragment on one counter: on a GPU a subgroup would add its fragments' count once (fewer
     // atomics on the hot word); lavapipe runs few fragments at a time, so the plain form is kept.
     uint slot = atomicAdd(gVoxelRecords[p.accum[0]].data[0], 1u);
@@ -19,6 +19,7 @@ void appendVoxelRecord(ivec3 voxel, vec3 radiance) {
     gVoxelRecords[p.accum[0]].data[base + 2u] = floatBitsToUint(radiance.g * coverage);
     gVoxelRecords[p.accum[0]].data[base + 3u] = floatBitsToUint(radiance.b * coverage);
     gVoxelRecords[p.accum[0]].data[base + 4u] = floatBitsToUint(coverage);
+    for (uint c = 0u; c < 4u; ++c) gVoxelRecords[p.accum[0]].data[base + 5u + c] = floatBitsToUint(facing[c]);
 }
 
 #endif

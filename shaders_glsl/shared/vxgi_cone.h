@@ -54,6 +54,7 @@ IDK_CONST(float, kVxgiRingCos, 0.61237244f);
 IDK_CONST(float, kVxgiMaxSpecularAngle, 0.5f);    // widest specular cone half-angle (radians), see vxgiSpecularCone
 IDK_CONST(float, kVxgiMaxLodBelowRoot, 3.0f);     // lod <= log2(N) - 3: cells of at most N / 8 voxels
 IDK_CONST(float, kVxgiOpaque, 0.99f);
+IDK_CONST(float, kVxgiEdgeOpacity, 0.5f);         // see vxgiVoxelTowards
 
 // An orthonormal tangent frame around n (the cone set's azimuth origin).
 IDK_INLINE void vxgiTangents(vec3 n, IDK_OUT(vec3) t, IDK_OUT(vec3) b) {
@@ -94,7 +95,7 @@ struct VxgiMarch {
     float opacity;
     // Set by vxgiMarchNext for the current sample:
     vec3 uvw;   // grid coordinates [0, 1]^3
-    float lod;  // grid level (0: voxels; level L >= 1 is directional mip L - 1)
+    float lod;  // grid level (of the directional volumes; 0: voxels)
     float cell; // world size of the level's cell
 };
 
@@ -152,13 +153,33 @@ IDK_INLINE uint vxgiDirectionIndex(vec3 dir, uint axis) {
 
 // Combines the three directional fetches (sx from the x volume facing the travel, ...) weighted by |dir|: a thin
 // surface facing axis a covers |dir_a| of what it covers seen straight along a (its projected area); where the
-// weights add up to more than full coverage (solid blocks) the sample is scaled back to opacity 1. Below level 1
-// the grid itself (level 0) is blended in.
-IDK_INLINE vec4 vxgiCombine(vec3 dir, vec4 sx, vec4 sy, vec4 sz, vec4 level0, float lod) {
+// weights add up to more than full coverage (solid blocks) the sample is scaled back to opacity 1.
+IDK_INLINE vec4 vxgiCombine(vec3 dir, vec4 sx, vec4 sy, vec4 sz) {
     vec4 d = abs(dir.x) * sx + abs(dir.y) * sy + abs(dir.z) * sz;
     if (d.w > 1.0f) d = d / d.w;
-    if (lod >= 1.0f) return d;
-    return level0 * (1.0f - lod) + d * lod;
+    return d;
+}
+
+// Level 0 of directional volume k (0..5: travelling along +x -x +y -y +z -z) from a merged voxel: `voxel` its
+// radiance (rgb) and coverage (a), `facing` its mean facing (vxgi_types.h: the radiating side's normal s, the
+// other side's share w). Seen along axis a a surface covers |s_a| of the voxel (its projected area) and shows its
+// radiance only from the side it radiates to: travelling along +a meets the faces whose normal points to -a. So
+// a one-sided emitter does not glow backwards, a wall lit on one side does not light the room behind it, and a
+// panel seen edge-on shows little of itself, where a voxel radiating equally in all directions does all three
+// (the closed room of tests/gpu/vxgi/vxgi_frame_test.cpp was 32% too bright with that, 7% with this).
+// The edge share: the projected area alone makes a thin wall crossed obliquely a Beer-Lambert medium of
+// opacity |s_a| per cell, which the march's compositing passes e^-1 of however long it crosses it (the split
+// room's dark half then got 24% of the lit half's light instead of 5%). So a surface also covers
+// kVxgiEdgeOpacity of the part it does not face, standing for the rays that cross its plane at grazing angles
+// inside the voxel, which meet either side equally: they show the mean of both sides' radiance.
+IDK_INLINE vec4 vxgiVoxelTowards(vec4 voxel, vec4 facing, uint k) {
+    uint axis = k / 2u;
+    float s = axis == 0u ? facing.x : (axis == 1u ? facing.y : facing.z);
+    if ((k & 1u) == 1u) s = -s;  // now positive when the radiating side faces the travel (is seen from behind)
+    float edge = kVxgiEdgeOpacity * (1.0f - abs(s));
+    float shown = max(-s, 0.0f) + facing.w * max(s, 0.0f) + edge * 0.5f * (1.0f + facing.w);
+    float opacity = abs(s) + edge;
+    return vec4(vec3(voxel.x, voxel.y, voxel.z) * (voxel.w * shown), voxel.w * opacity);
 }
 
 IDK_GPU_END

@@ -17,14 +17,28 @@ IDK_CONST(uint, kVoxelAtomicsUintMax, 1u);
 IDK_CONST(uint, kVoxelAtomicsGlRecords, 2u);
 // The record buffer: word 0 counts the fragments (all of them, also those past the capacity, so an overflow is
 // measured), then kVoxelRecordWords words per record from word kVoxelRecordHeaderWords: the voxel's linear index
-// (x + n (y + n z)) and its premultiplied rgba (rgb * coverage, coverage).
+// (x + n (y + n z)), its premultiplied rgba (rgb * coverage, coverage) and its facing (see below).
 IDK_CONST(uint, kVoxelRecordHeaderWords, 4u);
-IDK_CONST(uint, kVoxelRecordWords, 5u);
-// The GL sums buffer: kVoxelSumWords floats per voxel: sum of premultiplied r, g, b, sum of coverage, count.
-IDK_CONST(uint, kVoxelSumWords, 5u);
+IDK_CONST(uint, kVoxelRecordWords, 9u);
+// The GL sums buffer: kVoxelSumWords floats per voxel: sum of premultiplied r, g, b, sum of coverage, sums of the
+// facing's four components, and (word kVoxelSumCount) the count.
+IDK_CONST(uint, kVoxelSumWords, 9u);
+IDK_CONST(uint, kVoxelSumCount, 8u);
 IDK_CONST(uint, kVoxelGroupSize, 4u);  // merge: 4x4x4 threads
 
-// voxelize.vert / voxelize_*.frag: one draw per projection axis (0 x, 1 y, 2 z).
+// A fragment's facing (vec4): xyz the unit geometric normal of the side it radiates from (the side with the
+// more radiance), w the ratio of the other side's radiance to it (0 for single-sided surfaces, 1 for a
+// double-sided emitter). The accumulators average it per voxel like the radiance (the r32ui rung keeps the max
+// of each component + 2); the merge turns it into the six directional level-0 voxels (vxgiVoxelTowards,
+// shared/vxgi_cone.h). Accumulator slots: 0..2 radiance, kVoxelAccumFacing..+3 the facing, kVoxelAccumCount the
+// float-add rung's count.
+IDK_CONST(uint, kVoxelAccumFacing, 3u);
+IDK_CONST(uint, kVoxelAccumCount, 7u);
+IDK_CONST(float, kVoxelFacingBias, 2.0f);  // r32ui rung: facing + 2 is positive, so its float bits order like it
+
+// voxelize.vert / voxelize_*.frag: one draw per projection axis (0 x, 1 y, 2 z), or one draw with axis
+// kVoxelAxisDominant whose geometry shader projects each triangle along its own dominant axis (--gi-voxel-draws).
+IDK_CONST(uint, kVoxelAxisDominant, 3u);
 struct VoxelizePush {
     DeviceAddress frame;         // GpuFrame (lights)
     DeviceAddress vertices;      // GpuVertex[]
@@ -33,29 +47,35 @@ struct VoxelizePush {
     DeviceAddress materials;     // GpuMaterial[]
     DeviceAddress colors;        // vec4[] per vertex, 0: none
     DeviceAddress uv1;           // vec2[] per vertex, 0: none
-    DeviceAddress pointShadows;  // GpuPointShadow[lightCount], 0: no light casts one
+    DeviceAddress pointShadows;  // GpuPointShadow[lightCount], 0: no light casts one; with rayShadows > 0 the
+                                 // ray-traced shadows' scene instead (GpuPtSceneDesc: our BVH)
     vec3 gridMin;                // world position of the grid's corner
     float voxelSize;             // world size of one voxel (the grid is a cube of gridSize voxels per side)
     uint gridSize;
-    uint axis;                   // this draw's projection axis
-    uint accum[4];               // bindless storage indices: r, g, b (and the count for kVoxelAtomicsFloatAdd);
-                                 // kVoxelAtomicsGlRecords: [0] the record buffer's storage-buffer index, [1] its
-                                 // capacity in records
-};
-IDK_GPU_SIZE(VoxelizePush, 104);
-
-// merge.comp: accumulators -> the RGBA16F grid's mip 0 (rgb radiance, alpha coverage).
-struct VoxelMergePush {
-    uint accum[4];  // kVoxelAtomicsGlRecords: [0] the GL sums buffer's storage-buffer index
-    uint grid;      // bindless storage index of the grid (mip 0 view)
-    uint gridSize;
-    uint mode;      // kVoxelAtomics*
+    uint axis;                   // this draw's projection axis, or kVoxelAxisDominant
+    uint accum[8];               // bindless storage indices: r, g, b, the facing's 4 (kVoxelAccumFacing) and the
+                                 // count for kVoxelAtomicsFloatAdd (kVoxelAccumCount); kVoxelAtomicsGlRecords:
+                                 // [0] the record buffer's storage-buffer index, [1] its capacity in records
+    uint rayShadows;             // --shadows raytraced: the first rayShadows lights of nonzero intensity (the
+                                 // mask pass's casters) are shadowed by a ray through the BVH; 0: by the table
     uint pad;
 };
-IDK_GPU_SIZE(VoxelMergePush, 32);
+IDK_GPU_SIZE(VoxelizePush, 128);  // Vulkan's guaranteed push-constant size: nothing more fits
+
+// merge.comp: accumulators -> the RGBA16F grid (rgb radiance, alpha coverage, seen from every side) and level 0 of
+// the six directional volumes (the voxel seen travelling along +x -x +y -y +z -z: vxgiVoxelTowards).
+struct VoxelMergePush {
+    uint accum[8];       // as VoxelizePush::accum; kVoxelAtomicsGlRecords: [0] the GL sums buffer's index
+    uint grid;           // bindless storage index of the grid (mip 0 view)
+    uint directions[6];  // storage indices of the directional volumes' level 0
+    uint gridSize;
+    uint mode;           // kVoxelAtomics*
+    uint pad;
+};
+IDK_GPU_SIZE(VoxelMergePush, 72);
 
 // mip.comp: one level of the anisotropic mip chain (Crassin et al. 2011): for each direction d of +x -x +y -y +z
-// -z, a voxel of level L is its 2x2x2 children of level L - 1 (of direction d; the grid itself for L = 0)
+// -z, a voxel of level L >= 1 is its 2x2x2 children of level L - 1 of direction d (level 0: the merge's)
 // composited front to back in pairs along d, the four pairs averaged across. A thin wall thus stays opaque seen
 // across it at every level, where an isotropic mean would fade it by half per level.
 struct VoxelMipPush {
@@ -78,14 +98,14 @@ struct ConeTracePush {
     uint depth;            // G-buffer R32F
     uint diffuse;          // RGBA16F out: irradiance E (rgb), inside-grid flag (a)
     uint specular;         // RGBA16F out: radiance along the reflection cone (rgb)
-    uint grid;             // sampled index of the grid (level 0)
-    uint directions[6];    // sampled indices of the directional mips (+x -x +y -y +z -z)
+    uint grid;             // sampled index of the grid (level 0 seen from every side; the cones do not sample it)
+    uint directions[6];    // sampled indices of the directional volumes (+x -x +y -y +z -z), levels 0..maxLod
     uint gridSampler;      // trilinear, clamp to edge
     uint ringCones;        // diffuse cones around the normal's cap cone
     vec3 gridMin;
     float voxelSize;
     uint gridSize;
-    float maxLod;          // in grid levels: the directional mips' count
+    float maxLod;          // the directional volumes' top level (log2 gridSize)
     float stepFactor;      // march step = sample diameter * stepFactor
     uint pad;
 };

@@ -6,74 +6,10 @@
 // intersections, and every attribute is extrapolated affinely (barycentrics of the new corner in the original
 // triangle), so the world position stays on the triangle's plane. The fragment shader drops what lies outside the
 // triangle's 2D bounds grown by half a pixel (the sharp corners' overshoot). Triangles of another draw's dominant
-// axis are culled here (the fragment shader's check stays for the other rungs). No IDKEngine counterpart (it
+// axis are culled here (the fragment shader's check stays for the other rungs); in the single draw
+// (--gi-voxel-draws single) each triangle takes its own. No IDKEngine counterpart (it
 // relies on GL_NV_conservative_raster). A real GPU would take VK_EXT_conservative_rasterization (native rung).
 #extension GL_GOOGLE_include_directive : require
-#include "vxgi_types.h"
+#define IDK_VOXELIZE_DILATE
+#include "voxelize_geometry.glsl"
 
-layout(triangles) in;
-layout(triangle_strip, max_vertices = 3) out;
-layout(push_constant, scalar) uniform Push { VoxelizePush p; };
-
-layout(location = 0) in vec3 inWorldPosition[];
-layout(location = 1) in vec3 inNormal[];
-layout(location = 2) in vec4 inTangent[];
-layout(location = 3) in vec2 inUv[];
-layout(location = 4) flat in uint inInstance[];
-layout(location = 5) in vec4 inColor[];
-layout(location = 6) in vec2 inUv1[];
-
-layout(location = 0) out vec3 outWorldPosition;
-layout(location = 1) out vec3 outNormal;
-layout(location = 2) out vec4 outTangent;
-layout(location = 3) out vec2 outUv;
-layout(location = 4) flat out uint outInstance;
-layout(location = 5) out vec4 outColor;
-layout(location = 6) out vec2 outUv1;
-layout(location = 7) flat out vec4 outBounds;  // the triangle's NDC xy bounds grown by half a pixel
-
-uint dominantAxis(vec3 n) {
-    vec3 a = abs(n);
-    if (a.x >= a.y && a.x >= a.z) return 0u;
-    return a.y >= a.z ? 1u : 2u;
-}
-
-void main() {
-    vec3 plane = cross(inWorldPosition[1] - inWorldPosition[0], inWorldPosition[2] - inWorldPosition[0]);
-    if (dominantAxis(plane) != p.axis) return;
-    vec2 q[3] = vec2[3](gl_in[0].gl_Position.xy, gl_in[1].gl_Position.xy, gl_in[2].gl_Position.xy);
-    float area = (q[1].x - q[0].x) * (q[2].y - q[0].y) - (q[2].x - q[0].x) * (q[1].y - q[0].y);
-    if (abs(area) < 1e-12) return;  // degenerate in its own dominant projection: no area anywhere
-    const float halfPixel = 1.0 / float(p.gridSize);  // NDC spans 2 over gridSize pixels
-    float orientation = sign(area);
-
-    // Edge i runs q[i] -> q[i+1]; its outward normal and its offset line n.x = c.
-    vec3 lines[3];
-    for (int i = 0; i < 3; ++i) {
-        vec2 e = q[(i + 1) % 3] - q[i];
-        vec2 n = normalize(orientation * vec2(e.y, -e.x));
-        lines[i] = vec3(n, dot(n, q[i]) + halfPixel * (abs(n.x) + abs(n.y)));
-    }
-    outBounds = vec4(min(min(q[0], q[1]), q[2]) - halfPixel, max(max(q[0], q[1]), q[2]) + halfPixel);
-    for (int i = 0; i < 3; ++i) {
-        // Corner i is where edge i - 1 (into it) and edge i (out of it) meet after the offset.
-        vec3 a = lines[(i + 2) % 3], b = lines[i];
-        float det = a.x * b.y - a.y * b.x;
-        vec2 corner = abs(det) > 1e-12 ? vec2(a.z * b.y - a.y * b.z, a.x * b.z - a.z * b.x) / det : q[i];
-        // Barycentrics of the corner in the original triangle (may lie outside [0, 1]).
-        float w1 = ((corner.x - q[0].x) * (q[2].y - q[0].y) - (q[2].x - q[0].x) * (corner.y - q[0].y)) / area;
-        float w2 = ((q[1].x - q[0].x) * (corner.y - q[0].y) - (corner.x - q[0].x) * (q[1].y - q[0].y)) / area;
-        vec3 w = vec3(1.0 - w1 - w2, w1, w2);
-        float depth = dot(w, vec3(gl_in[0].gl_Position.z, gl_in[1].gl_Position.z, gl_in[2].gl_Position.z));
-        gl_Position = vec4(corner, clamp(depth, 0.0, 1.0), 1.0);
-        outWorldPosition = w.x * inWorldPosition[0] + w.y * inWorldPosition[1] + w.z * inWorldPosition[2];
-        outNormal = w.x * inNormal[0] + w.y * inNormal[1] + w.z * inNormal[2];
-        outTangent = w.x * inTangent[0] + w.y * inTangent[1] + w.z * inTangent[2];
-        outUv = w.x * inUv[0] + w.y * inUv[1] + w.z * inUv[2];
-        outInstance = inInstance[0];
-        outColor = w.x * inColor[0] + w.y * inColor[1] + w.z * inColor[2];
-        outUv1 = w.x * inUv1[0] + w.y * inUv1[1] + w.z * inUv1[2];
-        EmitVertex();
-    }
-    EndPrimitive();
-}

@@ -6,12 +6,12 @@
 #extension GL_GOOGLE_include_directive : require
 #include "scene_vertex.glsl"
 #include "vxgi_types.h"
+#include "voxelize_projection.glsl"
 
 layout(push_constant, scalar) uniform Push { VoxelizePush p; };
 
 void main() {
     emitSceneVertex(gl_DrawID, p.instances, p.vertices, p.colors, p.uv1, p.frame);
-    vec3 g = (outWorldPosition - p.gridMin) / (p.voxelSize * float(p.gridSize));  // 0..1 inside the grid
-    vec3 s = p.axis == 0u ? g.yzx : (p.axis == 1u ? g.zxy : g.xyz);                // (u, v, depth)
-    gl_Position = vec4(s.xy * 2.0 - 1.0, s.z, 1.0);
+    // kVoxelAxisDominant: the geometry shader projects again per triangle; this one is then unused.
+    gl_Position = voxelProjection(outWorldPosition, p.gridMin, p.voxelSize, p.gridSize, min(p.axis, 2u));
 }

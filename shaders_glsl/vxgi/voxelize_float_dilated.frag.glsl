@@ -9,9 +9,11 @@
 void main() {
     ivec3 voxel;
     vec3 radiance;
-    if (!voxelFragment(voxel, radiance)) discard;
+    vec4 facing;
+    if (!voxelFragment(voxel, radiance, facing)) discard;
     imageAtomicAdd(gVoxelsR32f[p.accum[0]], voxel, radiance.r);
     imageAtomicAdd(gVoxelsR32f[p.accum[1]], voxel, radiance.g);
     imageAtomicAdd(gVoxelsR32f[p.accum[2]], voxel, radiance.b);
-    imageAtomicAdd(gVoxelsR32f[p.accum[3]], voxel, 1.0);
+    for (uint c = 0u; c < 4u; ++c) imageAtomicAdd(gVoxelsR32f[p.accum[kVoxelAccumFacing + c]], voxel, facing[c]);
+    imageAtomicAdd(gVoxelsR32f[p.accum[kVoxelAccumCount]], voxel, 1.0);
 }

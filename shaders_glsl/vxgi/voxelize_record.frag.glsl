@@ -10,6 +10,7 @@
 void main() {
     ivec3 voxel;
     vec3 radiance;
-    if (!voxelFragment(voxel, radiance)) discard;
-    appendVoxelRecord(voxel, radiance);
+    vec4 facing;
+    if (!voxelFragment(voxel, radiance, facing)) discard;
+    appendVoxelRecord(voxel, radiance, facing);
 }

@@ -8,8 +8,11 @@
 void main() {
     ivec3 voxel;
     vec3 radiance;
-    if (!voxelFragment(voxel, radiance)) discard;
+    vec4 facing;
+    if (!voxelFragment(voxel, radiance, facing)) discard;
     imageAtomicMax(gVoxelsR32ui[p.accum[0]], voxel, floatBitsToUint(radiance.r) + 1u);
     imageAtomicMax(gVoxelsR32ui[p.accum[1]], voxel, floatBitsToUint(radiance.g) + 1u);
     imageAtomicMax(gVoxelsR32ui[p.accum[2]], voxel, floatBitsToUint(radiance.b) + 1u);
+    for (uint c = 0u; c < 4u; ++c)  // biased positive: the bits order like the floats and are never 0
+        imageAtomicMax(gVoxelsR32ui[p.accum[kVoxelAccumFacing + c]], voxel, floatBitsToUint(facing[c] + kVoxelFacingBias));
 }

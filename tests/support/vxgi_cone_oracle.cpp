@@ -94,12 +94,10 @@ glm::vec3 traceConeOnCpu(const ConeGridData& grid, const gpu::ConeTracePush& c, 
                          glm::vec3 dir, float tanHalf, glm::vec3 sky) {
     gpu::VxgiMarch m = gpu::vxgiMarchBegin(origin, plane, dir, tanHalf, c.voxelSize);
     while (gpu::vxgiMarchNext(m, c.gridMin, c.voxelSize, c.gridSize, c.maxLod)) {
-        const float l = std::max(m.lod - 1.0f, 0.0f);
-        const glm::vec4 sx = sampleVolumeOnCpu(grid.directions[gpu::vxgiDirectionIndex(dir, 0u)], m.uvw, l);
-        const glm::vec4 sy = sampleVolumeOnCpu(grid.directions[gpu::vxgiDirectionIndex(dir, 1u)], m.uvw, l);
-        const glm::vec4 sz = sampleVolumeOnCpu(grid.directions[gpu::vxgiDirectionIndex(dir, 2u)], m.uvw, l);
-        const glm::vec4 level0 = m.lod < 1.0f ? sampleVolumeOnCpu(grid.grid, m.uvw, 0.0f) : glm::vec4(0.0f);
-        gpu::vxgiMarchTake(m, gpu::vxgiCombine(dir, sx, sy, sz, level0, m.lod), c.stepFactor);
+        const glm::vec4 sx = sampleVolumeOnCpu(grid.directions[gpu::vxgiDirectionIndex(dir, 0u)], m.uvw, m.lod);
+        const glm::vec4 sy = sampleVolumeOnCpu(grid.directions[gpu::vxgiDirectionIndex(dir, 1u)], m.uvw, m.lod);
+        const glm::vec4 sz = sampleVolumeOnCpu(grid.directions[gpu::vxgiDirectionIndex(dir, 2u)], m.uvw, m.lod);
+        gpu::vxgiMarchTake(m, gpu::vxgiCombine(dir, sx, sy, sz), c.stepFactor);
     }
     return m.radiance + (1.0f - m.opacity) * sky;
 }
@@ -133,7 +131,7 @@ gpu::ConeTracePush conePush(const frame::VxgiFeature& vxgi, const frame::VxgiSet
     c.gridMin = vxgi.box().gridMin;
     c.voxelSize = vxgi.box().voxelSize;
     c.gridSize = vxgi.box().size;
-    c.maxLod = float(vxgi.directions()[0].levelViews.size());
+    c.maxLod = float(vxgi.directions()[0].levelViews.size() - 1);
     c.stepFactor = settings.stepFactor;
     c.ringCones = settings.ringCones;
     return c;

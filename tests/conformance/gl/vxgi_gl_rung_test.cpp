@@ -109,7 +109,7 @@ Voxelized voxelize(std::optional<vk::Rung> forced, bool fallback = false) {
             v.stats = gl->lastStats();
             const std::vector<float> sums =
                 vk::downloadBuffer<float>(*ctx, gl->sumsBuffer(), v.grid.size() * gpu::kVoxelSumWords);
-            for (size_t i = 0; i < v.grid.size(); ++i) v.counts.push_back(sums[i * gpu::kVoxelSumWords + 4]);
+            for (size_t i = 0; i < v.grid.size(); ++i) v.counts.push_back(sums[i * gpu::kVoxelSumWords + gpu::kVoxelSumCount]);
         }
     }
     ctx->waitIdle();

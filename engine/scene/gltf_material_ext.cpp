@@ -5,7 +5,8 @@
 // sRGB RGB, clearcoatTexture R, clearcoatRoughnessTexture G, sheenColorTexture sRGB RGB, sheenRoughnessTexture A)
 // become TextureRefs with texCoord and KHR_texture_transform like the core ones; a reference without an index or
 // out of range warns and is dropped (the factor alone is used). clearcoatNormalTexture is validated and ignored
-// with a warning: the coat shares the base layer's shading normal in every renderer.
+// with a warning: the coat shares the base layer's shading normal in every renderer; so is anisotropyTexture (the
+// strength and rotation factors alone are used).
 #include <algorithm>
 #include <cmath>
 
@@ -116,7 +117,8 @@ void loadMaterialExtensions(const Ctx& ctx, const tinygltf::Material& src, const
         mat.anisotropyStrength = rangedNumber(ctx, *ext, "anisotropyStrength", 0.0f, 0.0f, 1.0f, w);
         // Any finite angle is valid (radians); a bound keeps sin/cos accurate in float.
         mat.anisotropyRotation = rangedNumber(ctx, *ext, "anisotropyRotation", 0.0f, -1.0e4f, 1.0e4f, w);
-        ignoredTextures(ctx, *ext, {"anisotropyTexture"}, w);
+        if (validTextureInfo(ctx, *ext, "anisotropyTexture", w))
+            ctx.warn(w + ": anisotropyTexture is not supported yet (the strength and rotation factors alone are used)");
     }
 }
 

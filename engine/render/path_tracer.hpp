@@ -109,6 +109,13 @@ public:
     PathTracer(const PathTracer&) = delete;
     PathTracer& operator=(const PathTracer&) = delete;
 
+    // Poses the scene as `scene` is now (after scene::evaluateAnimations; the same scene the tracer was built
+    // from): instance transforms, and skins and morphs through the rasterizer's skinning compute, BLAS refit on
+    // the GPU and the TLAS rebuilt (render/pt_pose.hpp). Construction already applies the scene's pose at that
+    // time. Throws std::invalid_argument for another scene or a moved emissive instance (its light entries are
+    // world-space triangles), or when skinned/morphed instances were posed on the CPU (a PtPosing::Cpu scene).
+    void setPose(const scene::Scene& scene);
+
     PathTraceResult render(const scene::CameraView& camera, uint32_t width, uint32_t height,
                            const PathTraceSettings& settings, const Progress& progress = {});
     PtCapture capture(const scene::CameraView& camera, uint32_t width, uint32_t height,

@@ -107,6 +107,11 @@ struct PathTracer::Impl {
     std::vector<std::vector<glm::uvec3>> triangles;    // ray query: per geometry, to rebuild after a pose
     bool cpuPosedDeformation = false;                  // the scene has CPU-posed copies (setPose cannot move them)
     gpu::GpuPtSceneDesc desc{};
+    struct Progressive {
+        bool active = false;  // begun and not ended by render() or capture() (they reuse the accumulation)
+        PathTraceSettings settings;
+        uint32_t samples = 0;
+    } progressive;
     bool hasAlpha = false;
     vk::Buffer sceneDesc, camera, accumDesc;
     VkGraphBackend backend;
@@ -199,6 +204,33 @@ struct PathTracer::Impl {
         desc.tlas = geometry.wideTlas ? geometry.wideTlas->descAddress() : geometry.tlas->descAddress();
         desc.accel = accel ? accel->tlasAddress() : 0;
         vk::uploadBuffer(ctx, sceneDesc, &desc, sizeof(desc));
+    }
+
+    // The resolved images of the current accumulation (after addPtResolve [+ addPtDenoise] ran), as options ask.
+    void readResult(PathTraceResult& result) {
+        const PtFrameResources& f = frame;
+        const uint32_t width = f.width, height = f.height;
+        result.image = toImage(vk::readbackImage(ctx, f.colorImage, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL),
+                               VK_FORMAT_R32G32B32A32_SFLOAT, width, height);
+        if (options.readGuides || options.denoise) {
+            result.albedo = toImage(vk::readbackImage(ctx, f.albedoImage, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL),
+                                    VK_FORMAT_R16G16B16A16_SFLOAT, width, height);
+            result.normal = toImage(vk::readbackImage(ctx, f.normalImage, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL),
+                                    VK_FORMAT_R16G16B16A16_SFLOAT, width, height);
+            result.depth = toImage(vk::readbackImage(ctx, f.depthImage, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL),
+                                   VK_FORMAT_R32_SFLOAT, width, height);
+        }
+        if (options.readSum) {
+            result.sum.width = width;
+            result.sum.height = height;
+            result.sum.pixels.resize(size_t(width) * height * 4);
+            vk::downloadBuffer(ctx, f.accumColor, result.sum.pixels.data(), result.sum.pixels.size() * sizeof(float));
+        }
+        if (options.denoise) {
+            result.denoised = toImage(vk::readbackImage(ctx, f.denoisedImage, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL),
+                                      VK_FORMAT_R32G32B32A32_SFLOAT, width, height);
+            result.didDenoise = true;
+        }
     }
 
     // Records `build` into one graph, submits it and waits; returns the graph's pass timings.
@@ -348,6 +380,7 @@ PathTraceResult PathTracer::render(const scene::CameraView& camera, uint32_t wid
     if (width == 0 || height == 0) throw std::invalid_argument("PathTracer::render: empty image size");
     Impl& m = *impl_;
     const auto start = std::chrono::steady_clock::now();
+    m.progressive.active = false;
     m.ensureFrame(width, height);
     m.setCamera(camera, width, height);
     const PtStageConfig cfg = m.config(settings);
@@ -377,37 +410,68 @@ PathTraceResult PathTracer::render(const scene::CameraView& camera, uint32_t wid
         if (progress) progress(done, spp);
     }
     result.samples = spp;
-    const PtFrameResources& f = m.frame;
-    result.image = toImage(vk::readbackImage(m.ctx, f.colorImage, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL),
-                           VK_FORMAT_R32G32B32A32_SFLOAT, width, height);
-    if (m.options.readGuides || m.options.denoise) {
-        result.albedo = toImage(vk::readbackImage(m.ctx, f.albedoImage, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL),
-                                VK_FORMAT_R16G16B16A16_SFLOAT, width, height);
-        result.normal = toImage(vk::readbackImage(m.ctx, f.normalImage, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL),
-                                VK_FORMAT_R16G16B16A16_SFLOAT, width, height);
-        result.depth = toImage(vk::readbackImage(m.ctx, f.depthImage, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL),
-                               VK_FORMAT_R32_SFLOAT, width, height);
-    }
-    if (m.options.readSum) {
-        result.sum.width = width;
-        result.sum.height = height;
-        result.sum.pixels.resize(size_t(width) * height * 4);
-        vk::downloadBuffer(m.ctx, f.accumColor, result.sum.pixels.data(), result.sum.pixels.size() * sizeof(float));
-    }
-    if (m.options.denoise) {
-        result.denoised = toImage(vk::readbackImage(m.ctx, f.denoisedImage, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL),
-                                  VK_FORMAT_R32G32B32A32_SFLOAT, width, height);
-        result.didDenoise = true;
-    }
+    m.readResult(result);
     for (const auto& [stage, ms] : stageMs) result.stageTimes.push_back({stage, ms});
     result.wallMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return result;
 }
 
+void PathTracer::beginProgressive(const scene::CameraView& camera, uint32_t width, uint32_t height,
+                                  const PathTraceSettings& settings) {
+    if (width == 0 || height == 0) throw std::invalid_argument("PathTracer::beginProgressive: empty image size");
+    Impl& m = *impl_;
+    m.ensureFrame(width, height);
+    m.setCamera(camera, width, height);
+    m.progressive = {true, settings, 0};
+    m.runGraph([&](const PtStageContext& sc) { addPtClear(sc); }, m.config(settings));
+}
+
+uint32_t PathTracer::accumulate(uint32_t samples) {
+    Impl& m = *impl_;
+    if (!m.progressive.active)
+        throw std::logic_error("PathTracer::accumulate: no progressive image (call beginProgressive after render)");
+    const PtStageConfig cfg = m.config(m.progressive.settings);
+    const uint32_t batch = std::max(m.options.samplesPerBatch, 1u);
+    for (uint32_t done = 0; done < samples;) {
+        const uint32_t count = std::min(batch, samples - done);
+        const uint32_t first = m.progressive.settings.firstSample + m.progressive.samples;
+        m.runGraph(
+            [&](const PtStageContext& sc) {
+                for (uint32_t k = 0; k < count; ++k) addPtSample(sc, first + k);
+            },
+            cfg);
+        done += count;
+        m.progressive.samples += count;
+    }
+    return m.progressive.samples;
+}
+
+uint32_t PathTracer::accumulatedSamples() const noexcept {
+    return impl_->progressive.active ? impl_->progressive.samples : 0;
+}
+
+PathTraceResult PathTracer::resolveProgressive() {
+    Impl& m = *impl_;
+    if (!m.progressive.active)
+        throw std::logic_error("PathTracer::resolveProgressive: no progressive image (call beginProgressive)");
+    PathTraceResult result;
+    result.traversal = m.traversal;
+    m.runGraph(
+        [&](const PtStageContext& sc) {
+            addPtResolve(sc);
+            if (m.options.denoise) addPtDenoise(sc);
+        },
+        m.config(m.progressive.settings));
+    result.samples = m.progressive.samples;
+    m.readResult(result);
+    return result;
+}
+
 PtCapture PathTracer::capture(const scene::CameraView& camera, uint32_t width, uint32_t height,
                               const PathTraceSettings& settings, uint32_t bounce) {
     Impl& m = *impl_;
+    m.progressive.active = false;
     m.ensureFrame(width, height);
     m.setCamera(camera, width, height);
     PathTraceSettings s = settings;

@@ -100,6 +100,10 @@ struct PathTracer::Impl {
     PathTracerOptions options;
     PtTraversal traversal = PtTraversal::Bvh;
     std::unique_ptr<GpuScene> gpuScene;
+    // Owns the textures' images and bindless slots: its destructor releases them, so it lives as long as the
+    // tracer (a streamer local to the constructor freed them before the first trace, which then sampled released
+    // slots: unnoticed while nothing reused them, grey in a viewer whose own textures had loaded first).
+    std::unique_ptr<TextureStreamer> textures;
     PtGpuGeometry geometry;
     std::unique_ptr<vk::AccelerationStructures> accel;
     PtTables tables;
@@ -302,11 +306,13 @@ PathTracer::PathTracer(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene
                                                                   : GpuSceneContents::MaterialsOnly);
     std::vector<PtTextureBinding> textures(scene.textures.size());
     if (m.gpuScene->features().hasTextures) {
-        TextureStreamer streamer(ctx, scene, [&](uint32_t texture, vk::SampledIndex image, vk::SamplerIndex sampler) {
-            m.gpuScene->setTexture(texture, image, sampler);
-            if (texture < textures.size()) textures[texture] = {image.value, sampler.value};
-        });
-        streamer.finishSynchronously();
+        // onReady runs only inside finishSynchronously (no frame pumps this streamer), while `textures` lives.
+        m.textures = std::make_unique<TextureStreamer>(
+            ctx, scene, [&](uint32_t texture, vk::SampledIndex image, vk::SamplerIndex sampler) {
+                m.gpuScene->setTexture(texture, image, sampler);
+                if (texture < textures.size()) textures[texture] = {image.value, sampler.value};
+            });
+        m.textures->finishSynchronously();
     }
     // The patched material slots reach the GPU before any trace reads them (nothing is in flight yet).
     if (m.gpuScene->materialBuffer())

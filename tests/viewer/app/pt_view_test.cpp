@@ -2,7 +2,7 @@
 // embedded Cornell box at 64x64, one sample per frame. Oracles: `idk render --pathtrace` of the same camera and
 // seed (N frames are its N-spp image: the progressive sum is the same samples; the denoised one too), a 256-spp
 // render with another seed (the error falls as frames accumulate), and the sample count the viewer reports
-// (restarts when the camera moves, stops when P switches back to the rasterizer).
+// (restarts when the camera moves or an animated scene's time runs, stops when P switches back to the rasterizer).
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -24,9 +24,9 @@ constexpr double kSameFraction = 0.001;
 
 // Runs the viewer with `script` for `frames` frames; returns its output and writes shot.png in `folder`.
 ProcessResult runScripted(const std::filesystem::path& folder, const std::string& script, int frames,
-                          const std::string& extra = "") {
+                          const std::string& extra = "", const std::string& dt = "0.02") {
     writeText(folder / "script.txt", script);
-    return runCommand(kViewer + " --size 64x64 --fixed-dt 0.02 --frames " + std::to_string(frames) + " --script " +
+    return runCommand(kViewer + " --size 64x64 --fixed-dt " + dt + " --frames " + std::to_string(frames) + " --script " +
                           quoted(folder / "script.txt") + " --screenshot " + quoted(folder / "shot.png") + " " + extra,
                       "DISPLAY=" + xvfbDisplay());
 }
@@ -89,6 +89,21 @@ TEST(ViewerPathTracer, MovingTheCameraRestartsAndPSwitchesBack) {
     ProcessResult back = runScripted(folder, "0 press P\n5 press P\n", 8);
     ASSERT_EQ(back.exitCode, 0) << back.output;
     EXPECT_NE(back.output.find(countLine(5, 1, false)), std::string::npos) << back.output;
+}
+
+TEST(ViewerPathTracer, AnimatedSceneRestartsWhileTimeRunsThenMatchesTheRenderAtThatTime) {
+    const std::filesystem::path folder = testFolder("pt_view_animated");
+    const std::filesystem::path fox = std::filesystem::path(IDK_SHARED_DIR) / "scenes/Fox/glTF-Binary/Fox.glb";
+    ASSERT_TRUE(std::filesystem::exists(fox)) << fox;
+    // 0.25 s per frame: frames 0, 1, 2 are at T = 0.25, 0.5, 0.75 (each a new accumulation; the tracer is built at
+    // 0.25 and re-posed on the GPU, PathTracer::setPose); T pauses at frame 3, so frames 2..7 add 6 samples at 0.75.
+    // --sync-textures: the rasterizer's textures load first (the tracer's own texture slots must survive that).
+    ProcessResult r = runScripted(folder, "3 press T\n", 8, quoted(fox) + " --pathtrace --sync-textures", "0.25");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find(countLine(6, 3)), std::string::npos) << r.output;
+    const Codes expected = renderPathTraced(folder, "fox", quoted(fox) + " --time 0.75 --spp 6");
+    const CodeDifference d = compareCodes(readCodes(folder / "shot.png"), expected, kSameCodes);
+    EXPECT_LE(d.fractionOver, kSameFraction) << "max " << d.maxRgb << " mean " << d.meanRgb;
 }
 
 }  // namespace

@@ -76,7 +76,28 @@ uint32_t materialOf(const scene::Scene& scene, const scene::Primitive& prim) {
                                                                       : uint32_t(scene.materials.size());
 }
 
+bool emitsAny(const scene::Scene& scene, const scene::Mesh& mesh) {
+    for (const scene::Primitive& prim : mesh.primitives)
+        if (prim.material && *prim.material < scene.materials.size() &&
+            scene.materials[*prim.material].emissive != glm::vec3(0.0f))
+            return true;
+    return false;
+}
+
 }  // namespace
+
+bool hasGpuDeformation(const scene::Scene& scene, const scene::Instance& inst) {
+    if (inst.mesh >= scene.meshes.size() || inst.node >= scene.nodes.size()) return false;
+    const scene::Node& node = scene.nodes[inst.node];
+    const bool skinnedNode = inst.skin && *inst.skin < scene.skins.size();
+    for (const scene::Primitive& prim : scene.meshes[inst.mesh].primitives) {
+        const size_t count = prim.positions.size();
+        const bool skinned = skinnedNode && prim.joints.size() == count && prim.weights.size() == count;
+        const bool morphed = !prim.targets.empty() && !node.weights.empty();
+        if (!prim.indices.empty() && count > 0 && (skinned || morphed)) return true;
+    }
+    return false;
+}
 
 std::vector<gpu::GpuPtMaterial> packPtMaterials(const scene::Scene& scene) {
     std::vector<gpu::GpuPtMaterial> out;
@@ -111,7 +132,7 @@ std::vector<gpu::GpuPtMaterial> packPtMaterials(const scene::Scene& scene) {
 }
 
 PathTraceScene buildPathTraceScene(const scene::Scene& scene, const core::ImageRgba32f* environment,
-                                   float envIntensity, glm::vec3 constantRadiance) {
+                                   float envIntensity, glm::vec3 constantRadiance, PtPosing posing) {
     PathTraceScene pts;
     pts.materials = scene.materials;
     pts.materials.push_back(scene::Material{});
@@ -130,7 +151,17 @@ PathTraceScene buildPathTraceScene(const scene::Scene& scene, const core::ImageR
         const bool ownMorph = weights != mesh.weights;
         bvh::BlasInstance bi;
         bi.objectToWorld = inst.world;
-        if (skinned || ownMorph) {  // a world-space copy of its own
+        const bool gpuPosed =
+            posing == PtPosing::Gpu && hasGpuDeformation(scene, inst) && !emitsAny(scene, mesh);
+        if (gpuPosed) {  // its own object-space rest copy: the GPU writes the pose and refits the BLAS
+            PtGeometry g;
+            for (const scene::Primitive& prim : mesh.primitives)
+                appendPrimitive(g, prim, mesh.weights, materialOf(scene, prim), VertexPlacement{});
+            bi.blasIndex = uint32_t(pts.geometries.size());
+            pts.gpuPosedInstances.push_back(uint32_t(pts.instances.size()));
+            pts.geometries.push_back(std::move(g));
+        } else if (skinned || ownMorph) {  // a world-space copy of its own
+            pts.cpuPosedDeformation = true;
             PtGeometry g;
             for (const scene::Primitive& prim : mesh.primitives) {
                 VertexPlacement pl;

@@ -33,6 +33,13 @@ struct PtGeometry {
     std::vector<uint32_t> triangleMaterial;  // per triangle, index into PathTraceScene::materials
 };
 
+// Who poses skinned and morphed instances. Cpu: buildPathTraceScene skins and morphs world-space copies (the CPU
+// reference's oracle). Gpu: each such instance gets a geometry of its own in object space at the rest pose (mesh
+// default weights, unskinned), its BLAS built over that, placed by its node's transform; the GPU tracer then writes
+// the posed vertices with the rasterizer's skinning compute and refits that BLAS (render/pt_pose.hpp). An instance
+// whose material emits stays CPU-posed in both modes: its triangles are light-list entries with world positions.
+enum class PtPosing : uint8_t { Cpu, Gpu };
+
 struct PathTraceScene {
     std::vector<PtGeometry> geometries;
     std::vector<bvh::Blas> blases;              // blases[i] is built over geometries[i]
@@ -51,6 +58,8 @@ struct PathTraceScene {
 
     EnvironmentMap environment;
     gpu::GpuPtEnvironment environmentDesc{};     // width/height, NEE environment probability, light count
+    std::vector<uint32_t> gpuPosedInstances;     // Gpu posing: instances whose geometry awaits the GPU pose
+    bool cpuPosedDeformation = false;            // some skinned/morphed instance was posed here (its own copy)
     bool alphaTesting = false;                   // some material is MASK or BLEND (shadow rays must test alpha)
     glm::vec3 boundsCentre{0.0f};
     float boundsRadius = 0.0f;
@@ -60,7 +69,12 @@ struct PathTraceScene {
 // `environment`: the equirectangular HDR (core::readImage of render::defaultEnvironmentPath(), as the raster loads
 // it), scaled by envIntensity; nullptr: a constant environment of radiance `constantRadiance` (black by default).
 PathTraceScene buildPathTraceScene(const scene::Scene& scene, const core::ImageRgba32f* environment,
-                                   float envIntensity, glm::vec3 constantRadiance = glm::vec3(0.0f));
+                                   float envIntensity, glm::vec3 constantRadiance = glm::vec3(0.0f),
+                                   PtPosing posing = PtPosing::Cpu);
+
+// Whether the rasterizer's skinning deforms some primitive of `instance` (render::packDeformation's rule: a skin
+// with JOINTS_0/WEIGHTS_0 on the primitive, or morph targets with node weights), i.e. it has a GPU pose.
+bool hasGpuDeformation(const scene::Scene& scene, const scene::Instance& instance);
 
 // The path-tracing fields of every material (Scene::materials, then the default one).
 std::vector<gpu::GpuPtMaterial> packPtMaterials(const scene::Scene& scene);

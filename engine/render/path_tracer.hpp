@@ -109,8 +109,28 @@ public:
     PathTracer(const PathTracer&) = delete;
     PathTracer& operator=(const PathTracer&) = delete;
 
+    // Poses the scene as `scene` is now (after scene::evaluateAnimations; the same scene the tracer was built
+    // from): instance transforms, and skins and morphs through the rasterizer's skinning compute, BLAS refit on
+    // the GPU and the TLAS rebuilt (render/pt_pose.hpp). Construction already applies the scene's pose at that
+    // time. Throws std::invalid_argument for another scene or a moved emissive instance (its light entries are
+    // world-space triangles), or when skinned/morphed instances were posed on the CPU (a PtPosing::Cpu scene).
+    void setPose(const scene::Scene& scene);
+
     PathTraceResult render(const scene::CameraView& camera, uint32_t width, uint32_t height,
                            const PathTraceSettings& settings, const Progress& progress = {});
+    // Progressive accumulation (a viewer's path-traced mode): beginProgressive clears the sums for an image of
+    // `camera` at width x height with `settings` (spp is ignored; samples are numbered from settings.firstSample),
+    // accumulate(n) adds the next n samples (in samplesPerBatch submissions) and returns the count so far,
+    // resolveProgressive writes the mean of the samples so far (and the denoiser's output with options.denoise) and
+    // reads it back as render() does; accumulating can go on after it. The same seed and samples give render()'s
+    // image. render() and capture() reuse the accumulation: they end the progressive image (accumulate and
+    // resolveProgressive then throw std::logic_error until the next beginProgressive).
+    void beginProgressive(const scene::CameraView& camera, uint32_t width, uint32_t height,
+                          const PathTraceSettings& settings);
+    uint32_t accumulate(uint32_t samples);
+    uint32_t accumulatedSamples() const noexcept;  // since beginProgressive; 0 without a progressive image
+    PathTraceResult resolveProgressive();
+
     PtCapture capture(const scene::CameraView& camera, uint32_t width, uint32_t height,
                       const PathTraceSettings& settings, uint32_t bounce);
 

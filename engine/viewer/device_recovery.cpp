@@ -58,6 +58,7 @@ void Viewer::destroyDevice() {
         for (const std::string& m : ctx->validationMessages()) std::fprintf(stderr, "  %s\n", m.c_str());
     }
     ui.reset();
+    pathTracer.reset();  // a new device builds a new tracer (the settings stay in state.pt)
     textures.reset();
     if (renderer) options.settings = renderer->settings();  // a recovered device keeps the panels' settings
     renderer.reset();

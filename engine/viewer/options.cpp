@@ -32,16 +32,21 @@ const char* const kViewerHelp =
     "  --memory-log F    every 100 frames, one JSON line of host RSS and device memory by category (soak runs)\n"
     "  --allow-external-uris  let buffer and image URIs point outside the scene's folder (trusted content only)\n"
     "  --max-memory SIZE refuse a scene whose loading would allocate more than SIZE (e.g. 2G) before allocating\n"
+    "  --pathtrace       start in the path-traced mode (P toggles): progressive, restarts when the view changes\n"
+    "  --denoise         path-traced mode: show the denoiser's output\n"
+    "  --max-depth D     path-traced mode: longest path in ray segments (default 8, as idk render --pathtrace)\n"
+    "  --seed S          path-traced mode: random seed (default 0; N frames give idk render --spp N --seed S)\n"
     "controls: W/A/S/D move, Space up, Shift faster, E GUI/FPS mode, T pause time, right-click select (GUI) or\n"
     "  shoot a light (FPS), Ctrl+R record, Ctrl+Space replay, G hide GUI, V vsync, F11 fullscreen, 1 recompile\n"
-    "  shaders, Esc exit. Without a display use `idk render SCENE --out F.png`.\n";
+    "  shaders, P path tracer / rasterizer, Esc exit. Without a display use `idk render SCENE --out F.png`.\n";
 
 ViewerOptions parseViewerOptions(const std::vector<std::string>& argv) {
     core::CliArgs args = core::parseCli(
         argv, frame::withSettingOptions(app::withSceneOptions(
-                  {{"--no-ui", "--watch", "--no-vsync", "--sync-textures", "--no-validation", "--fallback", "--help"},
+                  {{"--no-ui", "--watch", "--no-vsync", "--sync-textures", "--no-validation", "--fallback", "--help",
+                    "--pathtrace", "--denoise"},
                    {"--size", "--frames", "--screenshot", "--script", "--shader-dir", "--capture", "--fixed-dt", "--rung",
-                    "--memory-log"}})));
+                    "--memory-log", "--max-depth", "--seed"}})));
     ViewerOptions o;
     o.help = args.has("--help");
     if (args.positional.size() > 1) throw core::CliError("more than one scene given");
@@ -83,6 +88,19 @@ ViewerOptions parseViewerOptions(const std::vector<std::string>& argv) {
         }
         o.rungs.push_back(spec);
     }
+    o.pathTrace.enabled = args.has("--pathtrace");
+    o.pathTrace.denoise = args.has("--denoise");
+    auto whole = [&](const char* flag, uint32_t minimum, uint32_t maximum) -> std::optional<uint32_t> {
+        std::optional<std::string> text = args.get(flag);
+        if (!text) return std::nullopt;
+        const double n = core::parseNumber(flag, *text);
+        if (!(n >= minimum && n <= maximum) || n != std::floor(n))
+            throw core::CliError(std::string(flag) + " '" + *text + "': give a whole number in " + std::to_string(minimum) +
+                                 ".." + std::to_string(maximum));
+        return uint32_t(n);
+    };
+    if (auto d = whole("--max-depth", 1, 64)) o.pathTrace.maxDepth = *d;
+    if (auto s = whole("--seed", 0, 1000000000)) o.pathTrace.seed = *s;
     o.load = app::loadOptionsFromCli(args);
     frame::applySettingOptions(args, o.settings);
     return o;

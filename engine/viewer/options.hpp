@@ -9,6 +9,7 @@
 
 #include "render/render_settings.hpp"
 #include "scene/gltf_loader.hpp"
+#include "viewer/pt_view.hpp"
 
 namespace idk::viewer {
 
@@ -34,6 +35,7 @@ struct ViewerOptions {
     bool help = false;
     scene::LoadOptions load;                          // --allow-external-uris, --max-memory (app/scene_options.hpp)
     render::RenderSettings settings;                  // the rasterizer options of frame/settings_table.hpp
+    PtViewSettings pathTrace;                         // --pathtrace, --denoise, --max-depth, --seed
 };
 
 // Throws core::CliError naming the option.

@@ -211,6 +211,23 @@ void scenePanel(Viewer& v) {
     if (p.distance > 0) ImGui::Text("hit at (%.3f, %.3f, %.3f), distance %.3f", p.point.x, p.point.y, p.point.z, p.distance);
 }
 
+// The path-traced mode (P, pt_view.hpp): a change here restarts the accumulation.
+void pathTracerPanel(Viewer& v) {
+    if (!ImGui::CollapsingHeader("Path tracer", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    PtViewSettings& pt = v.state.pt;
+    ImGui::Checkbox("path traced (P)", &pt.enabled);
+    if (!pt.enabled) return;
+    if (v.pathTracer) {
+        ImGui::Text("%u samples (accumulation %u)", v.pathTracer->samples(), v.pathTracer->restarts());
+        if (!v.pathTracer->error().empty()) ImGui::TextWrapped("pose not applied: %s", v.pathTracer->error().c_str());
+    }
+    ImGui::Checkbox("denoise", &pt.denoise);
+    int depth = int(pt.maxDepth), perFrame = int(pt.samplesPerFrame), seed = int(pt.seed);
+    if (ImGui::SliderInt("max depth", &depth, 1, 32)) pt.maxDepth = uint32_t(std::clamp(depth, 1, 32));
+    if (ImGui::SliderInt("samples per frame", &perFrame, 1, 16)) pt.samplesPerFrame = uint32_t(std::clamp(perFrame, 1, 16));
+    if (ImGui::InputInt("seed", &seed)) pt.seed = uint32_t(std::max(seed, 0));
+}
+
 void cameraPanel(Viewer& v) {
     if (!ImGui::CollapsingHeader("Camera and time", ImGuiTreeNodeFlags_DefaultOpen)) return;
     ImGui::Text("mode: %s (E)   GUI: G   time: %s (T)", v.state.guiMode ? "GUI" : "FPS", v.state.timePaused ? "paused" : "running");
@@ -246,6 +263,7 @@ void drawPanels(Viewer& v) {
     ImGui::Begin("idk-viewer");
     rendererPanel(v);
     framePanel(v);
+    pathTracerPanel(v);
     cameraPanel(v);
     scenePanel(v);
     shaderPanel(v);

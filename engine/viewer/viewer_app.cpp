@@ -25,6 +25,7 @@
 namespace idk::viewer {
 
 Viewer::Viewer(const ViewerOptions& opts) : options(opts) {
+    state.pt = options.pathTrace;
     // The window first: without a display nothing else is worth loading.
     window = std::make_unique<Window>(options.width, options.height, "idk-viewer");
     std::vector<ScriptEvent> script;
@@ -116,6 +117,7 @@ void Viewer::handleKey(const KeyEvent& e) {
         case GLFW_KEY_V: swapchain->setVsync(!swapchain->vsync()); break;
         case GLFW_KEY_F11: window->toggleFullscreen(); break;
         case GLFW_KEY_1: reloader->reloadAll(); break;
+        case GLFW_KEY_P: state.pt.enabled = !state.pt.enabled; break;
         case GLFW_KEY_R:
             if (ctrl) toggleRecording();
             break;
@@ -220,9 +222,25 @@ bool Viewer::renderAndPresent() {
     signal.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
     target.waits = {wait};
     target.signals = {signal};
-    if (ui && state.guiVisible) {
-        target.addPasses = [this](graph::RenderGraph& graph, graph::TextureHandle color) {
-            return ui->addPass(graph, *ImGui::GetDrawData(), color);
+    if (state.pt.enabled) {
+        try {
+            if (!pathTracer) pathTracer = std::make_unique<PtView>(*ctx, *shaders);
+            pathTracer->update(scene, state.sceneTime, currentView(), extent.width, extent.height, state.pt,
+                               renderer->settings(), state.lastFrame.timelineValue);
+        } catch (const vk::Error&) {
+            throw;  // device lost / out of memory: run() recovers
+        } catch (const std::runtime_error& e) {  // e.g. a traversal this device cannot run: back to the rasterizer
+            state.pt.enabled = false;
+            pathTracer.reset();
+            state.status = std::string("path tracer: ") + e.what();
+            std::fprintf(stderr, "idk-viewer: %s\n", state.status.c_str());
+        }
+    }
+    const bool pathTraced = state.pt.enabled, drawUi = ui && state.guiVisible;
+    if (pathTraced || drawUi) {
+        target.addPasses = [this, pathTraced, drawUi](graph::RenderGraph& graph, graph::TextureHandle color) {
+            if (pathTraced) color = pathTracer->addPass(graph, color);  // over the raster frame, under the UI
+            return drawUi ? ui->addPass(graph, *ImGui::GetDrawData(), color) : color;
         };
     }
     renderer->prepareSourceScene(scene);  // a shadow mode switched to ray-traced builds its geometry here
@@ -233,7 +251,9 @@ bool Viewer::renderAndPresent() {
 
 void Viewer::writeScreenshot() {
     uint32_t width = 0, height = 0;
-    std::vector<uint8_t> bytes = renderer->readLastFrame(width, height);
+    // In the path-traced mode, the image it showed last (the raster frame under it is not what was displayed).
+    std::vector<uint8_t> bytes = state.pt.enabled && pathTracer ? pathTracer->displayed(width, height)
+                                                                : renderer->readLastFrame(width, height);
     if (bytes.empty()) throw std::runtime_error(options.screenshot->string() + ": no frame was rendered");
     core::ImageRgba32f image;
     image.width = width;
@@ -333,6 +353,9 @@ int Viewer::finish() {
     // The final camera, for scripted runs (tests read it).
     std::printf("idk-viewer: camera position %.5f %.5f %.5f yaw %.5f pitch %.5f radius %.5f\n", camera.position.x,
                 camera.position.y, camera.position.z, camera.yaw, camera.pitch, flyParams.radius);
+    if (pathTracer)  // scripted runs of the path-traced mode (tests read it)
+        std::printf("idk-viewer: path tracer %s, %u samples, %u restarts\n", state.pt.enabled ? "on" : "off",
+                    pathTracer->samples(), pathTracer->restarts());
     double totalMs = 0.0;
     for (float ms : state.frameMs) totalMs += ms;
     std::printf("idk-viewer: %llu frames, %.2f ms per frame over the last %zu\n",

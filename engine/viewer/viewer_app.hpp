@@ -20,6 +20,7 @@
 #include "viewer/input.hpp"
 #include "viewer/options.hpp"
 #include "viewer/picking.hpp"
+#include "viewer/pt_view.hpp"
 #include "viewer/shader_reload.hpp"
 #include "viewer/shot_lights.hpp"
 #include "viewer/window.hpp"
@@ -51,6 +52,7 @@ struct ViewerState {
     };
     std::optional<DeviceFailure> deviceFailure;
     uint32_t deviceRetries = 0;
+    PtViewSettings pt;          // P: path-traced mode and its settings (pt_view.hpp)
 };
 
 class Viewer {
@@ -81,6 +83,7 @@ public:
     ShotLights shotLights;
     Input input;
     std::optional<vk::MemoryLog> memoryLog;
+    std::unique_ptr<PtView> pathTracer;  // created when the path-traced mode first shows a frame
 
     scene::CameraView currentView() const { return tools::toCameraView(camera, lens); }
 

@@ -13,6 +13,8 @@
 // BM_VxgiCornell/N: one rasterized frame with --gi vxgi at N^3 voxels (warm renderer: the voxelization, mips and
 // cone tracing run every frame), GPU pass times as counters. BM_VxgiCornellOff: the same frame with --gi none.
 // BM_VxgiPathTraced/S: the path tracer at S spp and the reference's depth (the peer: the time for its own error).
+// BM_VxgiCornellResolution/R: BM_VxgiCornell at 128^3 with the cones traced at full (R = 0) or half (R = 1)
+// resolution (--gi-resolution; half adds the edge-aware upsample, pass_ms.vxgi_upsample).
 // BM_VxgiShared/K/N, BM_VxgiSharedOff/K, BM_VxgiSharedPathTraced/K/S: the same three on shared scene K
 // (../shared/scenes, default camera, no texture streaming in either renderer): 0 EmissiveStrengthTest (emitters
 // lighting their neighbours), 1 SimpleInstancing (instanced cubes under the sky).
@@ -135,7 +137,7 @@ core::ImageRgba32f rasterDirect(const scene::Scene& scene) {
 }
 
 void rasterFrames(benchmark::State& state, int k, frame::GiMode gi, uint32_t voxels, const char* settingsText,
-                  const std::string& peer) {
+                  const std::string& peer, frame::GiResolution resolution = frame::VxgiSettings{}.resolution) {
     if (!requireDevice(state)) return;
     scene::Scene scene = loadScene(k);
     const Reference& ref = reference(k, scene);
@@ -144,6 +146,7 @@ void rasterFrames(benchmark::State& state, int k, frame::GiMode gi, uint32_t vox
     settings.output = render::OutputKind::Hdr;
     settings.vxgi.mode = gi;
     settings.vxgi.voxels = voxels;
+    settings.vxgi.resolution = resolution;
     context()->clearConsultedLadders();
     double gpuMs = 0.0, error = 0.0, indirect = 0.0, wallMs = 0.0;
     std::map<std::string, double> passMs;
@@ -187,6 +190,15 @@ void BM_VxgiCornell(benchmark::State& state) {
     rasterFrames(state, -1, frame::GiMode::Vxgi, voxels, text.c_str(), "BM_VxgiPathTraced/4");
 }
 BENCHMARK(BM_VxgiCornell)->Arg(64)->Arg(128)->Arg(256)->UseRealTime()->MinTime(0.5)->Unit(benchmark::kMillisecond);
+
+void BM_VxgiCornellResolution(benchmark::State& state) {
+    const bool half = state.range(0) != 0;
+    const std::string text = std::string("--gi vxgi --voxels 128 --gi-resolution ") + (half ? "half" : "full") +
+                             ", 1 + 5 cones, 1 frame, warm";
+    rasterFrames(state, -1, frame::GiMode::Vxgi, 128, text.c_str(), "BM_VxgiPathTraced/4",
+                 half ? frame::GiResolution::Half : frame::GiResolution::Full);
+}
+BENCHMARK(BM_VxgiCornellResolution)->Arg(0)->Arg(1)->UseRealTime()->MinTime(0.5)->Unit(benchmark::kMillisecond);
 
 void BM_VxgiCornellOff(benchmark::State& state) {
     rasterFrames(state, -1, frame::GiMode::None, 64, "--gi none (SH9 + split-sum ambient), 1 frame, warm",

@@ -128,6 +128,11 @@ std::vector<SettingOption> buildTable() {
     t.push_back({"--gi-step", "Global illumination", "cone step", "VXGI cone march step in sampled cells",
                  OptionKind::Number, 0.1, 1.0, {}, [](const RenderSettings& s) { return double(s.vxgi.stepFactor); },
                  [](RenderSettings& s, double v) { s.vxgi.stepFactor = float(v); }});
+    t.push_back({"--gi-resolution", "Global illumination", "cone resolution",
+                 "VXGI cone tracing per pixel (full) or per 2x2 block with an edge-aware upsample (half)",
+                 OptionKind::Choice, 0.0, 0.0, {"full", "half"},
+                 [](const RenderSettings& s) { return double(s.vxgi.resolution); },
+                 [](RenderSettings& s, double v) { s.vxgi.resolution = frame::GiResolution(v); }});
     t.push_back({"--gi-raster", "Global illumination", "voxel raster",
                  "VXGI voxelization: conservative (thin walls never leak) or centre (pixel centres only)",
                  OptionKind::Choice, 0.0, 0.0, {"conservative", "centre"},

@@ -102,6 +102,7 @@ void VxgiFeature::addConeTracing(FrameContext& f) {
     in.box = box_;
     in.ringCones = f.settings.vxgi.ringCones;
     in.stepFactor = f.settings.vxgi.stepFactor;
+    in.halfResolution = f.settings.vxgi.resolution == GiResolution::Half;
     f.indirectLight = passes::addConeTracePasses(f.graph, f.ctx, f.shaders, in);
 }
 

@@ -32,7 +32,7 @@ public:
 
     void setScene(const render::GpuScene& scene);
     void addPasses(FrameContext& f);       // voxelization; nothing unless settings.vxgi.mode == Vxgi
-    void addConeTracing(FrameContext& f);  // after the G-buffer: mips + cone tracing into f.indirectLight
+    void addConeTracing(FrameContext& f);  // after the G-buffer: mips + cone tracing (+ upsample at half resolution)
     // The grid of the last frame (RGBA16F, size^3; left in GENERAL layout) or nullptr: tests read it back.
     const vk::Image* grid() const noexcept { return grid_.image.image ? &grid_.image : nullptr; }
     const passes::VoxelGridBox& box() const noexcept { return box_; }

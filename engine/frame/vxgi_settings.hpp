@@ -12,11 +12,16 @@ enum class GiMode : uint8_t { None, Vxgi };
 // whose centre the triangle covers in its dominant projection: thin, as the CPU oracle of the conformance test).
 enum class VoxelRaster : uint8_t { Conservative, Centre };
 
+// Where the cones are traced: Full (every pixel) or Half (one pixel per 2x2 block, then the edge-aware upsample of
+// passes/vxgi_upsample.cpp).
+enum class GiResolution : uint8_t { Full, Half };
+
 struct VxgiSettings {
     GiMode mode = GiMode::None;  // None: nothing allocated, compiled or dispatched
     uint32_t voxels = 128;       // grid size per side (64..512)
     uint32_t ringCones = 5;      // diffuse cones around the normal's cap cone (cosine-weighted set of 1 + ring)
     float stepFactor = 0.5f;     // cone march step in sampled cells (sampling only: opacity is step-corrected)
+    GiResolution resolution = GiResolution::Full;
     VoxelRaster raster = VoxelRaster::Conservative;
 };
 

@@ -41,7 +41,9 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
 
 // vxgi_cone_trace.cpp: "vxgi_mip L" (one pass per level of the six directional volumes, each from the level
 // below: the grid for L = 0), then "vxgi_cone_trace": per G-buffer pixel inside the grid, diffuse irradiance from a
-// cosine-weighted cone set and the reflection cone's radiance (transient RGBA16F, render resolution).
+// cosine-weighted cone set and the reflection cone's radiance (transient RGBA16F, render resolution). With
+// `halfResolution` the trace runs on half of it (rounded up), "vxgi_upsample" (addVxgiUpsamplePass) brings it to
+// render resolution and "vxgi_cone_trace_fixup" traces the pixels the upsample found no sample of their surface for.
 struct ConeTraceInputs {
     GBufferOutputs gbuffer;
     graph::BufferHandle frame;
@@ -57,8 +59,21 @@ struct ConeTraceInputs {
     VoxelGridBox box;
     uint32_t ringCones = 5;
     float stepFactor = 0.5f;
+    bool halfResolution = false;
 };
 IndirectLightImages addConeTracePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                        const ConeTraceInputs& inputs);
+
+// vxgi_upsample.cpp: "vxgi_upsample": the half-resolution cone trace to render resolution, joint-bilateral on the
+// G-buffer's depth and normals (shaders_glsl/vxgi/upsample.comp.glsl), in the cone trace's output layout; diffuse
+// alpha -1 marks the pixels left for the fix-up trace.
+struct VxgiUpsampleInputs {
+    GBufferOutputs gbuffer;
+    graph::BufferHandle frame;
+    IndirectLightImages traced;  // half resolution (addConeTracePasses with halfResolution)
+    VoxelGridBox box;
+};
+IndirectLightImages addVxgiUpsamplePass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                        const VxgiUpsampleInputs& inputs);
 
 }  // namespace idk::passes

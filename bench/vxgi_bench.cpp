@@ -186,7 +186,8 @@ void rasterFrames(benchmark::State& state, int k, frame::GiMode gi, uint32_t vox
 
 void BM_VxgiCornell(benchmark::State& state) {
     const auto voxels = uint32_t(state.range(0));
-    const std::string text = "--gi vxgi --voxels " + std::to_string(voxels) + ", 1 + 5 cones, 1 frame, warm";
+    const std::string text = "--gi vxgi --voxels " + std::to_string(voxels) +
+                             " (--gi-resolution half, the default), 1 + 5 cones, 1 frame, warm";
     rasterFrames(state, -1, frame::GiMode::Vxgi, voxels, text.c_str(), "BM_VxgiPathTraced/4");
 }
 BENCHMARK(BM_VxgiCornell)->Arg(64)->Arg(128)->Arg(256)->UseRealTime()->MinTime(0.5)->Unit(benchmark::kMillisecond);
@@ -239,7 +240,8 @@ BENCHMARK(BM_VxgiPathTraced)->Arg(4)->UseRealTime()->MinTime(0.5)->Unit(benchmar
 void BM_VxgiShared(benchmark::State& state) {
     const auto k = int(state.range(0));
     const auto voxels = uint32_t(state.range(1));
-    const std::string text = "--gi vxgi --voxels " + std::to_string(voxels) + ", 1 + 5 cones, 1 frame, warm";
+    const std::string text = "--gi vxgi --voxels " + std::to_string(voxels) +
+                             " (--gi-resolution half, the default), 1 + 5 cones, 1 frame, warm";
     rasterFrames(state, k, frame::GiMode::Vxgi, voxels, text.c_str(),
                  "BM_VxgiSharedPathTraced/" + std::to_string(k) + "/4");
 }

@@ -83,7 +83,8 @@ case "$case_name" in
     [ "$(grep -c '"vxgi' "$tmp/none.json")" -eq 0 ] || fail "--gi none ran or allocated VXGI: $(grep vxgi "$tmp/none.json")"
     "$idk" render --size 16x16 --out "$tmp/v.png" --gi vxgi --voxels 64 --json >"$tmp/vxgi.json" \
       || fail "render --gi vxgi failed"
-    for key in '"gi": "vxgi"' '"voxels": "64"' '"vxgi_voxelize"' '"vxgi_merge"' '"vxgi_cone_trace"' '"vxgi": '; do
+    for key in '"gi": "vxgi"' '"voxels": "64"' '"vxgi_voxelize"' '"vxgi_merge"' '"vxgi_cone_trace"' '"vxgi": ' \
+               '"gi-resolution": "half"' '"vxgi_upsample"' '"vxgi_cone_trace_fixup"'; do
       grep -q "$key" "$tmp/vxgi.json" || fail "--gi vxgi --json lacks $key: $(cat "$tmp/vxgi.json")"
     done
     "$idk" render --size 8x8 --out "$tmp/x.png" --voxels 100 2>"$tmp/err"; [ $? -eq 2 ] || fail "--voxels 100 should exit 2"

@@ -51,6 +51,9 @@ TEST(SettingsTable, ParsesValuesIntoTheSettings) {
     EXPECT_EQ(j.at("exposure"), 2.5);
     EXPECT_EQ(j.at("shadow-lights"), 3);
     EXPECT_EQ(j.at("shadow-size"), "1024");
+    EXPECT_EQ(j.at("gi-resolution"), "half");  // VXGI's default (frame/vxgi_settings.hpp)
+    applySettingOptions(parse({"--gi-resolution", "full"}), s);
+    EXPECT_EQ(s.vxgi.resolution, frame::GiResolution::Full);
 }
 
 TEST(SettingsTable, BadValuesNameTheOptionAndWhatIsAccepted) {

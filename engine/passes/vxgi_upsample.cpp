@@ -1,6 +1,6 @@
 // vxgi_upsample.cpp: the edge-aware upsample of the half-resolution VXGI cone trace (shaders_glsl/vxgi/
-// upsample.comp.glsl: depth-plane and normal weighted, so indirect light does not cross silhouettes). IDKEngine's
-// ConeTracer renders at a resolution scale and lets the lighting sample it bilinearly; this pass replaces that.
+// upsample.comp.glsl: depth-plane and normal weighted, so indirect light does not cross silhouettes). No IDKEngine
+// counterpart: its ConeTracer writes at render resolution (idkengine-internals.md 2.4); issue 11 asks for this.
 #include "passes/vxgi_passes.hpp"
 
 #include <memory>

@@ -1,6 +1,6 @@
 // vxgi_upsample_types.h: the half-resolution cone trace's sample layout and the push block of its edge-aware
-// upsample (shaders_glsl/vxgi/upsample.comp.glsl, engine/passes/vxgi_cone_trace.cpp). IDKEngine traces its cones
-// at a chosen resolution scale and upsamples by plain filtering; here the upsample is bilateral (depth + normal).
+// upsample (shaders_glsl/vxgi/upsample.comp.glsl, engine/passes/vxgi_upsample.cpp). No IDKEngine counterpart (its
+// cone tracer writes at render resolution).
 #ifndef IDK_VXGI_UPSAMPLE_TYPES_H
 #define IDK_VXGI_UPSAMPLE_TYPES_H
 #include "interop.h"

@@ -9,7 +9,7 @@
 // normal weight below kMatched: a feature thinner than the sample spacing, a silhouette the quincunx missed, or every
 // sample outside the grid) gets diffuse alpha -1, and the fix-up pass (cone_trace.comp with unmatchedOnly) traces
 // it at full resolution. Pixels outside the grid get alpha 0 (the SH ambient stays), as the full-resolution trace.
-// IDKEngine traces at a resolution scale and samples its result bilinearly (edges bleed); this one does not.
+// IDKEngine's ConeTracer writes at render resolution (idkengine-internals.md 2.4): this pass is the port's own.
 #extension GL_GOOGLE_include_directive : require
 #include "scene_buffers.glsl"
 #include "bindless.glsl"

@@ -138,6 +138,16 @@ std::vector<SettingOption> buildTable() {
                  OptionKind::Choice, 0.0, 0.0, {"conservative", "centre"},
                  [](const RenderSettings& s) { return double(s.vxgi.raster); },
                  [](RenderSettings& s, double v) { s.vxgi.raster = frame::VoxelRaster(v); }});
+    t.push_back({"--gi-debug", "Global illumination", "voxel debug view",
+                 "show the voxels instead of the lit image: off or voxels (first cell with coverage > 0.5 along "
+                 "each camera ray; needs --gi vxgi)",
+                 OptionKind::Choice, 0.0, 0.0, {"off", "voxels"},
+                 [](const RenderSettings& s) { return double(s.vxgi.debug); },
+                 [](RenderSettings& s, double v) { s.vxgi.debug = frame::GiDebug(v); }});
+    t.push_back({"--gi-debug-level", "Global illumination", "debug level",
+                 "voxel debug view's level: 0 the grid, L the directional mips' level L - 1 (at most log2 voxels)",
+                 OptionKind::Integer, 0.0, 9.0, {}, [](const RenderSettings& s) { return double(s.vxgi.debugLevel); },
+                 [](RenderSettings& s, double v) { s.vxgi.debugLevel = uint32_t(v); }});
     // Directional cascades and spot maps (frame/point_shadow_feature.cpp, render/light_shadow_maps.hpp).
     t.push_back({"--shadow-cascades", "Shadows", "cascades", "cascaded shadow maps per directional light",
                  OptionKind::Integer, 1.0, 4.0, {},
@@ -270,6 +280,18 @@ void applySettingOptions(const core::CliArgs& args, render::RenderSettings& sett
     if (const std::optional<std::string> scale = args.get("--upscale"); scale && settings.temporal.aa == AntiAliasing::None)
         throw core::CliError("--upscale '" + *scale + "': the temporal upscaler needs --aa taa (or --aa upscale); "
                              "with --aa none nothing is upscaled");
+    // The debug view shows the voxel grid, which only --gi vxgi builds.
+    if (const std::optional<std::string> debug = args.get("--gi-debug");
+        debug && settings.vxgi.debug != frame::GiDebug::Off && settings.vxgi.mode != frame::GiMode::Vxgi)
+        throw core::CliError("--gi-debug '" + *debug + "': the voxel debug view needs --gi vxgi (there is no voxel "
+                             "grid with --gi none)");
+    if (const std::optional<std::string> level = args.get("--gi-debug-level")) {
+        uint32_t maxLevel = 0;
+        while ((settings.vxgi.voxels >> (maxLevel + 1)) > 0) ++maxLevel;
+        if (settings.vxgi.debugLevel > maxLevel)
+            throw core::CliError("--gi-debug-level '" + *level + "': " + std::to_string(settings.vxgi.voxels) +
+                                 "^3 voxels have levels 0 to " + std::to_string(maxLevel));
+    }
 }
 
 std::string optionValueText(const SettingOption& o, const render::RenderSettings& settings) {

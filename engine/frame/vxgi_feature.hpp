@@ -33,6 +33,8 @@ public:
     void setScene(const render::GpuScene& scene);
     void addPasses(FrameContext& f);       // voxelization; nothing unless settings.vxgi.mode == Vxgi
     void addConeTracing(FrameContext& f);  // after the G-buffer: mips + cone tracing (+ upsample at half resolution)
+    // --gi-debug voxels: after everything else lit f.hdr, overwrites it with the voxel debug view (nothing when off).
+    void addDebugView(FrameContext& f);
     // The grid of the last frame (RGBA16F, size^3; left in GENERAL layout) or nullptr: tests read it back.
     const vk::Image* grid() const noexcept { return grid_.image.image ? &grid_.image : nullptr; }
     const passes::VoxelGridBox& box() const noexcept { return box_; }
@@ -51,6 +53,7 @@ private:
     std::array<VoxelVolume, 6> directions_; // anisotropic mips (+x -x +y -y +z -z), level k = grid level k + 1
     vk::SamplerIndex sampler_;
     graph::TextureHandle directionHandles_[6];  // this frame's imports
+    std::array<graph::TextureHandle, 6> mipped_;  // this frame's directional volumes after the mip passes
     std::unique_ptr<passes::VxgiGlAccumulator> gl_;  // "vxgi-atomics" gl-interop rung only
 };
 

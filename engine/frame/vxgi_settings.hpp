@@ -18,6 +18,10 @@ enum class VoxelRaster : uint8_t { Conservative, Centre };
 // against the path tracer (indirect rel. L1 0.395 full, 0.394 half; BM_VxgiCornellResolution).
 enum class GiResolution : uint8_t { Full, Half };
 
+// The voxel debug view (passes/vxgi_debug_view.cpp): Off, or Voxels: the final colour shows the first cell of
+// level debugLevel each camera ray meets (needs --gi vxgi).
+enum class GiDebug : uint8_t { Off, Voxels };
+
 struct VxgiSettings {
     GiMode mode = GiMode::None;  // None: nothing allocated, compiled or dispatched
     uint32_t voxels = 128;       // grid size per side (64..512)
@@ -25,6 +29,8 @@ struct VxgiSettings {
     float stepFactor = 0.5f;     // cone march step in sampled cells (sampling only: opacity is step-corrected)
     GiResolution resolution = GiResolution::Half;
     VoxelRaster raster = VoxelRaster::Conservative;
+    GiDebug debug = GiDebug::Off;  // Off: nothing allocated or dispatched
+    uint32_t debugLevel = 0;       // 0: the grid; L >= 1: the directional mips' level L - 1 (up to log2 voxels)
 };
 
 }  // namespace idk::frame

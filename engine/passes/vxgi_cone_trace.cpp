@@ -108,6 +108,7 @@ IndirectLightImages addConeTracePasses(graph::RenderGraph& graph, vk::Context& c
             });
     }
 
+    if (in.mipped) *in.mipped = dirs;
     gpu::ConeTracePush base{};
     base.gridSampler = in.gridSampler;
     base.ringCones = in.ringCones;

@@ -60,6 +60,7 @@ struct ConeTraceInputs {
     uint32_t ringCones = 5;
     float stepFactor = 0.5f;
     bool halfResolution = false;
+    std::array<graph::TextureHandle, 6>* mipped = nullptr;  // if set: the directional volumes after the mip passes
 };
 IndirectLightImages addConeTracePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                        const ConeTraceInputs& inputs);
@@ -75,5 +76,21 @@ struct VxgiUpsampleInputs {
 };
 IndirectLightImages addVxgiUpsamplePass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                         const VxgiUpsampleInputs& inputs);
+
+// vxgi_debug_view.cpp: "vxgi_debug_voxels" (--gi-debug voxels) overwrites `target` (the final HDR colour, RGBA16F
+// storage) with the radiance of the first cell of `level` each pixel's camera ray meets with coverage above
+// kVxgiDebugCoverage (shared/vxgi_debug_types.h), alpha the distance to the middle of the ray's stretch in it;
+// black, alpha 0, where it meets none. Returns its new version.
+struct VxgiDebugViewInputs {
+    graph::BufferHandle frame;
+    graph::TextureHandle target;
+    graph::TextureHandle grid;                        // level 0 (read when level == 0)
+    std::array<graph::TextureHandle, 6> directions;   // after the mips (read when level >= 1)
+    std::array<uint32_t, 6> volumeStorage{};          // storage indices of `level`: [0] the grid's for level 0
+    uint32_t level = 0;
+    VoxelGridBox box;
+};
+graph::TextureHandle addVxgiDebugViewPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                          const VxgiDebugViewInputs& inputs);
 
 }  // namespace idk::passes

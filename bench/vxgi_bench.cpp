@@ -17,6 +17,8 @@
 // runs (pass_ms.vxgi_voxelize); the native form of the single draw (VK_NV_geometry_shader_passthrough +
 // VK_NV_viewport_swizzle) is not written.
 // BM_VxgiPathTraced/S: the path tracer at S spp and the reference's depth (the peer: the time for its own error).
+// BM_VxgiCornellResolution/R: BM_VxgiCornell at 128^3 with the cones traced at full (R = 0) or half (R = 1)
+// resolution (--gi-resolution; half adds the edge-aware upsample, pass_ms.vxgi_upsample).
 // BM_VxgiShared/K/N, BM_VxgiSharedOff/K, BM_VxgiSharedPathTraced/K/S: the same three on shared scene K
 // (../shared/scenes, default camera, no texture streaming in either renderer): 0 EmissiveStrengthTest (emitters
 // lighting their neighbours), 1 SimpleInstancing (instanced cubes under the sky).
@@ -139,7 +141,8 @@ core::ImageRgba32f rasterDirect(const scene::Scene& scene) {
 }
 
 void rasterFrames(benchmark::State& state, int k, frame::GiMode gi, uint32_t voxels, const char* settingsText,
-                  const std::string& peer, frame::VoxelDraws draws = frame::VoxelDraws::Three) {
+                  const std::string& peer, frame::VoxelDraws draws = frame::VoxelDraws::Three,
+                  frame::GiResolution resolution = frame::VxgiSettings{}.resolution) {
     if (!requireDevice(state)) return;
     scene::Scene scene = loadScene(k);
     const Reference& ref = reference(k, scene);
@@ -149,6 +152,7 @@ void rasterFrames(benchmark::State& state, int k, frame::GiMode gi, uint32_t vox
     settings.vxgi.mode = gi;
     settings.vxgi.voxels = voxels;
     settings.vxgi.draws = draws;
+    settings.vxgi.resolution = resolution;
     context()->clearConsultedLadders();
     double gpuMs = 0.0, error = 0.0, indirect = 0.0, wallMs = 0.0;
     std::map<std::string, double> passMs;
@@ -188,7 +192,8 @@ void rasterFrames(benchmark::State& state, int k, frame::GiMode gi, uint32_t vox
 
 void BM_VxgiCornell(benchmark::State& state) {
     const auto voxels = uint32_t(state.range(0));
-    const std::string text = "--gi vxgi --voxels " + std::to_string(voxels) + ", 1 + 5 cones, 1 frame, warm";
+    const std::string text = "--gi vxgi --voxels " + std::to_string(voxels) +
+                             " (--gi-resolution half, the default), 1 + 5 cones, 1 frame, warm";
     rasterFrames(state, -1, frame::GiMode::Vxgi, voxels, text.c_str(), "BM_VxgiPathTraced/4");
 }
 BENCHMARK(BM_VxgiCornell)->Arg(64)->Arg(128)->Arg(256)->UseRealTime()->MinTime(0.5)->Unit(benchmark::kMillisecond);
@@ -202,6 +207,15 @@ void BM_VxgiVoxelizeDraws(benchmark::State& state) {
                  single ? frame::VoxelDraws::Single : frame::VoxelDraws::Three);
 }
 BENCHMARK(BM_VxgiVoxelizeDraws)->Arg(0)->Arg(1)->UseRealTime()->MinTime(0.5)->Unit(benchmark::kMillisecond);
+
+void BM_VxgiCornellResolution(benchmark::State& state) {
+    const bool half = state.range(0) != 0;
+    const std::string text = std::string("--gi vxgi --voxels 128 --gi-resolution ") + (half ? "half" : "full") +
+                             ", 1 + 5 cones, 1 frame, warm";
+    rasterFrames(state, -1, frame::GiMode::Vxgi, 128, text.c_str(), "BM_VxgiPathTraced/4", frame::VoxelDraws::Three,
+                 half ? frame::GiResolution::Half : frame::GiResolution::Full);
+}
+BENCHMARK(BM_VxgiCornellResolution)->Arg(0)->Arg(1)->UseRealTime()->MinTime(0.5)->Unit(benchmark::kMillisecond);
 
 void BM_VxgiCornellOff(benchmark::State& state) {
     rasterFrames(state, -1, frame::GiMode::None, 64, "--gi none (SH9 + split-sum ambient), 1 frame, warm",
@@ -242,7 +256,8 @@ BENCHMARK(BM_VxgiPathTraced)->Arg(4)->UseRealTime()->MinTime(0.5)->Unit(benchmar
 void BM_VxgiShared(benchmark::State& state) {
     const auto k = int(state.range(0));
     const auto voxels = uint32_t(state.range(1));
-    const std::string text = "--gi vxgi --voxels " + std::to_string(voxels) + ", 1 + 5 cones, 1 frame, warm";
+    const std::string text = "--gi vxgi --voxels " + std::to_string(voxels) +
+                             " (--gi-resolution half, the default), 1 + 5 cones, 1 frame, warm";
     rasterFrames(state, k, frame::GiMode::Vxgi, voxels, text.c_str(),
                  "BM_VxgiSharedPathTraced/" + std::to_string(k) + "/4");
 }

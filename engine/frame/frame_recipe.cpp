@@ -75,6 +75,7 @@ graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Fe
     x.temporal.addResolve(f);                                         // TAA: f.hdr
     x.upscale.addResolve(f);                                          // upscaler: f.hdr at output size
     x.bloom.addPasses(f);                                             // blends into f.hdr
+    x.vxgi.addDebugView(f);                                           // replaces f.hdr (--gi-debug voxels)
     return finish(f);                                                 // tonemap (Display) into f.output
 }
 

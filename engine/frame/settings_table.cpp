@@ -128,6 +128,11 @@ std::vector<SettingOption> buildTable() {
     t.push_back({"--gi-step", "Global illumination", "cone step", "VXGI cone march step in sampled cells",
                  OptionKind::Number, 0.1, 1.0, {}, [](const RenderSettings& s) { return double(s.vxgi.stepFactor); },
                  [](RenderSettings& s, double v) { s.vxgi.stepFactor = float(v); }});
+    t.push_back({"--gi-resolution", "Global illumination", "cone resolution",
+                 "VXGI cone tracing per pixel (full) or per 2x2 block with an edge-aware upsample (half)",
+                 OptionKind::Choice, 0.0, 0.0, {"full", "half"},
+                 [](const RenderSettings& s) { return double(s.vxgi.resolution); },
+                 [](RenderSettings& s, double v) { s.vxgi.resolution = frame::GiResolution(v); }});
     t.push_back({"--gi-raster", "Global illumination", "voxel raster",
                  "VXGI voxelization: conservative (thin walls never leak) or centre (pixel centres only)",
                  OptionKind::Choice, 0.0, 0.0, {"conservative", "centre"},
@@ -144,6 +149,16 @@ std::vector<SettingOption> buildTable() {
                  OptionKind::Choice, 0.0, 0.0, {"three", "single"},
                  [](const RenderSettings& s) { return double(s.vxgi.draws); },
                  [](RenderSettings& s, double v) { s.vxgi.draws = frame::VoxelDraws(v); }});
+    t.push_back({"--gi-debug", "Global illumination", "voxel debug view",
+                 "show the voxels instead of the lit image: off or voxels (first cell with coverage > 0.5 along "
+                 "each camera ray; needs --gi vxgi)",
+                 OptionKind::Choice, 0.0, 0.0, {"off", "voxels"},
+                 [](const RenderSettings& s) { return double(s.vxgi.debug); },
+                 [](RenderSettings& s, double v) { s.vxgi.debug = frame::GiDebug(v); }});
+    t.push_back({"--gi-debug-level", "Global illumination", "debug level",
+                 "voxel debug view's level: 0 the grid, L >= 1 the directional volumes' level L (at most log2 voxels)",
+                 OptionKind::Integer, 0.0, 9.0, {}, [](const RenderSettings& s) { return double(s.vxgi.debugLevel); },
+                 [](RenderSettings& s, double v) { s.vxgi.debugLevel = uint32_t(v); }});
     // Directional cascades and spot maps (frame/point_shadow_feature.cpp, render/light_shadow_maps.hpp).
     t.push_back({"--shadow-cascades", "Shadows", "cascades", "cascaded shadow maps per directional light",
                  OptionKind::Integer, 1.0, 4.0, {},
@@ -276,6 +291,18 @@ void applySettingOptions(const core::CliArgs& args, render::RenderSettings& sett
     if (const std::optional<std::string> scale = args.get("--upscale"); scale && settings.temporal.aa == AntiAliasing::None)
         throw core::CliError("--upscale '" + *scale + "': the temporal upscaler needs --aa taa (or --aa upscale); "
                              "with --aa none nothing is upscaled");
+    // The debug view shows the voxel grid, which only --gi vxgi builds.
+    if (const std::optional<std::string> debug = args.get("--gi-debug");
+        debug && settings.vxgi.debug != frame::GiDebug::Off && settings.vxgi.mode != frame::GiMode::Vxgi)
+        throw core::CliError("--gi-debug '" + *debug + "': the voxel debug view needs --gi vxgi (there is no voxel "
+                             "grid with --gi none)");
+    if (const std::optional<std::string> level = args.get("--gi-debug-level")) {
+        uint32_t maxLevel = 0;
+        while ((settings.vxgi.voxels >> (maxLevel + 1)) > 0) ++maxLevel;
+        if (settings.vxgi.debugLevel > maxLevel)
+            throw core::CliError("--gi-debug-level '" + *level + "': " + std::to_string(settings.vxgi.voxels) +
+                                 "^3 voxels have levels 0 to " + std::to_string(maxLevel));
+    }
 }
 
 std::string optionValueText(const SettingOption& o, const render::RenderSettings& settings) {

@@ -124,7 +124,27 @@ void VxgiFeature::addConeTracing(FrameContext& f) {
     in.box = box_;
     in.ringCones = f.settings.vxgi.ringCones;
     in.stepFactor = f.settings.vxgi.stepFactor;
+    in.halfResolution = f.settings.vxgi.resolution == GiResolution::Half;
+    in.mipped = &mipped_;
     f.indirectLight = passes::addConeTracePasses(f.graph, f.ctx, f.shaders, in);
+}
+
+void VxgiFeature::addDebugView(FrameContext& f) {
+    if (!f.voxelGrid.valid() || f.settings.vxgi.debug != GiDebug::Voxels) return;
+    passes::VxgiDebugViewInputs in;
+    in.frame = f.frameConstants;
+    in.target = f.hdr;
+    in.grid = f.voxelGrid;
+    in.directions = mipped_;
+    // The viewer can ask for a level past the chain's end (the CLI refuses one): show the coarsest instead.
+    // The directional volumes hold levels 0 .. log2(voxels) (level L: cells of 2^L voxels, as the grid's).
+    const uint32_t levels = uint32_t(directions_[0].levelStorage.size());
+    in.level = std::min(f.settings.vxgi.debugLevel, levels - 1);
+    if (in.level == 0) in.volumeStorage[0] = grid_.levelStorage[0].value;
+    else
+        for (uint32_t d = 0; d < 6; ++d) in.volumeStorage[d] = directions_[d].levelStorage[in.level].value;
+    in.box = box_;
+    f.hdr = passes::addVxgiDebugViewPass(f.graph, f.ctx, f.shaders, in);
 }
 
 }  // namespace idk::frame

@@ -43,6 +43,8 @@ public:
     // then shadowed by rays, there being no shadow table yet).
     void addPasses(FrameContext& f, const std::optional<passes::VoxelShadowRays>& rays = std::nullopt);
     void addConeTracing(FrameContext& f);  // after the G-buffer: mips + cone tracing into f.indirectLight
+    // --gi-debug voxels: after everything else lit f.hdr, overwrites it with the voxel debug view (nothing when off).
+    void addDebugView(FrameContext& f);
     // The grid of the last frame (RGBA16F, size^3; left in GENERAL layout) or nullptr: tests read it back.
     const vk::Image* grid() const noexcept { return grid_.image.image ? &grid_.image : nullptr; }
     const passes::VoxelGridBox& box() const noexcept { return box_; }
@@ -61,6 +63,7 @@ private:
     std::array<VoxelVolume, 6> directions_; // anisotropic volumes (+x -x +y -y +z -z), levels 0 .. log2(size)
     vk::SamplerIndex sampler_;
     graph::TextureHandle directionHandles_[6];  // this frame's imports
+    std::array<graph::TextureHandle, 6> mipped_;  // this frame's directional volumes after the mip passes
     std::unique_ptr<passes::VxgiGlAccumulator> gl_;  // "vxgi-atomics" gl-interop rung only
 };
 

@@ -22,14 +22,27 @@ enum class VoxelGridPlacement : uint8_t { Fit, Camera };
 // measured-fastest fallback), or a Single draw whose geometry shader projects each triangle along its dominant axis.
 enum class VoxelDraws : uint8_t { Three, Single };
 
+// Where the cones are traced: Full (every pixel) or Half (one pixel per 2x2 block, then the edge-aware upsample of
+// passes/vxgi_upsample.cpp and a full-resolution trace of the pixels it has no sample for). Half is the default:
+// on the Cornell box at 128^3 it halves the frame (cone passes 1078 -> 352 ms on lavapipe) at the same error
+// against the path tracer (indirect rel. L1 0.395 full, 0.394 half; BM_VxgiCornellResolution).
+enum class GiResolution : uint8_t { Full, Half };
+
+// The voxel debug view (passes/vxgi_debug_view.cpp): Off, or Voxels: the final colour shows the first cell of
+// level debugLevel each camera ray meets (needs --gi vxgi).
+enum class GiDebug : uint8_t { Off, Voxels };
+
 struct VxgiSettings {
     GiMode mode = GiMode::None;  // None: nothing allocated, compiled or dispatched
     uint32_t voxels = 128;       // grid size per side (64..512)
     uint32_t ringCones = 5;      // diffuse cones around the normal's cap cone (cosine-weighted set of 1 + ring)
     float stepFactor = 0.5f;     // cone march step in sampled cells (sampling only: opacity is step-corrected)
+    GiResolution resolution = GiResolution::Half;
     VoxelRaster raster = VoxelRaster::Conservative;
     VoxelGridPlacement grid = VoxelGridPlacement::Fit;
     VoxelDraws draws = VoxelDraws::Three;
+    GiDebug debug = GiDebug::Off;  // Off: nothing allocated or dispatched
+    uint32_t debugLevel = 0;       // 0: the grid; L >= 1: the directional volumes' level L (up to log2 voxels)
 };
 
 }  // namespace idk::frame

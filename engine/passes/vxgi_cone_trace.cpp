@@ -1,15 +1,78 @@
 // vxgi_cone_trace.cpp: the voxel grid's anisotropic mip chain (six directional volumes) and the cone-tracing pass (shaders_glsl/vxgi/mip.comp.glsl,
-// cone_trace.comp.glsl). Ports IDKEngine's Voxelizer mipmap step and ConeTracer.cs, at render resolution (the
-// original's resolution too; a half-resolution trace with an edge-aware upsample is not done here).
+// cone_trace.comp.glsl). Ports IDKEngine's Voxelizer mipmap step and ConeTracer.cs, at render resolution or at half
+// of it (one G-buffer pixel per 2x2 block; passes/vxgi_upsample.cpp brings it back to render resolution).
 #include "passes/vxgi_passes.hpp"
 
 #include <algorithm>
+#include <array>
 #include <memory>
 #include <string>
 
 #include "shared/vxgi_types.h"
 
 namespace idk::passes {
+
+namespace {
+
+// "vxgi_cone_trace": traces into new images (`fix` null; half or render resolution per in.halfResolution) or, as
+// "vxgi_cone_trace_fixup", the pixels of `fix` (render resolution) whose diffuse alpha the upsample set to -1.
+IndirectLightImages addTracePass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                 const ConeTraceInputs& in, const gpu::ConeTracePush& base,
+                                 const std::array<graph::TextureHandle, 7>& volumes, const IndirectLightImages* fix) {
+    constexpr VkPipelineStageFlags2 kCs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    auto out = std::make_shared<IndirectLightImages>();
+    const GBufferOutputs g = in.gbuffer;
+    const graph::BufferHandle frame = in.frame;
+    graph.addPass(
+        fix ? "vxgi_cone_trace_fixup" : "vxgi_cone_trace",
+        [&](graph::PassBuilder& b) {
+            for (graph::TextureHandle t : {g.normal, g.material, g.depth}) b.read(t, graph::Access::StorageRead, kCs);
+            for (graph::TextureHandle v : volumes) b.read(v, graph::Access::SampledRead, kCs);
+            b.read(in.environment, graph::Access::SampledRead, kCs);
+            b.read(frame, graph::Access::StorageRead, kCs);
+            if (fix) {
+                out->diffuse = b.write(fix->diffuse, graph::Access::StorageReadWrite, kCs);
+                out->specular = b.write(fix->specular, graph::Access::StorageReadWrite, kCs);
+                return;
+            }
+            graph::TextureDesc desc;
+            desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+            std::string suffix;
+            if (in.halfResolution) {  // the shader reads the resolution from its outputs' size
+                const VkExtent2D e = graph.relativeExtent();
+                desc.sizeMode = graph::SizeMode::Absolute;
+                desc.extent = {(e.width + 1) / 2, (e.height + 1) / 2, 1};
+                suffix = " (half resolution)";
+            }
+            out->diffuse =
+                b.write(b.create("vxgi diffuse irradiance" + suffix, desc), graph::Access::StorageWrite, kCs);
+            out->specular =
+                b.write(b.create("vxgi specular radiance" + suffix, desc), graph::Access::StorageWrite, kCs);
+        },
+        [&ctx, &shaders, g, frame, out, base](graph::PassContext& pc) {
+            VkCommandBuffer cmd = pc.commandBuffer();
+            vk::ComputePipelineDesc desc;
+            desc.shader = vk::ShaderId::vxgi_cone_trace_comp;
+            desc.pushBytes = sizeof(gpu::ConeTracePush);
+            desc.localSize = {gpu::kConeGroupSize, gpu::kConeGroupSize, 1};
+            vk::bindPipeline(cmd, shaders.compute(desc));
+            ctx.bindless().bind(cmd);
+            gpu::ConeTracePush push = base;
+            push.frame = pc.buffer(frame).address;
+            push.normal = pc.texture(g.normal).storageIndex;
+            push.material = pc.texture(g.material).storageIndex;
+            push.depth = pc.texture(g.depth).storageIndex;
+            push.diffuse = pc.texture(out->diffuse).storageIndex;
+            push.specular = pc.texture(out->specular).storageIndex;
+            vk::pushConstants(cmd, ctx, push);
+            VkExtent3D extent = pc.texture(out->diffuse).extent;
+            vkCmdDispatch(cmd, vk::groupCount(extent.width, gpu::kConeGroupSize),
+                          vk::groupCount(extent.height, gpu::kConeGroupSize), 1);
+        });
+    return *out;
+}
+
+}  // namespace
 
 IndirectLightImages addConeTracePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                        const ConeTraceInputs& in) {
@@ -44,8 +107,7 @@ IndirectLightImages addConeTracePasses(graph::RenderGraph& graph, vk::Context& c
             });
     }
 
-    auto out = std::make_shared<IndirectLightImages>();
-    const GBufferOutputs g = in.gbuffer;
+    if (in.mipped) *in.mipped = dirs;
     gpu::ConeTracePush base{};
     base.gridSampler = in.gridSampler;
     base.ringCones = in.ringCones;
@@ -56,41 +118,15 @@ IndirectLightImages addConeTracePasses(graph::RenderGraph& graph, vk::Context& c
     for (uint32_t d = 0; d < 6; ++d) base.directions[d] = in.directionSampled[d];
     base.grid = in.gridSampled;
     base.stepFactor = in.stepFactor;
-    const graph::BufferHandle frame = in.frame;
-    graph.addPass(
-        "vxgi_cone_trace",
-        [&](graph::PassBuilder& b) {
-            for (graph::TextureHandle t : {g.normal, g.material, g.depth}) b.read(t, graph::Access::StorageRead, kCs);
-            b.read(grid, graph::Access::SampledRead, kCs);
-            for (graph::TextureHandle d : dirs) b.read(d, graph::Access::SampledRead, kCs);
-            b.read(in.environment, graph::Access::SampledRead, kCs);
-            b.read(frame, graph::Access::StorageRead, kCs);
-            graph::TextureDesc desc;
-            desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-            out->diffuse = b.write(b.create("vxgi diffuse irradiance", desc), graph::Access::StorageWrite, kCs);
-            out->specular = b.write(b.create("vxgi specular radiance", desc), graph::Access::StorageWrite, kCs);
-        },
-        [&ctx, &shaders, g, frame, out, base](graph::PassContext& pc) {
-            VkCommandBuffer cmd = pc.commandBuffer();
-            vk::ComputePipelineDesc desc;
-            desc.shader = vk::ShaderId::vxgi_cone_trace_comp;
-            desc.pushBytes = sizeof(gpu::ConeTracePush);
-            desc.localSize = {gpu::kConeGroupSize, gpu::kConeGroupSize, 1};
-            vk::bindPipeline(cmd, shaders.compute(desc));
-            ctx.bindless().bind(cmd);
-            gpu::ConeTracePush push = base;
-            push.frame = pc.buffer(frame).address;
-            push.normal = pc.texture(g.normal).storageIndex;
-            push.material = pc.texture(g.material).storageIndex;
-            push.depth = pc.texture(g.depth).storageIndex;
-            push.diffuse = pc.texture(out->diffuse).storageIndex;
-            push.specular = pc.texture(out->specular).storageIndex;
-            vk::pushConstants(cmd, ctx, push);
-            VkExtent3D extent = pc.texture(out->diffuse).extent;
-            vkCmdDispatch(cmd, vk::groupCount(extent.width, gpu::kConeGroupSize),
-                          vk::groupCount(extent.height, gpu::kConeGroupSize), 1);
-        });
-    return *out;
+    const std::array<graph::TextureHandle, 7> volumes = {grid,    dirs[0], dirs[1], dirs[2],
+                                                         dirs[3], dirs[4], dirs[5]};
+    IndirectLightImages traced = addTracePass(graph, ctx, shaders, in, base, volumes, nullptr);
+    if (!in.halfResolution) return traced;
+    // Half resolution: the edge-aware upsample, then full-resolution traces of the pixels it found no sample of
+    // their own surface for (alpha -1: features thinner than the sample spacing, silhouettes the quincunx missed).
+    IndirectLightImages full = addVxgiUpsamplePass(graph, ctx, shaders, {in.gbuffer, in.frame, traced, in.box});
+    base.unmatchedOnly = 1;
+    return addTracePass(graph, ctx, shaders, in, base, volumes, &full);
 }
 
 }  // namespace idk::passes

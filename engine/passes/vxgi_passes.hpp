@@ -54,8 +54,11 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
                                        std::array<graph::TextureHandle, 6>& directions, IndirectDrawLog* log);
 
 // vxgi_cone_trace.cpp: "vxgi_mip L" (one pass per level L >= 1 of the six directional volumes, each from the
-// level below; the voxelization's merge wrote level 0), then "vxgi_cone_trace": per G-buffer pixel inside the grid, diffuse irradiance from a
-// cosine-weighted cone set and the reflection cone's radiance (transient RGBA16F, render resolution).
+// level below; the voxelization's merge wrote level 0), then "vxgi_cone_trace": per G-buffer pixel inside the grid,
+// diffuse irradiance from a cosine-weighted cone set and the reflection cone's radiance (transient RGBA16F, render
+// resolution). With `halfResolution` the trace runs on half of it (rounded up), "vxgi_upsample"
+// (addVxgiUpsamplePass) brings it to render resolution and "vxgi_cone_trace_fixup" traces the pixels the upsample
+// found no sample of their surface for.
 struct ConeTraceInputs {
     GBufferOutputs gbuffer;
     graph::BufferHandle frame;
@@ -71,8 +74,38 @@ struct ConeTraceInputs {
     VoxelGridBox box;
     uint32_t ringCones = 5;
     float stepFactor = 0.5f;
+    bool halfResolution = false;
+    std::array<graph::TextureHandle, 6>* mipped = nullptr;  // if set: the directional volumes after the mip passes
 };
 IndirectLightImages addConeTracePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                        const ConeTraceInputs& inputs);
+
+// vxgi_upsample.cpp: "vxgi_upsample": the half-resolution cone trace to render resolution, joint-bilateral on the
+// G-buffer's depth and normals (shaders_glsl/vxgi/upsample.comp.glsl), in the cone trace's output layout; diffuse
+// alpha -1 marks the pixels left for the fix-up trace.
+struct VxgiUpsampleInputs {
+    GBufferOutputs gbuffer;
+    graph::BufferHandle frame;
+    IndirectLightImages traced;  // half resolution (addConeTracePasses with halfResolution)
+    VoxelGridBox box;
+};
+IndirectLightImages addVxgiUpsamplePass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                        const VxgiUpsampleInputs& inputs);
+
+// vxgi_debug_view.cpp: "vxgi_debug_voxels" (--gi-debug voxels) overwrites `target` (the final HDR colour, RGBA16F
+// storage) with the radiance of the first cell of `level` each pixel's camera ray meets with coverage above
+// kVxgiDebugCoverage (shared/vxgi_debug_types.h), alpha the distance to the middle of the ray's stretch in it;
+// black, alpha 0, where it meets none. Returns its new version.
+struct VxgiDebugViewInputs {
+    graph::BufferHandle frame;
+    graph::TextureHandle target;
+    graph::TextureHandle grid;                        // level 0 (read when level == 0)
+    std::array<graph::TextureHandle, 6> directions;   // after the mips (read when level >= 1)
+    std::array<uint32_t, 6> volumeStorage{};          // storage indices of `level`: [0] the grid's for level 0
+    uint32_t level = 0;
+    VoxelGridBox box;
+};
+graph::TextureHandle addVxgiDebugViewPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                          const VxgiDebugViewInputs& inputs);
 
 }  // namespace idk::passes

@@ -107,7 +107,7 @@ struct ConeTracePush {
     uint gridSize;
     float maxLod;          // the directional volumes' top level (log2 gridSize)
     float stepFactor;      // march step = sample diameter * stepFactor
-    uint pad;
+    uint unmatchedOnly;    // 1: render resolution, only pixels whose diffuse alpha the upsample left at -1
 };
 IDK_GPU_SIZE(ConeTracePush, 96);
 

@@ -7,11 +7,17 @@
 // wider lobes. The cones start from the surface point and clamp their level by the height above the surface's
 // geometric plane (from the depth buffer: the shading normal may tilt off it). Ports IDKEngine's ConeTraceGI
 // compute shader, deterministic (no per-frame random cone, no TAA needed) and without its boost factors.
+// Resolution: the outputs' size says it. Outputs smaller than the frame: half resolution, each output pixel traces
+// one G-buffer pixel of its 2x2 block (include/vxgi_half_res.glsl) and vxgi/upsample.comp.glsl fills the frame;
+// then this shader runs again at render resolution with unmatchedOnly and traces only the pixels the upsample marked
+// (diffuse alpha -1). (On a real GPU those few pixels diverge from their idle neighbours within a wave; compacting
+// them into a list first would keep waves full. On lavapipe the early return costs nothing.)
 #extension GL_GOOGLE_include_directive : require
 #include "scene_buffers.glsl"
 #include "bindless.glsl"
 #include "octahedral.glsl"
 #include "cone_trace.glsl"
+#include "vxgi_half_res.glsl"
 
 layout(local_size_x = kConeGroupSize, local_size_y = kConeGroupSize) in;
 layout(push_constant, scalar) uniform Push { ConeTracePush p; };
@@ -42,16 +48,19 @@ bool neighbourDelta(GpuFrame f, ivec2 pixel, ivec2 axis, vec3 position, out vec3
 
 void main() {
     GpuFrame f = FrameBuffer(p.frame).frame;
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(uvec2(pixel), f.extent))) return;
+    ivec2 dst = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 outSize = imageSize(gImagesRgba16f[p.diffuse]);
+    if (any(greaterThanEqual(dst, outSize))) return;
+    if (p.unmatchedOnly != 0u && imageLoad(gImagesRgba16f[p.diffuse], dst).a >= 0.0) return;
+    ivec2 pixel = outSize == ivec2(f.extent) ? dst : vxgiHalfResSource(dst, f.extent);
     float depth = imageLoad(gImagesR32f[p.depth], pixel).r;
     vec3 position = worldPosition(f, pixel, depth);
     vec2 ndc = (vec2(pixel) + 0.5) / vec2(f.extent) * 2.0 - 1.0;
     vec4 hNear = f.inverseViewProjection * vec4(ndc, 0.0, 1.0);
     vec3 g = (position - p.gridMin) / (p.voxelSize * float(p.gridSize));
     if (depth >= 1.0 || any(lessThan(g, vec3(0.0))) || any(greaterThan(g, vec3(1.0)))) {
-        imageStore(gImagesRgba16f[p.diffuse], pixel, vec4(0.0));  // alpha 0: outside, keep the SH ambient
-        imageStore(gImagesRgba16f[p.specular], pixel, vec4(0.0));
+        imageStore(gImagesRgba16f[p.diffuse], dst, vec4(0.0));  // alpha 0: outside, keep the SH ambient
+        imageStore(gImagesRgba16f[p.specular], dst, vec4(0.0));
         return;
     }
     vec3 v = normalize(hNear.xyz / hNear.w - position);
@@ -72,11 +81,11 @@ void main() {
     for (uint i = 0; i < p.ringCones; ++i)
         e += (0.75 / float(p.ringCones)) * traceCone(f, p, position, plane, vxgiRingDirection(i, p.ringCones, n, t, b),
                                                      ringTan);
-    imageStore(gImagesRgba16f[p.diffuse], pixel, vec4(e * 3.14159265358979, 1.0));
+    imageStore(gImagesRgba16f[p.diffuse], dst, vec4(e * 3.14159265358979, 1.0));
 
     float specularTan;
     float toDiffuse = vxgiSpecularCone(roughness, specularTan);
     vec3 r = reflect(-v, n);
     vec3 spec = toDiffuse < 1.0 ? traceCone(f, p, position, plane, r, specularTan) : vec3(0.0);
-    imageStore(gImagesRgba16f[p.specular], pixel, vec4(mix(spec, e, toDiffuse), 1.0));
+    imageStore(gImagesRgba16f[p.specular], dst, vec4(mix(spec, e, toDiffuse), 1.0));
 }

@@ -83,11 +83,26 @@ case "$case_name" in
     [ "$(grep -c '"vxgi' "$tmp/none.json")" -eq 0 ] || fail "--gi none ran or allocated VXGI: $(grep vxgi "$tmp/none.json")"
     "$idk" render --size 16x16 --out "$tmp/v.png" --gi vxgi --voxels 64 --json >"$tmp/vxgi.json" \
       || fail "render --gi vxgi failed"
-    for key in '"gi": "vxgi"' '"voxels": "64"' '"vxgi_voxelize"' '"vxgi_merge"' '"vxgi_cone_trace"' '"vxgi": '; do
+    for key in '"gi": "vxgi"' '"voxels": "64"' '"vxgi_voxelize"' '"vxgi_merge"' '"vxgi_cone_trace"' '"vxgi": ' \
+               '"gi-resolution": "half"' '"vxgi_upsample"' '"vxgi_cone_trace_fixup"'; do
       grep -q "$key" "$tmp/vxgi.json" || fail "--gi vxgi --json lacks $key: $(cat "$tmp/vxgi.json")"
     done
     "$idk" render --size 8x8 --out "$tmp/x.png" --voxels 100 2>"$tmp/err"; [ $? -eq 2 ] || fail "--voxels 100 should exit 2"
     grep -q -- "--voxels" "$tmp/err" || fail "error does not name --voxels: $(cat "$tmp/err")"
+    # The voxel debug view: one pass when on (--json names it and its settings), none in the frame above; it needs
+    # --gi vxgi and a level the grid has (exit 2 naming the flag).
+    grep -q '"vxgi_debug_voxels"' "$tmp/vxgi.json" && fail "--gi-debug off ran the debug view"
+    "$idk" render --size 16x16 --out "$tmp/d.png" --gi vxgi --voxels 64 --gi-debug voxels --gi-debug-level 2 --json \
+      >"$tmp/debug.json" || fail "render --gi-debug voxels failed"
+    for key in '"gi-debug": "voxels"' '"gi-debug-level": 2' '"vxgi_debug_voxels"'; do
+      grep -q "$key" "$tmp/debug.json" || fail "--gi-debug voxels --json lacks $key: $(cat "$tmp/debug.json")"
+    done
+    "$idk" render --size 8x8 --out "$tmp/x.png" --gi-debug voxels 2>"$tmp/err"; [ $? -eq 2 ] \
+      || fail "--gi-debug voxels with --gi none should exit 2"
+    grep -q -- "--gi-debug 'voxels'.*--gi vxgi" "$tmp/err" || fail "error does not name --gi-debug: $(cat "$tmp/err")"
+    "$idk" render --size 8x8 --out "$tmp/x.png" --gi vxgi --voxels 64 --gi-debug voxels --gi-debug-level 7 \
+      2>"$tmp/err"; [ $? -eq 2 ] || fail "--gi-debug-level 7 at 64^3 should exit 2"
+    grep -q -- "--gi-debug-level '7'" "$tmp/err" || fail "error does not name --gi-debug-level: $(cat "$tmp/err")"
     ;;
   gi_gl_rung)
     # Issue 15/11: --rung vxgi-atomics=gl-interop --gi vxgi forces VXGI's GL-interop rung on llvmpipe: the fragments'

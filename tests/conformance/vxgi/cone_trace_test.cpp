@@ -91,6 +91,7 @@ protected:
         else settings.environmentIntensity = 0.0f;
         settings.vxgi.mode = frame::GiMode::Vxgi;
         settings.vxgi.voxels = 64;
+        settings.vxgi.resolution = frame::GiResolution::Full;  // every pixel traced: the CPU's per-pixel oracle
         settings.vxgi.ringCones = 8;
         settings.vxgi.stepFactor = 0.5f;
         render::Renderer renderer(ctx(), shaders(), settings);

@@ -1,6 +1,7 @@
 // vxgi_frame_test.cpp: whole frames with --gi vxgi against the path tracer, on a closed room (2 m cube of grey
 // inward-facing walls) lit only by an emissive panel in its ceiling, environment off, 64x64 pixels, 64^3 voxels.
-//  * --gi none: no vxgi_* pass runs and no grid exists; with vxgi all ten passes run (64^3: six mip levels).
+//  * --gi none: no vxgi_* pass runs and no grid exists; with vxgi all twelve passes run (64^3: six mip levels;
+//    the default half-resolution cone trace, its upsample and fix-up trace).
 //  * --gi none: the room is black: every pixel that does not see the panel is exactly 0 (the rasterizer has no
 //    area lights; emission reaches other surfaces only through GI).
 //  * --gi vxgi (64^3 voxels, 1 + 8 diffuse cones, step 0.5): the walls receive the panel's light through the
@@ -90,7 +91,8 @@ core::ImageRgba32f raster(vk::Context& ctx, vk::ShaderLibrary& shaders, const sc
     // --gi none: no VXGI pass ran and nothing is held; vxgi: the voxelization, mip and cone passes all ran.
     size_t vxgiPasses = 0;
     for (const std::string& pass : frame.passesRun) vxgiPasses += pass.rfind("vxgi_", 0) == 0;
-    EXPECT_EQ(vxgiPasses, on ? 3u + 6u + 1u : 0u) << "clear, voxelize, merge, 6 mip levels (64^3), cone trace";
+    EXPECT_EQ(vxgiPasses, on ? 3u + 6u + 3u : 0u)
+        << "clear, voxelize, merge, 6 mip levels (64^3), half-resolution cone trace, upsample, fix-up trace";
     EXPECT_EQ(renderer.vxgi().grid() != nullptr, on);
     return frame.image;
 }
@@ -258,6 +260,7 @@ TEST_F(VxgiFrameTest, ThinWallLeaksNoMoreThanTheConeTracerInherently) {
     settings.vxgi.voxels = 64;
     settings.vxgi.ringCones = 8;
     settings.vxgi.raster = frame::VoxelRaster::Conservative;
+    settings.vxgi.resolution = frame::GiResolution::Full;  // the CPU cone tracer predicts every pixel
     render::Renderer renderer(ctx(), shaders(), settings);
     renderer.setScene(s);
     double gpu[2] = {0.0, 0.0}, cpu[2] = {0.0, 0.0};

@@ -51,6 +51,9 @@ TEST(SettingsTable, ParsesValuesIntoTheSettings) {
     EXPECT_EQ(j.at("exposure"), 2.5);
     EXPECT_EQ(j.at("shadow-lights"), 3);
     EXPECT_EQ(j.at("shadow-size"), "1024");
+    EXPECT_EQ(j.at("gi-resolution"), "half");  // VXGI's default (frame/vxgi_settings.hpp)
+    applySettingOptions(parse({"--gi-resolution", "full"}), s);
+    EXPECT_EQ(s.vxgi.resolution, frame::GiResolution::Full);
 }
 
 TEST(SettingsTable, BadValuesNameTheOptionAndWhatIsAccepted) {
@@ -69,6 +72,33 @@ TEST(SettingsTable, BadValuesNameTheOptionAndWhatIsAccepted) {
     const std::string size = message({"--shadow-size", "300"});
     EXPECT_NE(size.find("128|256|512|1024|2048"), std::string::npos) << size;
     EXPECT_EQ(s.pointShadows.resolution, render::RenderSettings{}.pointShadows.resolution);  // untouched on error
+}
+
+// The voxel debug view: parsed with --gi vxgi; without it, or past the grid's last level (log2 voxels), an error
+// naming the flag.
+TEST(SettingsTable, GiDebugNeedsVxgiAndALevelTheGridHas) {
+    render::RenderSettings s;
+    applySettingOptions(parse({"--gi", "vxgi", "--voxels", "64", "--gi-debug", "voxels", "--gi-debug-level", "6"}), s);
+    EXPECT_EQ(s.vxgi.debug, frame::GiDebug::Voxels);
+    EXPECT_EQ(s.vxgi.debugLevel, 6u);
+    EXPECT_EQ(settingsJson(s).at("gi-debug"), "voxels");
+    const auto message = [](const std::vector<std::string>& argv) {
+        render::RenderSettings t;
+        try {
+            applySettingOptions(parse(argv), t);
+        } catch (const core::CliError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    const std::string none = message({"--gi-debug", "voxels"});
+    EXPECT_NE(none.find("--gi-debug 'voxels'"), std::string::npos) << none;
+    EXPECT_NE(none.find("--gi vxgi"), std::string::npos) << none;
+    EXPECT_EQ(message({"--gi-debug", "off"}), "no error");
+    const std::string level =
+        message({"--gi", "vxgi", "--voxels", "64", "--gi-debug", "voxels", "--gi-debug-level", "7"});
+    EXPECT_NE(level.find("--gi-debug-level '7'"), std::string::npos) << level;
+    EXPECT_NE(level.find("levels 0 to 6"), std::string::npos) << level;
 }
 
 // Issue 12's selection `--aa none|taa [--upscale S]`: --aa taa with S < 1 runs the upscaler (--aa upscale is kept

@@ -24,7 +24,7 @@ vec4 cellValue(ivec3 cell, vec3 dir) {
     vec4 sx = imageLoad(gVoxelsRgba16f[p.volumes[vxgiDirectionIndex(dir, 0u)]], cell);
     vec4 sy = imageLoad(gVoxelsRgba16f[p.volumes[vxgiDirectionIndex(dir, 1u)]], cell);
     vec4 sz = imageLoad(gVoxelsRgba16f[p.volumes[vxgiDirectionIndex(dir, 2u)]], cell);
-    return vxgiCombine(dir, sx, sy, sz, vec4(0.0), float(p.level));
+    return vxgiCombine(dir, sx, sy, sz);
 }
 
 void main() {

@@ -68,6 +68,10 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             if (drawCount > 0) {
                 graph::BufferDesc word;
                 word.size = sizeof(uint32_t);
+                // Its own memory, not a transient heap's: the installed validation layer counts a fragment
+                // shader that writes through the bindless storage-buffer array (the gl-interop rung's records)
+                // as writing every buffer in the array, among them transients whose bytes this word would share.
+                word.persistent = true;
                 acc->drawCount = b.write(b.create("vxgi draw count", word), graph::Access::TransferDst);
             }
             if (gl) {  // the record counter (the header) and the sums start at zero

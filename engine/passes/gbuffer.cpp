@@ -38,7 +38,7 @@ constexpr VkFormat kEmissiveFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kDepthCopyFormat = VK_FORMAT_R32_SFLOAT;  // gl_FragCoord.z of the kept fragment
 constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;      // attachment only, not stored
 constexpr VkFormat kIdFormat = VK_FORMAT_R32G32_UINT;        // surface IDs (optional): draw, triangle
-// Extension texels (optional, matA): packUnorm4x8 words of include/gbuffer_fragment.glsl.
+// Extension texels (optional): packUnorm4x8 words of include/gbuffer_fragment.glsl.
 constexpr VkFormat kLayersFormat = VK_FORMAT_R32G32B32A32_UINT;
 
 VkRenderingAttachmentInfo colorAttachment(VkImageView view) {

@@ -92,7 +92,7 @@ struct GBufferOutputs {
     graph::TextureHandle depth;     // R32F copy of the depth, 0 near .. 1 far (cleared to 1)
     graph::TextureHandle depthAttachment;  // D32 (transient, not stored)
     graph::TextureHandle ids;  // RG32UI (draw, triangle) of each kept fragment, ~0u background (only when asked)
-    // RGBA32UI texels of the KHR_materials_specular / _clearcoat / _sheen textures (matA; include/gbuffer_fragment.glsl
+    // RGBA32UI texels of the KHR_materials_specular / _clearcoat / _sheen textures (include/gbuffer_fragment.glsl
     // packs them), only when SceneBuffers::layerTexels.
     graph::TextureHandle layers;
 };

@@ -84,7 +84,7 @@ PtMaterialHit evaluateMaterial(const PathTraceScene& pts, const PtHitPoint& hit,
     s.attenuationDistance = pm.attenuationDistance;
     s.emission = emissionAt(pts, hit, wo);
     s.geometricNormal = hit.geometricNormal;
-    // KHR_materials_specular / _clearcoat / _sheen: factor x texture channel (matA; wfEvaluateMaterial's twin).
+    // KHR_materials_specular / _clearcoat / _sheen: factor x texture channel (wfEvaluateMaterial's twin).
     s.specular = pm.specular * sampleRef(pts, m.specularTexture, hit, false).a;
     s.specularColor = pm.specularColor * glm::vec3(sampleRef(pts, m.specularColorTexture, hit, true));
     s.clearcoat = pm.clearcoat * sampleRef(pts, m.clearcoatTexture, hit, false).r;

@@ -70,7 +70,7 @@ gpu::GpuMaterial packMaterial(const scene::Material& m, const TextureBindings& b
     g.slots[gpu::kSlotNormal] = slotFor(m.normalTexture, b.flatNormal, b);
     g.slots[gpu::kSlotOcclusion] = slotFor(m.occlusionTexture, b.white, b);
     g.slots[gpu::kSlotEmissive] = slotFor(m.emissiveTexture, b.white, b);
-    // KHR_materials_specular / _clearcoat / _sheen textures (matA): white placeholders multiply by 1.
+    // KHR_materials_specular / _clearcoat / _sheen textures: white placeholders multiply by 1.
     g.slots[gpu::kSlotSpecular] = slotFor(m.specularTexture, b.white, b);
     g.slots[gpu::kSlotSpecularColor] = slotFor(m.specularColorTexture, b.white, b);
     g.slots[gpu::kSlotClearcoat] = slotFor(m.clearcoatTexture, b.white, b);

@@ -102,14 +102,14 @@ struct Material {
     float clearcoatRoughness = 0.0f;       // clearcoatRoughnessFactor, [0, 1]
     glm::vec3 sheenColor{0.0f};            // KHR_materials_sheen sheenColorFactor, linear, [0, 1]
     float sheenRoughness = 0.0f;           // sheenRoughnessFactor, [0, 1]
-    // KHR_materials_specular / _clearcoat / _sheen textures (matA), texCoord and KHR_texture_transform as above.
+    // KHR_materials_specular / _clearcoat / _sheen textures, texCoord and KHR_texture_transform as above.
     std::optional<TextureRef> specularTexture;            // linear, A scales specular
     std::optional<TextureRef> specularColorTexture;       // sRGB, RGB scales specularColor
     std::optional<TextureRef> clearcoatTexture;           // linear, R scales clearcoat
     std::optional<TextureRef> clearcoatRoughnessTexture;  // linear, G scales clearcoatRoughness
     std::optional<TextureRef> sheenColorTexture;          // sRGB, RGB scales sheenColor
     std::optional<TextureRef> sheenRoughnessTexture;      // linear, A scales sheenRoughness
-    // KHR_materials_anisotropy, KHR_materials_iridescence, KHR_materials_dispersion (branch matB)
+    // KHR_materials_anisotropy
     float anisotropyStrength = 0.0f;       // KHR_materials_anisotropy anisotropyStrength, [0, 1]
     float anisotropyRotation = 0.0f;       // anisotropyRotation, radians counter-clockwise from the tangent
 };
@@ -280,7 +280,7 @@ struct SceneFeatures {
     bool hasShadowCastingLights = false;  // a placed light with nonzero intensity (every punctual light casts)
     uint32_t maxJoints = 0;               // largest skin of a drawn instance
     uint32_t maxMorphTargets = 0;         // largest morph target count of a drawn mesh
-    // KHR_materials_specular / _clearcoat / _sheen (matA): a drawn material has one of their textures (the
+    // KHR_materials_specular / _clearcoat / _sheen: a drawn material has one of their textures (the
     // G-buffer then carries the per-pixel texels to the lighting pass).
     bool hasLayerTextures = false;
 };

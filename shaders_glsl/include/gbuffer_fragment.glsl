@@ -22,7 +22,7 @@ layout(location = 1) out uint outNormal;    // R32UI: octahedral world normal (f
 layout(location = 2) out vec4 outMaterial;  // RGBA8: metallic, roughness, occlusion, lit (0: unlit)
 layout(location = 3) out vec4 outEmissive;  // RGBA16F: emitted radiance, alpha: layered material index + 1
 layout(location = 4) out float outDepth;    // R32F: the fragment's depth (what the depth test kept)
-// KHR_materials_specular / _clearcoat / _sheen texels (matA) of layered materials, for the lighting pass:
+// KHR_materials_specular / _clearcoat / _sheen texels of layered materials, for the lighting pass:
 // x = unorm8 (specular A, clearcoat R, clearcoatRoughness G, sheenRoughness A), y / z = sRGB-encoded unorm8
 // specularColor / sheenColor RGB. Discarded when the scene has no such texture (no attachment).
 layout(location = 5) out uvec4 outLayers;

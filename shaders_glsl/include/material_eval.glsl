@@ -14,7 +14,7 @@ vec4 sampleMaterialSlot(GpuTextureSlot slot, vec2 uv0, vec2 uv1) {
     return texture(sampler2D(gTextures2D[nonuniformEXT(t)], gSamplers[nonuniformEXT(s)]), st);
 }
 
-// The KHR_materials_specular / _clearcoat / _sheen texture channels of a fragment (matA), in the LayerTexels order
+// The KHR_materials_specular / _clearcoat / _sheen texture channels of a fragment, in the LayerTexels order
 // of material_layers.glsl: specular A, specularColor RGB, clearcoat R, clearcoatRoughness G, sheenColor RGB,
 // sheenRoughness A (colour slots are sRGB views, so RGB arrives linear). Call in uniform control flow.
 void sampleLayerTexels(GpuMaterial m, vec2 uv0, vec2 uv1, out float specular, out vec3 specularColor,

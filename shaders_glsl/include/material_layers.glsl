@@ -30,7 +30,7 @@ struct SurfaceLayers {
     float clearcoatRoughness;
     vec3 sheenColor;
     float sheenRoughness;
-    // KHR_materials_anisotropy, KHR_materials_iridescence, KHR_materials_dispersion (branch matB)
+    // KHR_materials_anisotropy
     float anisotropyStrength;  // 0: isotropic
     vec3 anisotropyDirection;  // world, unit; 0: unknown (the isotropic lobe at the rms alpha)
 };
@@ -103,7 +103,7 @@ float baseDistributionVisibility(SurfaceLayers s, float alpha, vec3 n, vec3 v, v
     return ptGgxAnisoD(hl, a.x, a.y) * ptGgxAnisoG2(vl, ll, a.x, a.y) / (4.0 * NdotL * NdotV);
 }
 
-// The extension textures' channels at a fragment (matA): specularTexture A, specularColorTexture RGB (linear,
+// The extension textures' channels at a fragment: specularTexture A, specularColorTexture RGB (linear,
 // decoded from sRGB), clearcoatTexture R, clearcoatRoughnessTexture G, sheenColorTexture RGB, sheenRoughnessTexture
 // A; 1 where a material has no such texture (white placeholder slots).
 struct LayerTexels {

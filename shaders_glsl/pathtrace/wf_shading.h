@@ -82,7 +82,7 @@ PtSurface wfEvaluateMaterial(GpuPtSceneDesc sc, WfHitPoint hit, vec3 wo, out boo
     s.attenuationDistance = pm.attenuationDistance;
     s.emission = wfEmissionAt(m, hit, wo);
     s.geometricNormal = hit.geometricNormal;
-    // KHR_materials_specular / _clearcoat / _sheen: factor x texture channel (matA; white placeholder slots
+    // KHR_materials_specular / _clearcoat / _sheen: factor x texture channel (white placeholder slots
     // leave the factor). Only materials with the extension's flag sample: the rest keep the defaults.
     s.specular = pm.specular;
     s.specularColor = pm.specularColor;

@@ -66,7 +66,7 @@ struct LightingPush {
     uint vxgiDiffuse;            // RGBA16F VXGI irradiance (include/vxgi_ambient.glsl), kNoVxgi: GI off
     uint vxgiSpecular;           // RGBA16F VXGI reflection radiance
     uint ssr;                    // RGBA16F screen-space reflections (shared/ssr_types.h), kSsrNoImage: off
-    uint layers;                 // RGBA32UI G-buffer extension texels (matA), kLightingNoLayers: none
+    uint layers;                 // RGBA32UI G-buffer extension texels, kLightingNoLayers: none
     uint pad;                    // keeps the C++ size (8-byte aligned) equal to the scalar layout's
 };
 IDK_GPU_SIZE(LightingPush, 80);

@@ -34,22 +34,8 @@ IDK_INLINE float ptGgxAnisoG2(vec3 wo, vec3 wi, float ax, float ay) {
     return 1.0f / (1.0f + ptGgxAnisoLambda(wo, ax, ay) + ptGgxAnisoLambda(wi, ax, ay));
 }
 
-// A visible normal for local wo (wo.z > 0): stretch to the unit-roughness configuration, sample its visible
-// hemisphere, unstretch (Heitz 2018, as ptSampleGgxVndf with one alpha per axis).
-IDK_INLINE vec3 ptSampleGgxAnisoVndf(vec3 wo, float ax, float ay, float u1, float u2) {
-    vec3 vh = normalize(vec3(ax * wo.x, ay * wo.y, wo.z));
-    float lensq = vh.x * vh.x + vh.y * vh.y;
-    vec3 t1 = lensq > 0.0f ? vec3(-vh.y, vh.x, 0.0f) * inversesqrt(lensq) : vec3(1.0f, 0.0f, 0.0f);
-    vec3 t2 = cross(vh, t1);
-    float r = sqrt(u1);
-    float phi = 2.0f * kPtPi * u2;
-    float p1 = r * cos(phi);
-    float p2 = r * sin(phi);
-    float s = 0.5f * (1.0f + vh.z);
-    p2 = (1.0f - s) * sqrt(max(1.0f - p1 * p1, 0.0f)) + s * p2;
-    vec3 nh = t1 * p1 + t2 * p2 + vh * sqrt(max(1.0f - p1 * p1 - p2 * p2, 0.0f));
-    return normalize(vec3(ax * nh.x, ay * nh.y, max(nh.z, 1.0e-6f)));
-}
+// Visible-normal sampling with one alpha per axis: ptSampleGgxAnisoVndf (pt_microfacet.h, shared with the
+// isotropic lobe).
 
 // Density of ptSampleGgxAnisoVndf's h (per solid angle of h).
 IDK_INLINE float ptGgxAnisoVndfPdf(vec3 wo, vec3 h, float ax, float ay) {

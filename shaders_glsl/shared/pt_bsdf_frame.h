@@ -62,7 +62,7 @@ struct PtBsdfFrame {
     float pMs;
     float pSheen;
     float pCoat;
-    // KHR_materials_anisotropy, KHR_materials_iridescence, KHR_materials_dispersion (branch matB)
+    // KHR_materials_anisotropy
     bool aniso;         // the GGX lobes are anisotropic: alphaT along t, alphaB along b (alpha is unused then)
     float alphaT;
     float alphaB;

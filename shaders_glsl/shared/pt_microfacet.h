@@ -32,9 +32,11 @@ IDK_INLINE float ptGgxG2(float cosO, float cosI, float alpha) {
     return 1.0f / (1.0f + ptGgxLambda(cosO, alpha) + ptGgxLambda(cosI, alpha));
 }
 
-// A visible normal for local wo (wo.z > 0), Heitz 2018, "Sampling the GGX Distribution of Visible Normals".
-IDK_INLINE vec3 ptSampleGgxVndf(vec3 wo, float alpha, float u1, float u2) {
-    vec3 vh = normalize(vec3(alpha * wo.x, alpha * wo.y, wo.z));
+// A visible normal for local wo (wo.z > 0), Heitz 2018, "Sampling the GGX Distribution of Visible Normals", with
+// one alpha per axis (KHR_materials_anisotropy; pt_anisotropy.h): stretch to the unit-roughness configuration,
+// sample its visible hemisphere, unstretch.
+IDK_INLINE vec3 ptSampleGgxAnisoVndf(vec3 wo, float ax, float ay, float u1, float u2) {
+    vec3 vh = normalize(vec3(ax * wo.x, ay * wo.y, wo.z));
     float lensq = vh.x * vh.x + vh.y * vh.y;
     vec3 t1 = lensq > 0.0f ? vec3(-vh.y, vh.x, 0.0f) * inversesqrt(lensq) : vec3(1.0f, 0.0f, 0.0f);
     vec3 t2 = cross(vh, t1);
@@ -45,7 +47,12 @@ IDK_INLINE vec3 ptSampleGgxVndf(vec3 wo, float alpha, float u1, float u2) {
     float s = 0.5f * (1.0f + vh.z);
     p2 = (1.0f - s) * sqrt(max(1.0f - p1 * p1, 0.0f)) + s * p2;
     vec3 nh = t1 * p1 + t2 * p2 + vh * sqrt(max(1.0f - p1 * p1 - p2 * p2, 0.0f));
-    return normalize(vec3(alpha * nh.x, alpha * nh.y, max(nh.z, 1.0e-6f)));
+    return normalize(vec3(ax * nh.x, ay * nh.y, max(nh.z, 1.0e-6f)));
+}
+
+// The isotropic case: the same arithmetic with ax = ay = alpha.
+IDK_INLINE vec3 ptSampleGgxVndf(vec3 wo, float alpha, float u1, float u2) {
+    return ptSampleGgxAnisoVndf(wo, alpha, alpha, u1, u2);
 }
 
 // Density of ptSampleGgxVndf's h (per solid angle of h).

@@ -96,7 +96,7 @@ struct GpuPtMaterial {
     float clearcoatRoughness;
     vec3 sheenColor;
     float sheenRoughness;
-    // KHR_materials_anisotropy, KHR_materials_iridescence, KHR_materials_dispersion (branch matB)
+    // KHR_materials_anisotropy
     float anisotropyStrength;   // anisotropyStrength, [0, 1]
     float anisotropyRotation;   // anisotropyRotation, radians counter-clockwise from the tangent
 };
@@ -123,7 +123,7 @@ struct PtSurface {
     float clearcoatRoughness;  // perceptual
     vec3 sheenColor;           // KHR_materials_sheen sheenColorFactor (linear; 0: no sheen)
     float sheenRoughness;      // perceptual
-    // KHR_materials_anisotropy, KHR_materials_iridescence, KHR_materials_dispersion (branch matB)
+    // KHR_materials_anisotropy
     vec3 anisotropyDirection;  // world, unit tangent-plane direction of alpha_t (pt_anisotropy.h); 0: the BSDF's basis
     float anisotropyStrength;  // [0, 1], texture applied; 0: isotropic GGX
 };

@@ -54,7 +54,7 @@ IDK_CONST(uint, kSlotMetallicRoughness, 1);  // linear: G = roughness, B = metal
 IDK_CONST(uint, kSlotNormal, 2);             // linear: tangent-space normal, xy remapped to [-1, 1]
 IDK_CONST(uint, kSlotOcclusion, 3);          // linear: R
 IDK_CONST(uint, kSlotEmissive, 4);           // sRGB
-// KHR_materials_specular / _clearcoat / _sheen textures (matA); white placeholders leave the factors unchanged.
+// KHR_materials_specular / _clearcoat / _sheen textures; white placeholders leave the factors unchanged.
 IDK_CONST(uint, kSlotSpecular, 5);            // linear: A scales specular
 IDK_CONST(uint, kSlotSpecularColor, 6);       // sRGB: RGB scales specularColor
 IDK_CONST(uint, kSlotClearcoat, 7);           // linear: R scales clearcoat
@@ -74,7 +74,7 @@ IDK_CONST(uint, kMaterialSpecular, 4u);     // KHR_materials_specular (factor or
 IDK_CONST(uint, kMaterialClearcoat, 8u);    // KHR_materials_clearcoat with clearcoatFactor > 0
 IDK_CONST(uint, kMaterialSheen, 16u);       // KHR_materials_sheen with a sheen colour above 0
 IDK_CONST(uint, kMaterialLayers, 28u);      // any of the three
-// KHR_materials_anisotropy, KHR_materials_iridescence, KHR_materials_dispersion (branch matB)
+// KHR_materials_anisotropy
 IDK_CONST(uint, kMaterialAnisotropy, 128u);  // KHR_materials_anisotropy with anisotropyStrength > 0
 
 // glTF metallic-roughness material (core + KHR_materials_emissive_strength, KHR_texture_transform, and the
@@ -97,7 +97,7 @@ struct GpuMaterial {
     float clearcoatRoughness;
     vec3 sheenColor;           // KHR_materials_sheen sheenColorFactor
     float sheenRoughness;
-    // KHR_materials_anisotropy, KHR_materials_iridescence, KHR_materials_dispersion (branch matB)
+    // KHR_materials_anisotropy
     float anisotropyStrength;  // KHR_materials_anisotropy anisotropyStrength (read when kMaterialAnisotropy)
     float anisotropyRotation;  // radians, counter-clockwise from the tangent
 };

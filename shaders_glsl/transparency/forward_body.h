@@ -60,7 +60,7 @@ void main() {
     vec4 nt = sampleMaterialSlot(m.slots[kSlotNormal], inUv, inUv1);
     float ao = sampleMaterialSlot(m.slots[kSlotOcclusion], inUv, inUv1).r;
     vec3 emissive = m.emissiveFactor * sampleMaterialSlot(m.slots[kSlotEmissive], inUv, inUv1).rgb;
-    LayerTexels layerTexels = noLayerTexels();  // KHR_materials_specular / _clearcoat / _sheen textures (matA)
+    LayerTexels layerTexels = noLayerTexels();  // KHR_materials_specular / _clearcoat / _sheen textures
     if ((m.flags & kMaterialLayers) != 0u)      // uniform per draw: derivatives stay defined
         sampleLayerTexels(m, inUv, inUv1, layerTexels.specular, layerTexels.specularColor, layerTexels.clearcoat,
                           layerTexels.clearcoatRoughness, layerTexels.sheenColor, layerTexels.sheenRoughness);

@@ -24,6 +24,7 @@
 #include "render/renderer.hpp"
 #include "scene/camera.hpp"
 #include "support/gpu_fixture.hpp"
+#include "gpu/vxgi/vxgi_room.hpp"
 #include "support/placed_quads.hpp"
 #include "support/vxgi_cone_oracle.hpp"
 
@@ -33,45 +34,18 @@ namespace {
 constexpr uint32_t kSize = 64;
 constexpr uint32_t kVoxels = 64;
 
-PlacedQuad wall(glm::vec3 centre, glm::vec3 normal, glm::vec2 half, glm::vec3 colour) {
-    PlacedQuad q;
-    q.centre = centre;
-    q.normal = normal;
-    q.halfSize = half;
-    q.baseColor = colour;
-    return q;
-}
-
 scene::Scene litRoom() {
-    std::vector<PlacedQuad> q;
-    q.push_back(wall({0, -1, 0}, {0, 1, 0}, {1, 1}, {0.7f, 0.7f, 0.7f}));   // floor
-    q.push_back(wall({-1, 0, 0}, {1, 0, 0}, {1, 1}, {0.8f, 0.1f, 0.1f}));   // left, red
-    q.push_back(wall({1, 0, 0}, {-1, 0, 0}, {1, 1}, {0.1f, 0.8f, 0.1f}));   // right, green
-    q.push_back(wall({0, 0, -1}, {0, 0, 1}, {1, 1}, {0.2f, 0.3f, 0.8f}));   // back, blue
-    q.push_back(wall({0, 0, 1}, {0, 0, -1}, {1, 1}, {0.6f, 0.6f, 0.6f}));   // front (behind the camera)
-    q.push_back(wall({0, 1, 0}, {0, -1, 0}, {0.3f, 0.3f}, glm::vec3(0.6f)));  // the panel
-    q.push_back(wall({-0.65f, 1, 0}, {0, -1, 0}, {0.35f, 1}, glm::vec3(0.6f)));
-    q.push_back(wall({0.65f, 1, 0}, {0, -1, 0}, {0.35f, 1}, glm::vec3(0.6f)));
-    q.push_back(wall({0, 1, -0.65f}, {0, -1, 0}, {0.3f, 0.35f}, glm::vec3(0.6f)));
-    q.push_back(wall({0, 1, 0.65f}, {0, -1, 0}, {0.3f, 0.35f}, glm::vec3(0.6f)));
-    scene::Scene s = makePlacedQuadScene(q);
-    for (scene::Material& m : s.materials) m.metallic = 0.0f;
-    s.materials[5].emissive = glm::vec3(4.0f);
+    scene::Scene s = closedRoomScene(glm::vec3(4.0f), {glm::vec3(0.7f), glm::vec3(0.8f, 0.1f, 0.1f),
+                                                        glm::vec3(0.1f, 0.8f, 0.1f), glm::vec3(0.2f, 0.3f, 0.8f),
+                                                        glm::vec3(0.6f)});
     // Each wall glows with its own colour (voxel radiance is emission + direct light; there is no light here).
     for (size_t i = 0; i < 5; ++i)
         s.materials[i].emissive = glm::vec3(s.materials[i].baseColorFactor) * (0.5f + 0.1f * float(i));
     return s;
 }
 
-scene::CameraView camera() {
-    scene::CameraView c;
-    c.position = {0.0f, -0.1f, 0.6f};  // 3 cells of level 2 from the front wall: its own cell is empty there
-    c.forward = glm::normalize(glm::vec3(0.0f, 0.25f, -1.0f));
-    c.up = glm::normalize(glm::cross(glm::cross(c.forward, glm::vec3(0, 1, 0)), c.forward));
-    c.yfov = 1.4f;
-    c.znear = 0.01f;
-    return c;
-}
+// 3 cells of level 2 from the front wall: the camera's own cell is empty there.
+scene::CameraView camera() { return closedRoomCamera({0.0f, -0.1f, 0.6f}); }
 
 // One level's cells as the debug view sees them along `dir`.
 struct LevelView {

@@ -28,6 +28,7 @@
 #include "render/path_tracer.hpp"
 #include "render/renderer.hpp"
 #include "support/gpu_fixture.hpp"
+#include "gpu/vxgi/vxgi_room.hpp"
 #include "support/placed_quads.hpp"
 #include "support/vxgi_cone_oracle.hpp"
 
@@ -36,44 +37,12 @@ namespace {
 
 constexpr uint32_t kSize = 64;
 
-PlacedQuad wall(glm::vec3 centre, glm::vec3 normal, glm::vec2 half) {
-    PlacedQuad q;
-    q.centre = centre;
-    q.normal = normal;
-    q.halfSize = half;
-    q.baseColor = glm::vec3(0.6f);
-    return q;
-}
+PlacedQuad wall(glm::vec3 centre, glm::vec3 normal, glm::vec2 half) { return roomWall(centre, normal, half); }
 
 // The closed room; quad 5 is the emissive panel (the ceiling is four strips around it, all in the plane y = 1).
-scene::Scene closedRoom() {
-    std::vector<PlacedQuad> q;
-    q.push_back(wall({0, -1, 0}, {0, 1, 0}, {1, 1}));   // floor
-    q.push_back(wall({-1, 0, 0}, {1, 0, 0}, {1, 1}));   // left
-    q.push_back(wall({1, 0, 0}, {-1, 0, 0}, {1, 1}));   // right
-    q.push_back(wall({0, 0, -1}, {0, 0, 1}, {1, 1}));   // back
-    q.push_back(wall({0, 0, 1}, {0, 0, -1}, {1, 1}));   // front (behind the camera)
-    q.push_back(wall({0, 1, 0}, {0, -1, 0}, {0.3f, 0.3f}));  // the panel
-    q.push_back(wall({-0.65f, 1, 0}, {0, -1, 0}, {0.35f, 1}));
-    q.push_back(wall({0.65f, 1, 0}, {0, -1, 0}, {0.35f, 1}));
-    q.push_back(wall({0, 1, -0.65f}, {0, -1, 0}, {0.3f, 0.35f}));
-    q.push_back(wall({0, 1, 0.65f}, {0, -1, 0}, {0.3f, 0.35f}));
-    // quadAxes: a horizontal quad's local x is world x, local y world -z or z: the strips' half sizes are (x, z).
-    scene::Scene s = makePlacedQuadScene(q);
-    for (scene::Material& m : s.materials) m.metallic = 0.0f;
-    s.materials[5].emissive = glm::vec3(8.0f);
-    return s;
-}
+scene::Scene closedRoom() { return closedRoomScene(glm::vec3(8.0f)); }
 
-scene::CameraView camera() {
-    scene::CameraView c;
-    c.position = {0.0f, -0.1f, 0.95f};
-    c.forward = glm::normalize(glm::vec3(0.0f, 0.25f, -1.0f));
-    c.up = glm::normalize(glm::cross(glm::cross(c.forward, glm::vec3(0, 1, 0)), c.forward));
-    c.yfov = 1.4f;
-    c.znear = 0.01f;
-    return c;
-}
+scene::CameraView camera() { return closedRoomCamera(); }
 
 core::ImageRgba32f raster(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene::Scene& s, frame::GiMode gi,
                           uint32_t voxels = 64, float step = 0.5f, uint32_t cones = 8) {

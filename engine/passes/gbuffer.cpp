@@ -5,6 +5,7 @@
 // Deviation: IDKEngine draws twice (single-sided with culling, then double-sided); here one draw with culling
 // off and back faces of single-sided materials rejected in the fragment shader. With GPU culling (passes/cull.cpp)
 // it draws the compacted commands with vkCmdDrawIndexedIndirectCount instead.
+#include "passes/indirect_draw.hpp"
 #include "passes/passes.hpp"
 #include "passes/culling.hpp"
 #include "passes/rendering.hpp"
@@ -174,8 +175,7 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
                                                   c.maxDraws, sizeof(VkDrawIndexedIndirectCommand));
                     if (log) log->record(pc.passName(), c.maxDraws);  // the most it may draw; the GPU count is a stat
                 } else {
-                    vkCmdDrawIndexedIndirect(cmd, pc.vkBuffer(s.drawCommands), 0, s.drawCount,
-                                             sizeof(VkDrawIndexedIndirectCommand));
+                    drawAllIndexedIndirect(cmd, pc.vkBuffer(s.drawCommands), s.drawCount);  // indirect_draw.hpp
                     if (log) log->record(pc.passName(), s.drawCount);
                 }
             }

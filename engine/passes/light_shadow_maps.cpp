@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <memory>
 
+#include "passes/indirect_draw.hpp"
 #include "passes/passes.hpp"
 #include "passes/rendering.hpp"
 #include "render/light_shadow_maps.hpp"
@@ -90,7 +91,7 @@ std::vector<graph::TextureHandle> addLightShadowMapPass(graph::RenderGraph& grap
                     beginRendering(cmd, {size, size}, {}, &depth, 1);
                     push.viewProjection = (*projections)[c][l].viewProjection;
                     vk::pushConstants(cmd, ctx, push);
-                    vkCmdDrawIndexedIndirect(cmd, indirect, 0, s.drawCount, sizeof(VkDrawIndexedIndirectCommand));
+                    drawAllIndexedIndirect(cmd, indirect, s.drawCount);  // see passes/indirect_draw.hpp
                     if (log) log->record(pc.passName(), s.drawCount);
                     vkCmdEndRendering(cmd);
                 }

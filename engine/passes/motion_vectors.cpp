@@ -4,6 +4,7 @@
 // G-buffer kept. Ports the velocity output of IDKEngine's GBuffer pass (reference 2.5: RG16F, UV-space delta).
 // Deviation: a separate pass so the G-buffer is untouched while TAA is off; a real GPU would write it as one more
 // G-buffer target (one geometry pass instead of two).
+#include "passes/indirect_draw.hpp"
 #include "passes/rendering.hpp"
 #include "passes/temporal_passes.hpp"
 
@@ -65,8 +66,7 @@ graph::TextureHandle addMotionVectorPass(graph::RenderGraph& graph, vk::Context&
                 push.depth = pc.texture(m.depth).storageIndex;
                 vk::pushConstants(cmd, ctx, push);
                 vkCmdBindIndexBuffer(cmd, pc.vkBuffer(m.scene.indices), 0, VK_INDEX_TYPE_UINT32);
-                vkCmdDrawIndexedIndirect(cmd, pc.vkBuffer(m.scene.drawCommands), 0, m.scene.drawCount,
-                                         sizeof(VkDrawIndexedIndirectCommand));
+                drawAllIndexedIndirect(cmd, pc.vkBuffer(m.scene.drawCommands), m.scene.drawCount);  // indirect_draw.hpp
                 if (log) log->record(pc.passName(), m.scene.drawCount);
             }
             vkCmdEndRendering(cmd);

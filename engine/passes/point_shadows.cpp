@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "passes/culling.hpp"
+#include "passes/indirect_draw.hpp"
 #include "passes/passes.hpp"
 #include "passes/rendering.hpp"
 #include "render/point_shadow_maps.hpp"
@@ -106,7 +107,7 @@ std::vector<graph::TextureHandle> addPointShadowPass(graph::RenderGraph& graph, 
                                                       culled.maxDraws, sizeof(VkDrawIndexedIndirectCommand));
                         if (log) log->record(pc.passName(), culled.maxDraws);  // the most it may draw
                     } else {
-                        vkCmdDrawIndexedIndirect(cmd, indirect, 0, s.drawCount, sizeof(VkDrawIndexedIndirectCommand));
+                        drawAllIndexedIndirect(cmd, indirect, s.drawCount);  // see passes/indirect_draw.hpp
                         if (log) log->record(pc.passName(), s.drawCount);
                     }
                     vkCmdEndRendering(cmd);

@@ -2,6 +2,7 @@
 // way: the forward shading's reads and push block from the frame's buffers, and the one indirect draw of the BLEND draws.
 #pragma once
 #include "graph/render_graph.hpp"
+#include "passes/indirect_draw.hpp"
 #include "passes/passes.hpp"
 #include "shared/shadow_types.h"
 
@@ -49,7 +50,7 @@ inline gpu::TransparencyPush transparencyPush(graph::PassContext& pc, const Tran
 inline void drawTransparent(graph::PassContext& pc, const TransparencyInputs& t, IndirectDrawLog* log) {
     VkCommandBuffer cmd = pc.commandBuffer();
     vkCmdBindIndexBuffer(cmd, pc.vkBuffer(t.scene.indices), 0, VK_INDEX_TYPE_UINT32);
-    vkCmdDrawIndexedIndirect(cmd, pc.vkBuffer(t.sortedDraws), 0, t.drawCount, sizeof(VkDrawIndexedIndirectCommand));
+    drawAllIndexedIndirect(cmd, pc.vkBuffer(t.sortedDraws), t.drawCount);  // see passes/indirect_draw.hpp
     if (log) log->record(pc.passName(), t.drawCount);
 }
 

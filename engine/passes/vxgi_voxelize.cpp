@@ -7,16 +7,15 @@
 // into a shared sums buffer, and the merge averages those.
 // Rasterisation follows the "conservative-raster" ladder unless --gi-raster centre: VK_EXT_conservative_rasterization
 // (overestimate) where the device has it, else voxelize.geom's triangle dilation, so thin walls never leak.
-// The draws read their count from a buffer that vxgi_clear fills with the scene's draw count: lavapipe (Mesa 25.0)
-// keeps the count buffer of the last vkCmdDraw*IndirectCount in its command-buffer state and applies it to later
-// plain vkCmdDrawIndexedIndirect calls, so after the point-shadow faces' culled draws the voxelization drew only
-// the first (last face's count) scene draws. A GPU whose driver honours the plain draw's drawCount needs no buffer.
+// The draws go through passes/indirect_draw.hpp: lavapipe applied the point-shadow faces' culled count to plain
+// indirect draws, and the voxelization then drew only the first (last face's count) scene draws.
 #include "passes/vxgi_passes.hpp"
 
 #include <algorithm>
 #include <memory>
 #include <stdexcept>
 
+#include "passes/indirect_draw.hpp"
 #include "passes/rendering.hpp"
 #include "passes/vxgi_gl_accumulate.hpp"
 #include "shared/pt_wavefront.h"
@@ -29,7 +28,6 @@ struct Accumulators {
     graph::TextureHandle images[8];
     uint32_t count = 0;
     graph::BufferHandle records, sums;  // gl-interop rung: the shared buffers instead of images
-    graph::BufferHandle drawCount;      // one word: the scene's draw count, the voxelize draws' count buffer
 };
 
 uint32_t modeOf(vk::Rung rung) {
@@ -61,19 +59,9 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
         acc->records = gl->importRecords(graph);
         acc->sums = gl->importSums(graph);
     }
-    const uint32_t drawCount = in.scene.drawCount;
     graph.addPass(
         "vxgi_clear",
         [&](graph::PassBuilder& b) {
-            if (drawCount > 0) {
-                graph::BufferDesc word;
-                word.size = sizeof(uint32_t);
-                // Its own memory, not a transient heap's: the installed validation layer counts a fragment
-                // shader that writes through the bindless storage-buffer array (the gl-interop rung's records)
-                // as writing every buffer in the array, among them transients whose bytes this word would share.
-                word.persistent = true;
-                acc->drawCount = b.write(b.create("vxgi draw count", word), graph::Access::TransferDst);
-            }
             if (gl) {  // the record counter (the header) and the sums start at zero
                 acc->records = b.write(acc->records, graph::Access::TransferDst);
                 acc->sums = b.write(acc->sums, graph::Access::TransferDst);
@@ -91,9 +79,7 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             for (uint32_t i = 0; i < acc->count; ++i)
                 acc->images[i] = b.write(b.create(names[i], desc), graph::Access::TransferDst);
         },
-        [acc, drawCount](graph::PassContext& pc) {
-            if (acc->drawCount.valid())
-                vkCmdFillBuffer(pc.commandBuffer(), pc.vkBuffer(acc->drawCount), 0, sizeof(uint32_t), drawCount);
+        [acc](graph::PassContext& pc) {
             if (acc->records.valid()) {
                 vkCmdFillBuffer(pc.commandBuffer(), pc.vkBuffer(acc->records), 0, gpu::kVoxelRecordHeaderWords * 4, 0);
                 vkCmdFillBuffer(pc.commandBuffer(), pc.vkBuffer(acc->sums), 0, VK_WHOLE_SIZE, 0);
@@ -135,7 +121,6 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             b.read(s.meshes, graph::Access::StorageRead, kFs);
             b.read(s.materials, graph::Access::StorageRead, kFs);
             b.read(s.drawCommands, graph::Access::IndirectRead);
-            b.read(acc->drawCount, graph::Access::IndirectRead);
             if (s.colors.valid()) b.read(s.colors, graph::Access::StorageRead, kVs);
             if (s.uv1.valid()) b.read(s.uv1, graph::Access::StorageRead, kVs);
         },
@@ -194,9 +179,7 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             for (uint32_t axis = 0; axis < draws; ++axis) {
                 push.axis = singleDraw ? gpu::kVoxelAxisDominant : axis;
                 vk::pushConstants(cmd, ctx, push);
-                // Counted by vxgi_clear's word, not drawCount alone: see the header (lavapipe's stale count).
-                vkCmdDrawIndexedIndirectCount(cmd, pc.vkBuffer(s.drawCommands), 0, pc.vkBuffer(acc->drawCount), 0,
-                                              s.drawCount, sizeof(VkDrawIndexedIndirectCommand));
+                drawAllIndexedIndirect(cmd, pc.vkBuffer(s.drawCommands), s.drawCount);  // see indirect_draw.hpp
                 if (log) log->record(pc.passName(), s.drawCount);
             }
             vkCmdEndRendering(cmd);

@@ -7,6 +7,7 @@
 #include <numeric>
 #include <string>
 
+#include "passes/indirect_draw.hpp"
 #include "render/draw_bounds.hpp"
 #include "vk/context.hpp"
 #include "vk/transfer.hpp"
@@ -58,7 +59,7 @@ BlendDraws::BlendDraws(vk::Context& ctx, const GpuSceneData& scene, uint32_t fra
     : ctx_(ctx), meshBoxes_(meshBounds(scene)), count_(blendDrawCount(scene)) {
     for (uint32_t i = 0; i < framesInFlight && count_ > 0; ++i) {
         vk::BufferDesc desc;
-        desc.size = count_ * sizeof(VkDrawIndexedIndirectCommand);
+        desc.size = passes::indirectBufferBytes(count_);  // the commands and the count word (passes/indirect_draw.hpp)
         desc.usage = VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
         desc.memory = vk::MemoryUsage::Upload;
         desc.name = "sorted blend draws " + std::to_string(i);
@@ -74,7 +75,8 @@ BlendDraws::~BlendDraws() {
 const vk::Buffer& BlendDraws::sort(uint32_t slot, const GpuSceneData& scene, glm::vec3 eye) {
     std::vector<VkDrawIndexedIndirectCommand> sorted = sortBlendDraws(scene, meshBoxes_, eye);
     const vk::Buffer& buffer = slots_.at(slot);
-    vk::uploadBuffer(ctx_, buffer, sorted.data(), sorted.size() * sizeof(VkDrawIndexedIndirectCommand));
+    const std::vector<uint8_t> bytes = passes::withCountWord(sorted);
+    vk::uploadBuffer(ctx_, buffer, bytes.data(), bytes.size());
     return buffer;
 }
 

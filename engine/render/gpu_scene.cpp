@@ -14,6 +14,7 @@
 #include <tuple>
 
 #include "core/log.hpp"
+#include "passes/indirect_draw.hpp"
 #include "vk/context.hpp"
 #include "vk/transfer.hpp"
 
@@ -304,7 +305,15 @@ void GpuScene::create(const scene::Scene& scene, GpuSceneContents contents) {
     indices_ = uploadArray(ctx, data_.indices, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "scene indices", "geometry");
     meshes_ = uploadArray(ctx, data_.meshes, kStorage, "scene meshes", "geometry");
     instances_ = uploadArray(ctx, data_.instances, kStorage, "scene instances", "instances");
-    draws_ = uploadArray(ctx, data_.draws, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, "scene draw commands", "instances");
+    if (!data_.draws.empty()) {  // the commands and the count word of passes/indirect_draw.hpp
+        const std::vector<uint8_t> bytes = passes::withCountWord(data_.draws);
+        vk::BufferDesc desc;
+        desc.size = bytes.size();
+        desc.usage = VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
+        desc.name = "scene draw commands";
+        desc.category = "instances";
+        draws_ = vk::createBufferWithData(ctx, desc, bytes.data(), desc.size);
+    }
     lights_ = uploadArray(ctx, data_.lights, kStorage, "scene lights", "lights");
     colors_ = uploadArray(ctx, data_.colors, kStorage, "scene vertex colors", "geometry");
     uv1_ = uploadArray(ctx, data_.uv1, kStorage, "scene uv1", "geometry");

@@ -1,6 +1,8 @@
 // shadow_caster_draws.cpp: the shadow passes' draw commands, BLEND draws included (see shadow_caster_draws.hpp).
 #include "render/shadow_caster_draws.hpp"
 
+#include "passes/indirect_draw.hpp"
+
 #include "vk/context.hpp"
 #include "vk/transfer.hpp"
 
@@ -14,13 +16,13 @@ std::vector<VkDrawIndexedIndirectCommand> shadowCasterDraws(const GpuSceneData& 
 
 vk::Buffer createShadowCasterDraws(vk::Context& ctx, const GpuSceneData& scene, uint32_t instancesPerDraw,
                                    const char* name) {
-    std::vector<VkDrawIndexedIndirectCommand> draws = shadowCasterDraws(scene, instancesPerDraw);
+    const std::vector<uint8_t> bytes = passes::withCountWord(shadowCasterDraws(scene, instancesPerDraw));
     vk::BufferDesc desc;
-    desc.size = draws.size() * sizeof(VkDrawIndexedIndirectCommand);
+    desc.size = bytes.size();  // the commands and the count word of passes/indirect_draw.hpp
     desc.usage = VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
     desc.name = name;
     desc.category = "shadow maps";
-    return vk::createBufferWithData(ctx, desc, draws.data(), desc.size);
+    return vk::createBufferWithData(ctx, desc, bytes.data(), desc.size);
 }
 
 }  // namespace idk::render

@@ -1,8 +1,9 @@
-// mdi_test.cpp: the G-buffer is ONE multi-draw-indirect: a hook on volk's vkCmdDrawIndexedIndirect (and the
-// direct draw entry points) counts what the frame really records, and the draw count must equal the number of
-// (instance, primitive) pairs of the scene, including EXT_mesh_gpu_instancing copies; the only direct draw is the
-// tonemap's fullscreen triangle. Also checks the packed draw commands against the mesh ranges and the renderer's
-// own per-pass log.
+// mdi_test.cpp: the G-buffer is ONE multi-draw-indirect: a hook on volk's vkCmdDrawIndexedIndirect(Count) (and the
+// direct draw entry points) counts what the frame really records, and the draw count (maxDrawCount) must equal the
+// number of (instance, primitive) pairs of the scene, including EXT_mesh_gpu_instancing copies; the only direct draw
+// is the tonemap's fullscreen triangle, and no pass records a plain vkCmdDrawIndexedIndirect (every uncounted draw
+// goes through passes/indirect_draw.hpp: lavapipe applies an earlier count draw's count to plain ones). Also checks
+// the packed draw commands against the mesh ranges and the renderer's own per-pass log.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,18 +18,27 @@ namespace idk::test {
 namespace {
 
 struct DrawCounts {
-    uint32_t indexedIndirectCalls = 0, indexedIndirectDraws = 0, directDraws = 0;
+    uint32_t indexedIndirectCalls = 0, indexedIndirectDraws = 0, plainIndirectCalls = 0, directDraws = 0;
 };
 DrawCounts gCounts;
 PFN_vkCmdDrawIndexedIndirect gIndexedIndirect = nullptr;
+PFN_vkCmdDrawIndexedIndirectCount gIndexedIndirectCount = nullptr;
 PFN_vkCmdDrawIndexed gIndexed = nullptr;
 PFN_vkCmdDraw gDraw = nullptr;
 
 void VKAPI_CALL countIndexedIndirect(VkCommandBuffer cmd, VkBuffer buffer, VkDeviceSize offset, uint32_t drawCount,
                                      uint32_t stride) {
     ++gCounts.indexedIndirectCalls;
+    ++gCounts.plainIndirectCalls;
     gCounts.indexedIndirectDraws += drawCount;
     gIndexedIndirect(cmd, buffer, offset, drawCount, stride);
+}
+void VKAPI_CALL countIndexedIndirectCount(VkCommandBuffer cmd, VkBuffer buffer, VkDeviceSize offset,
+                                          VkBuffer countBuffer, VkDeviceSize countOffset, uint32_t maxDrawCount,
+                                          uint32_t stride) {
+    ++gCounts.indexedIndirectCalls;
+    gCounts.indexedIndirectDraws += maxDrawCount;
+    gIndexedIndirectCount(cmd, buffer, offset, countBuffer, countOffset, maxDrawCount, stride);
 }
 void VKAPI_CALL countIndexed(VkCommandBuffer cmd, uint32_t a, uint32_t b, uint32_t c, int32_t d, uint32_t e) {
     ++gCounts.directDraws;
@@ -44,11 +54,13 @@ struct DrawHook {
     DrawHook() {
         gCounts = {};
         gIndexedIndirect = std::exchange(vkCmdDrawIndexedIndirect, &countIndexedIndirect);
+        gIndexedIndirectCount = std::exchange(vkCmdDrawIndexedIndirectCount, &countIndexedIndirectCount);
         gIndexed = std::exchange(vkCmdDrawIndexed, &countIndexed);
         gDraw = std::exchange(vkCmdDraw, &countDraw);
     }
     ~DrawHook() {
         vkCmdDrawIndexedIndirect = gIndexedIndirect;
+        vkCmdDrawIndexedIndirectCount = gIndexedIndirectCount;
         vkCmdDrawIndexed = gIndexed;
         vkCmdDraw = gDraw;
     }
@@ -91,6 +103,7 @@ TEST_P(MdiTest, GBufferIsOneIndirectDrawWithOneDrawPerInstancePrimitive) {
     }
     EXPECT_EQ(counts.indexedIndirectCalls, loggedCalls) << name;
     EXPECT_EQ(counts.indexedIndirectDraws, loggedDraws) << name;
+    EXPECT_EQ(counts.plainIndirectCalls, 0u) << name << ": a plain indirect draw bypassed passes/indirect_draw.hpp";
     EXPECT_EQ(counts.directDraws, 1u) << name << ": the tonemap's fullscreen triangle, no scene geometry";
     auto gbuffer = std::find_if(frame.indirectDraws.begin(), frame.indirectDraws.end(),
                                 [](const auto& e) { return e.pass == "gbuffer"; });

@@ -11,6 +11,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "vk/blit.hpp"
 #include "vk/transfer.hpp"
 
 namespace idk::render {
@@ -303,21 +304,7 @@ FrameInfo Renderer::renderFrame(const scene::CameraView& camera, const FrameTarg
                 *blitted = b.write(out, graph::Access::TransferDst);
             },
             [scene, blitted, width, height](graph::PassContext& pc) {
-                // A blit, not a copy: it converts RGBA8 into the target's format (swapchains are often BGRA8).
-                VkImageBlit2 region{VK_STRUCTURE_TYPE_IMAGE_BLIT_2};
-                region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-                region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-                region.srcOffsets[1] = {int32_t(width), int32_t(height), 1};
-                region.dstOffsets[1] = {int32_t(width), int32_t(height), 1};
-                VkBlitImageInfo2 blit{VK_STRUCTURE_TYPE_BLIT_IMAGE_INFO_2};
-                blit.srcImage = pc.image(scene);
-                blit.srcImageLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-                blit.dstImage = pc.image(*blitted);
-                blit.dstImageLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-                blit.regionCount = 1;
-                blit.pRegions = &region;
-                blit.filter = VK_FILTER_NEAREST;
-                vkCmdBlitImage2(pc.commandBuffer(), &blit);
+                vk::blitSameSize(pc.commandBuffer(), pc.image(scene), pc.image(*blitted), width, height);
             });
         graph::TextureHandle last = *blitted;
         if (target.addPasses) last = target.addPasses(graph, last);

@@ -7,6 +7,7 @@
 
 #include "app/render_pathtrace.hpp"
 #include "render/vk_graph_backend.hpp"
+#include "vk/blit.hpp"
 #include "vk/transfer.hpp"
 
 namespace idk::viewer {
@@ -103,21 +104,7 @@ graph::TextureHandle PtView::addPass(graph::RenderGraph& graph, graph::TextureHa
             *written = b.write(target, graph::Access::TransferDst);
         },
         [source, written, extent](graph::PassContext& pc) {
-            // A blit converts RGBA8 into the swapchain's format (often BGRA8), as the renderer's present_blit.
-            VkImageBlit2 region{VK_STRUCTURE_TYPE_IMAGE_BLIT_2};
-            region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-            region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-            region.srcOffsets[1] = {int32_t(extent.width), int32_t(extent.height), 1};
-            region.dstOffsets[1] = region.srcOffsets[1];
-            VkBlitImageInfo2 blit{VK_STRUCTURE_TYPE_BLIT_IMAGE_INFO_2};
-            blit.srcImage = pc.image(source);
-            blit.srcImageLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-            blit.dstImage = pc.image(*written);
-            blit.dstImageLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-            blit.regionCount = 1;
-            blit.pRegions = &region;
-            blit.filter = VK_FILTER_NEAREST;
-            vkCmdBlitImage2(pc.commandBuffer(), &blit);
+            vk::blitSameSize(pc.commandBuffer(), pc.image(source), pc.image(*written), extent.width, extent.height);
         });
     return *written;
 }

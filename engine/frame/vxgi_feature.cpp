@@ -84,7 +84,11 @@ void VxgiFeature::addPasses(FrameContext& f, const std::optional<passes::VoxelSh
     passes::VoxelizeInputs in{f.scene, f.frameConstants, f.pointShadows, box_,
                               f.ctx.ladder("vxgi-atomics").chosen};
     if (in.atomics == vk::Rung::GlInterop) {  // the GL pass's shared buffers live across frames
-        if (!gl_) gl_ = std::make_unique<passes::VxgiGlAccumulator>(ctx_);
+        const passes::VxgiGlProgram program = f.ctx.ladder("vxgi-gl-accumulate").chosen == vk::Rung::Native
+                                                  ? passes::VxgiGlProgram::Fp16Vector
+                                                  : passes::VxgiGlProgram::Float;
+        if (gl_ && gl_->program() != program) gl_.reset();
+        if (!gl_) gl_ = std::make_unique<passes::VxgiGlAccumulator>(ctx_, program);
         gl_->prepare(s.voxels);
         in.gl = gl_.get();
     } else {

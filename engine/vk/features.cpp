@@ -87,6 +87,14 @@ std::vector<Ladder> ladderTable(const DeviceCapabilities& c) {
          {Rung::GlInterop, "fragment records + GL_NV_shader_atomic_float adds via GL_EXT_memory_object_fd",
           glAtomicFloat, glNote(c, c.glAtomicFloat, "GL_NV_shader_atomic_float")},
          {Rung::Fallback, "three r32ui images + merge", true, ""}}));
+    ladders.push_back(ladder("vxgi-gl-accumulate", "GL-interop voxel sums (VXGI)",
+        // Consulted on vxgi-atomics' gl-interop rung (passes/vxgi_gl_accumulate.cpp): the GL program that adds the
+        // fragments' records. Native: two f16vec4 atomics per record into RGBA16F images, then a resolve to the
+        // sums; fallback: eight float atomics per record straight into the sums.
+        {{Rung::Native, "GL_NV_shader_atomic_fp16_vector: f16vec4 image adds (RGBA16F) + resolve",
+          c.glInterop && c.glAtomicFp16Vector, glNote(c, c.glAtomicFp16Vector, "GL_NV_shader_atomic_fp16_vector")},
+         {Rung::Fallback, "GL_NV_shader_atomic_float: float buffer adds", glAtomicFloat,
+          glNote(c, c.glAtomicFloat, "GL_NV_shader_atomic_float")}}));
     ladders.push_back(ladder("float-atomics", "float atomic add (splatting)",
         {{Rung::Native, "buffer float atomicAdd (VK_EXT_shader_atomic_float)", c.bufferFloat32AtomicAdd,
           missing(c.bufferFloat32AtomicAdd, "shaderBufferFloat32AtomicAdd")},

@@ -4,11 +4,12 @@
 // GL_NV_geometry_shader_passthrough + GL_NV_viewport_swizzle path). Every input passes through untouched; the shader
 // only writes the primitive's gl_ViewportIndex = its dominant axis, and that viewport's swizzle (set in the pipeline,
 // passes/vxgi_axis_swizzle.hpp) turns voxelize.vert's unswizzled grid coordinates into the axis's projection, as
-// voxelize_axis.geom does by re-emitting. What it saves on a real GPU: a passthrough geometry shader runs once per
-// triangle with no output buffer (no EmitVertex, no per-vertex attribute copy to on-chip memory and back: the
-// vertex outputs go straight to the rasterizer), so NVIDIA's hardware runs it at nearly vertex-shader speed where
-// a general geometry shader (voxelize_axis.geom) serializes through its output buffer; and it keeps the single
-// draw, so the index and vertex fetch and the vertex shading happen once instead of three times (three draws).
+// voxelize_axis.geom does by re-emitting. What it saves on a real GPU: a passthrough geometry shader emits no
+// vertices, so the hardware forwards the vertex shader's outputs to the rasterizer unchanged and only attaches the
+// primitive's viewport index: no per-vertex copy of the seven attributes into the geometry stage's output storage
+// and back, no variable-size output to allocate (the cost that makes a general geometry shader such as
+// voxelize_axis.geom slow, and made IDKEngine measure three draws faster than it); and, unlike three draws, the
+// index fetch and vertex shading run once per vertex instead of three times, with no triangle culled twice.
 // Not combinable with the dilation fallback (a passthrough shader cannot move vertices): it needs centre raster or
 // VK_EXT_conservative_rasterization, which every GPU with the NV extensions has.
 #extension GL_GOOGLE_include_directive : require

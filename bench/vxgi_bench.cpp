@@ -12,10 +12,12 @@
 //    pt_extrapolated = 1); pt_time_ratio = that time / the frame's time.
 // BM_VxgiCornell/N: one rasterized frame with --gi vxgi at N^3 voxels (warm renderer: the voxelization, mips and
 // cone tracing run every frame), GPU pass times as counters. BM_VxgiCornellOff: the same frame with --gi none.
-// BM_VxgiVoxelizeDraws/D: the Cornell frame at 64^3 voxelized by three draws (D = 0, one per axis) or one draw whose
-// geometry shader projects each triangle along its dominant axis (D = 1): the two rasterisation strategies lavapipe
-// runs (pass_ms.vxgi_voxelize); the native form of the single draw (VK_NV_geometry_shader_passthrough +
-// VK_NV_viewport_swizzle) is not written.
+// BM_VxgiVoxelizeDraws/R/N: the Cornell frame at N^3 voxels (64, 128) by each voxelization raster rung lavapipe
+// runs, side by side in pass_ms.vxgi_voxelize: R = 0 three draws, one per axis, pixel centres (--gi-raster centre);
+// R = 1 one draw whose geometry shader re-emits each triangle along its dominant axis (--gi-voxel-draws single:
+// the voxel-single-draw fallback; its native rung, VK_NV_geometry_shader_passthrough + VK_NV_viewport_swizzle, is
+// absent here); R = 2 three draws with the conservative-raster fallback (geometry-shader dilation, the default
+// here); R = 3 one draw of that dilation shader (it projects each triangle itself). Peers: 0 <-> 1, 2 <-> 3.
 // BM_VxgiPathTraced/S: the path tracer at S spp and the reference's depth (the peer: the time for its own error).
 // BM_VxgiCornellResolution/R: BM_VxgiCornell at 128^3 with the cones traced at full (R = 0) or half (R = 1)
 // resolution (--gi-resolution; half adds the edge-aware upsample, pass_ms.vxgi_upsample).
@@ -142,7 +144,8 @@ core::ImageRgba32f rasterDirect(const scene::Scene& scene) {
 
 void rasterFrames(benchmark::State& state, int k, frame::GiMode gi, uint32_t voxels, const char* settingsText,
                   const std::string& peer, frame::VoxelDraws draws = frame::VoxelDraws::Three,
-                  frame::GiResolution resolution = frame::VxgiSettings{}.resolution) {
+                  frame::GiResolution resolution = frame::VxgiSettings{}.resolution,
+                  frame::VoxelRaster raster = frame::VoxelRaster::Conservative) {
     if (!requireDevice(state)) return;
     scene::Scene scene = loadScene(k);
     const Reference& ref = reference(k, scene);
@@ -153,6 +156,7 @@ void rasterFrames(benchmark::State& state, int k, frame::GiMode gi, uint32_t vox
     settings.vxgi.voxels = voxels;
     settings.vxgi.draws = draws;
     settings.vxgi.resolution = resolution;
+    settings.vxgi.raster = raster;
     context()->clearConsultedLadders();
     double gpuMs = 0.0, error = 0.0, indirect = 0.0, wallMs = 0.0;
     std::map<std::string, double> passMs;
@@ -199,14 +203,22 @@ void BM_VxgiCornell(benchmark::State& state) {
 BENCHMARK(BM_VxgiCornell)->Arg(64)->Arg(128)->Arg(256)->UseRealTime()->MinTime(0.5)->Unit(benchmark::kMillisecond);
 
 void BM_VxgiVoxelizeDraws(benchmark::State& state) {
-    const bool single = state.range(0) == 1;
-    const std::string text = std::string("--gi vxgi --voxels 64 --gi-voxel-draws ") + (single ? "single" : "three") +
-                             ", 1 frame, warm (pass_ms.vxgi_voxelize: the rasterisation strategy)";
-    rasterFrames(state, -1, frame::GiMode::Vxgi, 64, text.c_str(),
-                 single ? "BM_VxgiVoxelizeDraws/0" : "BM_VxgiVoxelizeDraws/1",
-                 single ? frame::VoxelDraws::Single : frame::VoxelDraws::Three);
+    const auto rung = int(state.range(0));
+    const auto voxels = uint32_t(state.range(1));
+    const bool single = rung % 2 == 1, dilated = rung >= 2;
+    const std::string text = "--gi vxgi --voxels " + std::to_string(voxels) + " --gi-voxel-draws " +
+                             (single ? "single" : "three") + " --gi-raster " + (dilated ? "conservative" : "centre") +
+                             ", 1 frame, warm (pass_ms.vxgi_voxelize: the raster rung)";
+    const std::string peer = "BM_VxgiVoxelizeDraws/" + std::to_string(rung ^ 1) + "/" + std::to_string(voxels);
+    rasterFrames(state, -1, frame::GiMode::Vxgi, voxels, text.c_str(), peer,
+                 single ? frame::VoxelDraws::Single : frame::VoxelDraws::Three, frame::VxgiSettings{}.resolution,
+                 dilated ? frame::VoxelRaster::Conservative : frame::VoxelRaster::Centre);
 }
-BENCHMARK(BM_VxgiVoxelizeDraws)->Arg(0)->Arg(1)->UseRealTime()->MinTime(0.5)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_VxgiVoxelizeDraws)
+    ->ArgsProduct({{0, 1, 2, 3}, {64, 128}})
+    ->UseRealTime()
+    ->MinTime(0.5)
+    ->Unit(benchmark::kMillisecond);
 
 void BM_VxgiCornellResolution(benchmark::State& state) {
     const bool half = state.range(0) != 0;

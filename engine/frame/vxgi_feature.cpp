@@ -84,7 +84,11 @@ void VxgiFeature::addPasses(FrameContext& f, const std::optional<passes::VoxelSh
     passes::VoxelizeInputs in{f.scene, f.frameConstants, f.pointShadows, box_,
                               f.ctx.ladder("vxgi-atomics").chosen};
     if (in.atomics == vk::Rung::GlInterop) {  // the GL pass's shared buffers live across frames
-        if (!gl_) gl_ = std::make_unique<passes::VxgiGlAccumulator>(ctx_);
+        const passes::VxgiGlProgram program = f.ctx.ladder("vxgi-gl-accumulate").chosen == vk::Rung::Native
+                                                  ? passes::VxgiGlProgram::Fp16Vector
+                                                  : passes::VxgiGlProgram::Float;
+        if (gl_ && gl_->program() != program) gl_.reset();
+        if (!gl_) gl_ = std::make_unique<passes::VxgiGlAccumulator>(ctx_, program);
         gl_->prepare(s.voxels);
         in.gl = gl_.get();
     } else {
@@ -94,7 +98,11 @@ void VxgiFeature::addPasses(FrameContext& f, const std::optional<passes::VoxelSh
         in.conservative = f.ctx.ladder("conservative-raster").chosen;
     for (uint32_t d = 0; d < 6; ++d) in.directionLevel0[d] = directions_[d].levelStorage[0].value;
     in.shadowRays = rays;
-    in.singleDraw = s.draws == VoxelDraws::Single;
+    // The single draw's projection follows "voxel-single-draw", except under the dilation fallback, whose geometry
+    // shader projects each triangle itself (a passthrough shader could not dilate): the ladder is then not consulted.
+    if (s.draws == VoxelDraws::Single)
+        in.singleDraw = in.conservative == vk::Rung::Fallback ? vk::Rung::Fallback
+                                                              : f.ctx.ladder("voxel-single-draw").chosen;
     std::array<graph::TextureHandle, 6> handles;
     for (uint32_t d = 0; d < 6; ++d) handles[d] = directionHandles_[d];
     f.voxelGrid = passes::addVoxelizePasses(f.graph, f.ctx, f.shaders, in, grid, handles, &f.log);

@@ -27,6 +27,11 @@ namespace idk::gl {
     X(glTextureStorageMem2DEXT, PFNGLTEXTURESTORAGEMEM2DEXTPROC)                 \
     X(glGetTextureImage, PFNGLGETTEXTUREIMAGEPROC)                               \
     X(glTextureSubImage2D, PFNGLTEXTURESUBIMAGE2DPROC)                           \
+    X(glTextureStorage3D, PFNGLTEXTURESTORAGE3DPROC)                             \
+    X(glClearTexImage, PFNGLCLEARTEXIMAGEPROC)                                   \
+    X(glClearTexSubImage, PFNGLCLEARTEXSUBIMAGEPROC)                             \
+    X(glNamedBufferStorage, PFNGLNAMEDBUFFERSTORAGEPROC)                         \
+    X(glClearNamedBufferData, PFNGLCLEARNAMEDBUFFERDATAPROC)                     \
     X(glCreateBuffers, PFNGLCREATEBUFFERSPROC)                                   \
     X(glDeleteBuffers, PFNGLDELETEBUFFERSPROC)                                   \
     X(glNamedBufferStorageMemEXT, PFNGLNAMEDBUFFERSTORAGEMEMEXTPROC)             \

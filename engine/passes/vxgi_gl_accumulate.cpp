@@ -28,15 +28,15 @@ constexpr VkPipelineStageFlags2 kCs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
 constexpr uint32_t kGroup = 64;         // vxgi_accumulate.comp's local size
 constexpr uint32_t kMaxGroupsX = 65535;  // GL's guaranteed GL_MAX_COMPUTE_WORK_GROUP_COUNT per dimension
 
-std::string readGlSource(const std::filesystem::path& dir) {
-    const std::filesystem::path name = std::filesystem::path("gl") / "vxgi_accumulate.comp.glsl";
+std::string readGlSource(const std::filesystem::path& dir, const char* file) {
+    const std::filesystem::path name = std::filesystem::path("gl") / file;
     const std::filesystem::path path = !dir.empty() && std::filesystem::exists(dir / name)
                                            ? dir / name
                                            : std::filesystem::path(shaders::kShaderSourceDir) / name;
-    std::ifstream file(path);
-    if (!file) throw std::runtime_error(path.string() + ": cannot open the GL voxel accumulation shader");
+    std::ifstream stream(path);
+    if (!stream) throw std::runtime_error(path.string() + ": cannot open the GL voxel accumulation shader");
     std::stringstream text;
-    text << file.rdbuf();
+    text << stream.rdbuf();
     return text.str();
 }
 
@@ -58,13 +58,20 @@ void beginLabel(VkCommandBuffer cmd, const char* name) {
 
 }  // namespace
 
-VxgiGlAccumulator::VxgiGlAccumulator(vk::Context& ctx, const std::filesystem::path& glShaderDir) : ctx_(ctx) {
+VxgiGlAccumulator::VxgiGlAccumulator(vk::Context& ctx, VxgiGlProgram program, const std::filesystem::path& glShaderDir)
+    : ctx_(ctx), kind_(program) {
     const gl::GlContext* gl = ctx.glContext();
     if (!gl) throw std::runtime_error("vxgi-atomics gl-interop: no OpenGL context: " + ctx.capabilities().glInteropNote);
-    const std::string source = readGlSource(glShaderDir);
+    const bool half = program == VxgiGlProgram::Fp16Vector;
+    const char* file = half ? "vxgi_accumulate_fp16.comp.glsl" : "vxgi_accumulate.comp.glsl";
+    const std::string source = readGlSource(glShaderDir, file);
+    const std::string resolveSource = half ? readGlSource(glShaderDir, "vxgi_resolve_fp16.comp.glsl") : "";
     {
+        // The GL driver compiles the sources: one without an extension they require refuses them, naming it.
         gl::GlContext::Current current(*gl);
-        program_ = std::make_unique<gl::ComputeProgram>(*gl, "gl/vxgi_accumulate.comp.glsl", source);
+        program_ = std::make_unique<gl::ComputeProgram>(*gl, std::string("gl/") + file, source);
+        if (half)
+            resolve_ = std::make_unique<gl::ComputeProgram>(*gl, "gl/vxgi_resolve_fp16.comp.glsl", resolveSource);
     }
     try {
         handOff_ = std::make_unique<gl::HandOff>(ctx, *gl, "vxgi gl accumulate");
@@ -78,6 +85,7 @@ VxgiGlAccumulator::VxgiGlAccumulator(vk::Context& ctx, const std::filesystem::pa
         if (countCopy_) ctx.destroy(countCopy_);
         gl::GlContext::Current current(*gl);
         program_.reset();
+        resolve_.reset();
         throw;
     }
 }
@@ -89,10 +97,13 @@ VxgiGlAccumulator::~VxgiGlAccumulator() {
     if (!program_) return;
     try {
         gl::GlContext::Current current(*ctx_.glContext());
+        releaseHalfSums();
         program_.reset();
+        resolve_.reset();
     } catch (const gl::GlError&) {
-        // The context cannot be made current: the delete is a no-op without one, GL frees the program with it.
+        // The context cannot be made current: the deletes are no-ops without one, GL frees the objects with it.
         program_.reset();
+        resolve_.reset();
     }
 }
 
@@ -103,6 +114,13 @@ void VxgiGlAccumulator::releaseBuffers() {
     records_.reset();
     sums_.reset();
     recordsIndex_ = sumsIndex_ = {};
+}
+
+void VxgiGlAccumulator::releaseHalfSums() {
+    const gl::Api& api = ctx_.glContext()->api();
+    if (halfSums_[0]) api.glDeleteTextures(2, halfSums_);
+    if (counts_) api.glDeleteBuffers(1, &counts_);
+    halfSums_[0] = halfSums_[1] = counts_ = 0;
 }
 
 void VxgiGlAccumulator::prepare(uint32_t n) {
@@ -122,6 +140,16 @@ void VxgiGlAccumulator::prepare(uint32_t n) {
         sums_ = std::make_unique<gl::SharedBuffer>(ctx_, gl, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "vxgi gl sums");
         sumsIndex_ = ctx_.bindless().addBuffer(sums_->vk().buffer, bytes, "vxgi gl sums");
         gridSize_ = n;
+        if (kind_ == VxgiGlProgram::Fp16Vector) {  // GL-only: Vulkan reads the resolved sums, never these
+            gl::GlContext::Current current(gl);
+            releaseHalfSums();
+            const gl::Api& api = gl.api();
+            api.glCreateTextures(GL_TEXTURE_3D, 2, halfSums_);
+            for (GLuint t : halfSums_) api.glTextureStorage3D(t, 1, GL_RGBA16F, GLsizei(n), GLsizei(n), GLsizei(n));
+            api.glCreateBuffers(1, &counts_);
+            api.glNamedBufferStorage(counts_, GLsizeiptr(n) * n * n * 4, nullptr, 0);
+            gl.check("vxgi gl-interop: creating the RGBA16F sums");
+        }
     }
     if (!records_ || capacity_ != wanted_) {
         if (records_) ctx_.bindless().release(recordsIndex_);
@@ -212,12 +240,33 @@ void VxgiGlAccumulator::accumulateOnGl() {
     }
     // With semaphores the voxelization may still run when this is issued: reading the count here would block this
     // thread until it completed, so GL dispatches for the whole capacity and the shader skips past the count.
-    program_->setUint("capacity", capacity_);
-    program_->setUint("voxelCount", gridSize_ * gridSize_ * gridSize_);
-    gl.api().glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, records_->gl());
-    gl.api().glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, sums_->gl());
+    const gl::Api& api = gl.api();
     const uint32_t groups = (dispatched + kGroup - 1) / kGroup;
+    program_->setUint("capacity", capacity_);
+    api.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, records_->gl());
+    if (kind_ == VxgiGlProgram::Float) {
+        program_->setUint("voxelCount", gridSize_ * gridSize_ * gridSize_);
+        api.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, sums_->gl());
+        if (groups) program_->dispatch(std::min(groups, kMaxGroupsX), (groups + kMaxGroupsX - 1) / kMaxGroupsX);
+        return;
+    }
+    // Fp16Vector: zero the GL sums, add the records into them, resolve them into the shared sums (every word of
+    // it: Vulkan's clear before is overwritten). The dispatches end with a full memory barrier (gl_compute.cpp).
+    const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    const GLuint zeroCount = 0;
+    for (GLuint t : halfSums_) api.glClearTexImage(t, 0, GL_RGBA, GL_FLOAT, zero);
+    api.glClearNamedBufferData(counts_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zeroCount);
+    api.glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    program_->setUint("gridSize", gridSize_);
+    api.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counts_);
+    for (GLuint i = 0; i < 2; ++i)  // layered: the whole 3D texture
+        api.glBindImageTexture(i, halfSums_[i], 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA16F);
     if (groups) program_->dispatch(std::min(groups, kMaxGroupsX), (groups + kMaxGroupsX - 1) / kMaxGroupsX);
+    resolve_->setUint("gridSize", gridSize_);
+    api.glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, sums_->gl());
+    const GLuint voxelGroups = (gridSize_ + 3) / 4;  // vxgi_resolve_fp16.comp: 4x4x4
+    resolve_->dispatch(voxelGroups, voxelGroups, voxelGroups);
+    gl.check("vxgi gl-interop: the fp16 vector adds");
 }
 
 void VxgiGlAccumulator::handOver(VkCommandBuffer cmd) {

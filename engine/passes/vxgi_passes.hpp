@@ -47,7 +47,10 @@ struct VoxelizeInputs {
     std::optional<vk::Rung> conservative;
     std::array<uint32_t, 6> directionLevel0{};  // storage indices of the directional volumes' level-0 views
     std::optional<VoxelShadowRays> shadowRays;  // --shadows raytraced (then `shadows` has no table yet)
-    bool singleDraw = false;  // one draw, a geometry shader projects each triangle along its dominant axis
+    // Set: one draw, each triangle projected along its dominant axis by ladder "voxel-single-draw"'s rung: Native
+    // a passthrough geometry shader picking a swizzled viewport (vxgi_axis_swizzle.hpp), Fallback a geometry
+    // shader re-emitting it (the dilation fallback of "conservative-raster" projects by itself). Unset: three draws.
+    std::optional<vk::Rung> singleDraw;
 };
 graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                        const VoxelizeInputs& inputs, graph::TextureHandle grid,

@@ -7,6 +7,8 @@
 // into a shared sums buffer, and the merge averages those.
 // Rasterisation follows the "conservative-raster" ladder unless --gi-raster centre: VK_EXT_conservative_rasterization
 // (overestimate) where the device has it, else voxelize.geom's triangle dilation, so thin walls never leak.
+// --gi-voxel-draws single follows "voxel-single-draw": VK_NV_geometry_shader_passthrough + VK_NV_viewport_swizzle
+// (voxelize_passthrough.geom, vxgi_axis_swizzle.hpp) where the device has them, else voxelize_axis.geom.
 // The draws go through passes/indirect_draw.hpp: lavapipe applied the point-shadow faces' culled count to plain
 // indirect draws, and the voxelization then drew only the first (last face's count) scene draws.
 #include "passes/vxgi_passes.hpp"
@@ -17,6 +19,7 @@
 
 #include "passes/indirect_draw.hpp"
 #include "passes/rendering.hpp"
+#include "passes/vxgi_axis_swizzle.hpp"
 #include "passes/vxgi_gl_accumulate.hpp"
 #include "shared/pt_wavefront.h"
 #include "shared/vxgi_types.h"
@@ -98,7 +101,7 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
     const VoxelGridBox box = in.box;
     const std::optional<vk::Rung> conservative = in.conservative;
     const std::optional<VoxelShadowRays> rays = in.shadowRays;
-    const bool singleDraw = in.singleDraw;
+    const std::optional<vk::Rung> singleDraw = in.singleDraw;
     graph.addPass(
         "vxgi_voxelize",
         [&](graph::PassBuilder& b) {
@@ -139,7 +142,14 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
                 desc.geometry = vk::ShaderId::vxgi_voxelize_geom;
                 desc.fragment = fragmentShader(mode, true);
             }
-            if (singleDraw && !desc.geometry) desc.geometry = vk::ShaderId::vxgi_voxelize_axis_geom;
+            const bool swizzled = singleDraw == vk::Rung::Native && !desc.geometry;
+            if (swizzled) {  // the passthrough shader picks the viewport, the viewport's swizzle projects
+                desc.geometry = vk::ShaderId::vxgi_voxelize_passthrough_geom;
+                const std::array<VkViewportSwizzleNV, 3> swizzles = voxelAxisSwizzles();
+                desc.viewportSwizzles.assign(swizzles.begin(), swizzles.end());
+            } else if (singleDraw && !desc.geometry) {
+                desc.geometry = vk::ShaderId::vxgi_voxelize_axis_geom;
+            }
             desc.depthTest = false;
             desc.depthWrite = false;
             desc.cull = VK_CULL_MODE_NONE;  // both faces: a wall seen from behind in the projection still fills
@@ -149,6 +159,14 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
                              {gpu::kSpecPtStackSize, std::max(rays->blasStack, 1u)},
                              {gpu::kSpecPtTlasStackSize, std::max(rays->tlasStack, 1u)}};
             vk::bindPipeline(cmd, shaders.graphics(desc));
+            if (swizzled) {  // three viewports [-N, N)^2 (one per axis), the grid's N x N square kept by the scissor
+                const VkViewport viewport = voxelSwizzleViewport(box.size);
+                const std::array<VkViewport, 3> viewports{viewport, viewport, viewport};
+                const VkRect2D square{{0, 0}, {box.size, box.size}};
+                const std::array<VkRect2D, 3> scissors{square, square, square};
+                vkCmdSetViewport(cmd, 0, 3, viewports.data());
+                vkCmdSetScissor(cmd, 0, 3, scissors.data());
+            }
             ctx.bindless().bind(cmd);
             gpu::VoxelizePush push{};
             push.frame = pc.buffer(frame).address;
@@ -173,11 +191,11 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             }
             vkCmdBindIndexBuffer(cmd, pc.vkBuffer(s.indices), 0, VK_INDEX_TYPE_UINT32);
             // Three draws, one per projection axis (IDKEngine's measured-fastest fallback), or one whose geometry
-            // shader picks each triangle's axis: a real GPU with VK_NV_geometry_shader_passthrough +
-            // VK_NV_viewport_swizzle would do the single draw without re-emitting the triangles.
+            // shader picks each triangle's axis: by re-emitting it projected, or (native rung) by passing it
+            // through to the viewport whose swizzle projects it.
             const uint32_t draws = singleDraw ? 1 : 3;
             for (uint32_t axis = 0; axis < draws; ++axis) {
-                push.axis = singleDraw ? gpu::kVoxelAxisDominant : axis;
+                push.axis = swizzled ? gpu::kVoxelAxisSwizzled : (singleDraw ? gpu::kVoxelAxisDominant : axis);
                 vk::pushConstants(cmd, ctx, push);
                 drawAllIndexedIndirect(cmd, pc.vkBuffer(s.drawCommands), s.drawCount);  // see indirect_draw.hpp
                 if (log) log->record(pc.passName(), s.drawCount);

@@ -135,6 +135,9 @@ std::vector<const char*> enabledExtensions(const std::vector<std::string>& exts,
     if (vrs == VK_KHR_FRAGMENT_SHADING_RATE_EXTENSION_NAME) enableIf(VK_KHR_FRAGMENT_SHADING_RATE_EXTENSION_NAME);
     if (vrs == VK_NV_SHADING_RATE_IMAGE_EXTENSION_NAME) enableIf(VK_NV_SHADING_RATE_IMAGE_EXTENSION_NAME);
     enableIf(VK_EXT_CONSERVATIVE_RASTERIZATION_EXTENSION_NAME);
+    // The single-draw voxelization's native rung (passes/vxgi_voxelize.cpp); neither has a feature struct.
+    enableIf(VK_NV_GEOMETRY_SHADER_PASSTHROUGH_EXTENSION_NAME);
+    enableIf(VK_NV_VIEWPORT_SWIZZLE_EXTENSION_NAME);
     enableIf(VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME);
     enableIf(VK_KHR_EXTERNAL_SEMAPHORE_FD_EXTENSION_NAME);  // GL-interop hand-offs on the GPU (gl/gl_sync.hpp)
     if (contains(exts, VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME) &&
@@ -455,6 +458,9 @@ void Context::createDevice() {
     caps_.float16VectorAtomicsNv = contains(exts, "VK_NV_shader_atomic_float16_vector");
     caps_.conservativeRasterization = contains(exts, VK_EXT_CONSERVATIVE_RASTERIZATION_EXTENSION_NAME);
     caps_.geometryShader = supported.core.features.geometryShader;
+    caps_.multiViewport = supported.core.features.multiViewport;
+    caps_.geometryShaderPassthroughNv = contains(exts, VK_NV_GEOMETRY_SHADER_PASSTHROUGH_EXTENSION_NAME);
+    caps_.viewportSwizzleNv = contains(exts, VK_NV_VIEWPORT_SWIZZLE_EXTENSION_NAME);
     caps_.shaderOutputLayer = supported.v12.shaderOutputLayer;
     caps_.externalMemoryFd = contains(exts, VK_KHR_EXTERNAL_MEMORY_FD_EXTENSION_NAME);
     caps_.bufferFloat32AtomicAdd = supported.atomicFloat.shaderBufferFloat32AtomicAdd;

@@ -45,6 +45,23 @@ std::string glNote(const DeviceCapabilities& c, bool extension, const char* name
     return c.glInteropNote;
 }
 
+// The single-draw voxelization's native rung: both NV extensions, a geometry stage and three viewports.
+bool voxelPassthrough(const DeviceCapabilities& c) {
+    return c.geometryShaderPassthroughNv && c.viewportSwizzleNv && c.geometryShader && c.multiViewport;
+}
+
+std::string voxelPassthroughNote(const DeviceCapabilities& c) {
+    std::string lacks;
+    auto need = [&](bool has, const char* what) {
+        if (!has) lacks += (lacks.empty() ? "" : ", ") + std::string(what);
+    };
+    need(c.geometryShaderPassthroughNv, "VK_NV_geometry_shader_passthrough");
+    need(c.viewportSwizzleNv, "VK_NV_viewport_swizzle");
+    need(c.geometryShader, "geometryShader");
+    need(c.multiViewport, "multiViewport");
+    return lacks.empty() ? "" : "device lacks " + lacks;
+}
+
 // The table, rungs best first, nothing chosen yet.
 std::vector<Ladder> ladderTable(const DeviceCapabilities& c) {
     auto ladder = [](const char* id, const char* feature, std::vector<RungOption> options) {
@@ -70,6 +87,14 @@ std::vector<Ladder> ladderTable(const DeviceCapabilities& c) {
          {Rung::GlInterop, "fragment records + GL_NV_shader_atomic_float adds via GL_EXT_memory_object_fd",
           glAtomicFloat, glNote(c, c.glAtomicFloat, "GL_NV_shader_atomic_float")},
          {Rung::Fallback, "three r32ui images + merge", true, ""}}));
+    ladders.push_back(ladder("vxgi-gl-accumulate", "GL-interop voxel sums (VXGI)",
+        // Consulted on vxgi-atomics' gl-interop rung (passes/vxgi_gl_accumulate.cpp): the GL program that adds the
+        // fragments' records. Native: two f16vec4 atomics per record into RGBA16F images, then a resolve to the
+        // sums; fallback: eight float atomics per record straight into the sums.
+        {{Rung::Native, "GL_NV_shader_atomic_fp16_vector: f16vec4 image adds (RGBA16F) + resolve",
+          c.glInterop && c.glAtomicFp16Vector, glNote(c, c.glAtomicFp16Vector, "GL_NV_shader_atomic_fp16_vector")},
+         {Rung::Fallback, "GL_NV_shader_atomic_float: float buffer adds", glAtomicFloat,
+          glNote(c, c.glAtomicFloat, "GL_NV_shader_atomic_float")}}));
     ladders.push_back(ladder("float-atomics", "float atomic add (splatting)",
         {{Rung::Native, "buffer float atomicAdd (VK_EXT_shader_atomic_float)", c.bufferFloat32AtomicAdd,
           missing(c.bufferFloat32AtomicAdd, "shaderBufferFloat32AtomicAdd")},
@@ -80,6 +105,14 @@ std::vector<Ladder> ladderTable(const DeviceCapabilities& c) {
         {{Rung::Native, "VK_EXT_conservative_rasterization", c.conservativeRasterization,
           missing(c.conservativeRasterization, "VK_EXT_conservative_rasterization")},
          {Rung::Fallback, "geometry-shader triangle dilation", c.geometryShader,
+          missing(c.geometryShader, "geometryShader")}}));
+    ladders.push_back(ladder("voxel-single-draw", "single-draw voxelization (each triangle's dominant axis)",
+        // Consulted by --gi-voxel-draws single (passes/vxgi_voxelize.cpp). Native: a passthrough geometry shader
+        // only picks a viewport per triangle and three swizzled viewports project it; fallback: a geometry shader
+        // that re-emits each triangle projected. (The three-draw default needs neither.)
+        {{Rung::Native, "VK_NV_geometry_shader_passthrough + VK_NV_viewport_swizzle", voxelPassthrough(c),
+          voxelPassthroughNote(c)},
+         {Rung::Fallback, "geometry shader re-emits each triangle projected", c.geometryShader,
           missing(c.geometryShader, "geometryShader")}}));
     ladders.push_back(ladder("point-shadow-faces", "point-shadow cube faces",
         {{Rung::Native, "vertex-shader gl_Layer (one instanced draw)", c.shaderOutputLayer,

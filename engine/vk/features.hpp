@@ -26,6 +26,9 @@ struct DeviceCapabilities {
     bool float16VectorAtomicsNv = false;  // VK_NV_shader_atomic_float16_vector
     bool conservativeRasterization = false;
     bool geometryShader = false;
+    bool multiViewport = false;           // gl_ViewportIndex selects among several viewports
+    bool geometryShaderPassthroughNv = false;  // VK_NV_geometry_shader_passthrough
+    bool viewportSwizzleNv = false;       // VK_NV_viewport_swizzle
     bool shaderOutputLayer = false;       // gl_Layer from the vertex shader (point-shadow cube in one draw)
     bool externalMemoryFd = false;        // VK_KHR_external_memory_fd: share memory with OpenGL
     bool bufferFloat32AtomicAdd = false;  // VK_EXT_shader_atomic_float: shaderBufferFloat32AtomicAdd

@@ -2,6 +2,7 @@
 // viewport and scissor; no vertex input: every vertex shader pulls its data through bindless buffers).
 #include "vk/pipeline.hpp"
 
+#include <algorithm>
 #include <array>
 
 #include "core/log.hpp"
@@ -120,8 +121,13 @@ VkPipeline createGraphicsPipeline(Context& ctx, std::span<const GraphicsStageCod
     VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
     assembly.topology = desc.topology;
     VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-    viewport.viewportCount = 1;
-    viewport.scissorCount = 1;
+    viewport.viewportCount = std::max<uint32_t>(1, uint32_t(desc.viewportSwizzles.size()));
+    viewport.scissorCount = viewport.viewportCount;
+    // Per-viewport swizzles of the clip coordinates, applied before clipping (VK_NV_viewport_swizzle).
+    VkPipelineViewportSwizzleStateCreateInfoNV swizzle{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_SWIZZLE_STATE_CREATE_INFO_NV};
+    swizzle.viewportCount = uint32_t(desc.viewportSwizzles.size());
+    swizzle.pViewportSwizzles = desc.viewportSwizzles.data();
+    if (!desc.viewportSwizzles.empty()) viewport.pNext = &swizzle;
     VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
     raster.polygonMode = desc.polygonMode;
     raster.cullMode = desc.cull;
@@ -173,7 +179,10 @@ VkPipeline createGraphicsPipeline(Context& ctx, std::span<const GraphicsStageCod
     nvRates.shadingRateImageEnable = VK_TRUE;
     nvRates.viewportCount = 1;
     nvRates.pShadingRatePalettes = &palette;
-    if (desc.shadingRate == ShadingRateSource::NvImage) viewport.pNext = &nvRates;
+    if (desc.shadingRate == ShadingRateSource::NvImage) {  // (never with swizzles: one viewport, one palette)
+        if (!desc.viewportSwizzles.empty()) throw PipelineError(name + ": NV shading-rate image with viewport swizzles");
+        viewport.pNext = &nvRates;
+    }
 
     // Dynamic rendering: the attachment formats replace a VkRenderPass.
     VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};

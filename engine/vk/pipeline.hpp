@@ -66,6 +66,9 @@ struct GraphicsPipelineDesc {
     uint32_t fragmentPushBytes = 0;  // the fragment stage's push block when it reads only a prefix (0: pushBytes)
     std::optional<ShaderId> geometry;      // between vertex and fragment (voxelization's triangle dilation)
     bool conservative = false;             // VK_EXT_conservative_rasterization, overestimate (the device must have it)
+    // VK_NV_viewport_swizzle (the device must have it and multiViewport): one viewport per entry, each swizzling
+    // the clip position (the voxelization's passthrough rung, passes/vxgi_axis_swizzle.hpp); empty: one viewport.
+    std::vector<VkViewportSwizzleNV> viewportSwizzles;
     ShadingRateSource shadingRate = ShadingRateSource::None;  // hardware VRS (the device must have the extension)
 };
 

@@ -59,7 +59,8 @@ std::string keyOf(const GraphicsPipelineDesc& d) {
     out << '|' << d.depthFormat << '|' << d.depthCompare << '|' << d.depthWrite << d.depthTest << '|' << d.cull << '|'
         << d.frontFace << '|' << d.topology << '|' << d.polygonMode << '|' << d.viewMask << '|' << specKey(d.spec)
         << '|' << (d.geometry ? int(*d.geometry) : -1) << '|' << d.conservative << '|' << int(d.shadingRate)
-        << '|' << d.pushBytes << '|' << d.fragmentPushBytes;
+        << '|' << d.pushBytes << '|' << d.fragmentPushBytes << '|';
+    for (const VkViewportSwizzleNV& v : d.viewportSwizzles) out << v.x << v.y << v.z << v.w << ',';
     return out.str();
 }
 

@@ -53,7 +53,7 @@ bool voxelFragment(out ivec3 voxel, out vec3 radiance, out vec4 facing) {
     voxel = ivec3(0);
     radiance = vec3(0.0);
     facing = vec4(0.0);
-    if (p.axis != kVoxelAxisDominant && dominantAxis(geometric) != p.axis) return false;
+    if (p.axis <= 2u && dominantAxis(geometric) != p.axis) return false;  // single draws: every fragment is its axis's
 #ifdef IDK_VOXELIZE_DILATED
     // Keep a pixel only where its square overlaps the triangle's bounds: cuts the dilation's overshoot at sharp
     // corners. The viewport is the plain N x N one (no y flip), so NDC = pixel / N * 2 - 1.

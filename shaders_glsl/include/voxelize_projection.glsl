@@ -4,8 +4,13 @@
 #ifndef IDK_VOXELIZE_PROJECTION_GLSL
 #define IDK_VOXELIZE_PROJECTION_GLSL
 
+// World position -> grid coordinates, 0..1 inside the grid on every axis.
+vec3 voxelGridCoords(vec3 world, vec3 gridMin, float voxelSize, uint gridSize) {
+    return (world - gridMin) / (voxelSize * float(gridSize));
+}
+
 vec4 voxelProjection(vec3 world, vec3 gridMin, float voxelSize, uint gridSize, uint axis) {
-    vec3 g = (world - gridMin) / (voxelSize * float(gridSize));     // 0..1 inside the grid
+    vec3 g = voxelGridCoords(world, gridMin, voxelSize, gridSize);
     vec3 s = axis == 0u ? g.yzx : (axis == 1u ? g.zxy : g.xyz);      // (u, v, depth)
     return vec4(s.xy * 2.0 - 1.0, s.z, 1.0);
 }

@@ -39,6 +39,9 @@ IDK_CONST(float, kVoxelFacingBias, 2.0f);  // r32ui rung: facing + 2 is positive
 // voxelize.vert / voxelize_*.frag: one draw per projection axis (0 x, 1 y, 2 z), or one draw with axis
 // kVoxelAxisDominant whose geometry shader projects each triangle along its own dominant axis (--gi-voxel-draws).
 IDK_CONST(uint, kVoxelAxisDominant, 3u);
+// The single draw's native rung (voxelize_passthrough.geom, passes/vxgi_axis_swizzle.hpp): voxelize.vert emits the
+// unswizzled grid coordinates, the passthrough geometry shader picks a viewport per triangle, whose swizzle projects.
+IDK_CONST(uint, kVoxelAxisSwizzled, 4u);
 struct VoxelizePush {
     DeviceAddress frame;         // GpuFrame (lights)
     DeviceAddress vertices;      // GpuVertex[]
@@ -52,7 +55,7 @@ struct VoxelizePush {
     vec3 gridMin;                // world position of the grid's corner
     float voxelSize;             // world size of one voxel (the grid is a cube of gridSize voxels per side)
     uint gridSize;
-    uint axis;                   // this draw's projection axis, or kVoxelAxisDominant
+    uint axis;                   // this draw's projection axis, or kVoxelAxisDominant / kVoxelAxisSwizzled
     uint accum[8];               // bindless storage indices: r, g, b, the facing's 4 (kVoxelAccumFacing) and the
                                  // count for kVoxelAtomicsFloatAdd (kVoxelAccumCount); kVoxelAtomicsGlRecords:
                                  // [0] the record buffer's storage-buffer index, [1] its capacity in records

@@ -122,6 +122,67 @@ assert "vxgi_gl_accumulate" not in json.dumps(own)
 PY
     "$idk" compare "$tmp/gl.exr" "$tmp/own.exr" --fail-above 0.001 >/dev/null || fail "GL rung frame differs from the native one"
     ;;
+  voxel_single_draw)
+    # Issue 11: the single-draw voxelization's native rung (VK_NV_geometry_shader_passthrough +
+    # VK_NV_viewport_swizzle). Where the device lacks them (lavapipe) `idk info` offers only the geometry-shader
+    # fallback and names what is missing, --gi-voxel-draws single runs and reports the fallback, and forcing the
+    # native rung is a clear error (exit 2) naming the missing extension.
+    "$idk" info --json >"$tmp/info.json" || fail "idk info failed"
+    native=$(python3 - "$tmp/info.json" <<'PY'
+import json, sys
+l = next(l for l in json.load(open(sys.argv[1]))["ladders"] if l["id"] == "voxel-single-draw")
+native = l["rungs"][0]
+assert native["rung"] == "native" and "VK_NV_geometry_shader_passthrough" in native["mechanism"], native
+if not native["available"]:
+    assert l["chosen"] == "fallback", l
+    assert native["note"].startswith("device lacks ") and "VK_NV" in native["note"], native
+    assert l["reason"] == native["note"], l
+print("available" if native["available"] else "absent")
+PY
+    ) || fail "no voxel-single-draw ladder: $(grep -A12 'voxel-single-draw' "$tmp/info.json")"
+    [ "$native" = absent ] || exit 0  # a device with the NV extensions: nothing to refuse
+    vx=(render --size 16x16 --gi vxgi --voxels 64 --gi-voxel-draws single --gi-raster centre)
+    "$idk" "${vx[@]}" --out "$tmp/s.png" --json >"$tmp/s.json" || fail "single-draw render failed"
+    python3 - "$tmp/s.json" <<'PY' || fail "--json does not report the single-draw fallback: $(cat "$tmp/s.json")"
+import json, sys
+ran = {r["id"]: r for r in json.load(open(sys.argv[1]))["rungs"]}
+assert ran["voxel-single-draw"]["chosen"] == "fallback", ran["voxel-single-draw"]
+PY
+    "$idk" "${vx[@]}" --out "$tmp/n.png" --rung voxel-single-draw=native 2>"$tmp/err"; [ $? -eq 2 ] \
+      || fail "--rung voxel-single-draw=native without the extensions should exit 2"
+    [ "$(wc -l <"$tmp/err")" -eq 1 ] || fail "expected one line on stderr, got: $(cat "$tmp/err")"
+    grep -q -- "--rung voxel-single-draw=native: device lacks VK_NV_geometry_shader_passthrough" "$tmp/err" \
+      || fail "unclear error: $(cat "$tmp/err")"
+    [ ! -e "$tmp/n.png" ] || fail "an image was written despite the refused rung"
+    ;;
+  vxgi_gl_fp16)
+    # Issue 11: VXGI's gl-interop rung adds the fragments' records with the RGBA16F-image program
+    # (GL_NV_shader_atomic_fp16_vector) only where the GL context has it ("vxgi-gl-accumulate" = native). Without it
+    # (llvmpipe) the float-buffer program runs and --json names the fallback, and forcing native exits 2 naming the
+    # extension.
+    "$idk" info --json >"$tmp/info.json" || fail "idk info failed"
+    state=$(python3 - "$tmp/info.json" <<'PY'
+import json, sys
+l = next(l for l in json.load(open(sys.argv[1]))["ladders"] if l["id"] == "vxgi-gl-accumulate")
+native, fallback = l["rungs"]
+assert "GL_NV_shader_atomic_fp16_vector" in native["mechanism"], native
+print("native" if native["available"] else ("fallback" if fallback["available"] else "none"))
+PY
+    ) || fail "no vxgi-gl-accumulate ladder: $(grep -A12 'vxgi-gl-accumulate' "$tmp/info.json")"
+    [ "$state" = fallback ] || exit 0  # the extension present, or no GL rung at all: nothing to check here
+    vx=(render --size 16x16 --gi vxgi --voxels 64 --rung vxgi-atomics=gl-interop)
+    "$idk" "${vx[@]}" --out "$tmp/f.png" --json >"$tmp/f.json" || fail "GL rung render failed"
+    python3 - "$tmp/f.json" <<'PY' || fail "--json does not report the float-buffer program: $(cat "$tmp/f.json")"
+import json, sys
+ran = {r["id"]: r for r in json.load(open(sys.argv[1]))["rungs"]}
+assert ran["vxgi-gl-accumulate"]["chosen"] == "fallback", ran["vxgi-gl-accumulate"]
+PY
+    "$idk" "${vx[@]}" --rung vxgi-gl-accumulate=native --out "$tmp/n.png" 2>"$tmp/err"; [ $? -eq 2 ] \
+      || fail "--rung vxgi-gl-accumulate=native without the extension should exit 2"
+    [ "$(wc -l <"$tmp/err")" -eq 1 ] || fail "expected one line on stderr, got: $(cat "$tmp/err")"
+    grep -q -- "--rung vxgi-gl-accumulate=native: the OpenGL context lacks GL_NV_shader_atomic_fp16_vector" "$tmp/err" \
+      || fail "unclear error: $(cat "$tmp/err")"
+    ;;
   material_variants)
     # KHR_materials_variants: scenes/material_spheres.gltf with two variants; "velvet" gives the first sphere the
     # sheen material. --variant velvet changes the image, --variant studio (no mapping) does not, an unknown

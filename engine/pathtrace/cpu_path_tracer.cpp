@@ -146,7 +146,9 @@ glm::vec3 traceRadiance(const PathTraceScene& pts, glm::vec3 origin, glm::vec3 d
         previousDelta = (lobe & gpu::kPtLobeDeltaFlag) != 0u;
         previousPdf = pdf;
         previousPosition = position;
-        if ((lobe & ~gpu::kPtLobeDeltaFlag) == gpu::kPtLobeTransmission && surface.thickness > 0.0f) {
+        const uint32_t through = lobe & ~gpu::kPtLobeDeltaFlag;  // into (or out of) a volume: both transmissions
+        if ((through == gpu::kPtLobeTransmission || through == gpu::kPtLobeDiffuseTransmission) &&
+            surface.thickness > 0.0f) {
             medium.inside = glm::dot(wi, surface.geometricNormal) < 0.0f;  // into the volume: against its outside
             medium.color = surface.attenuationColor;
             medium.distance = surface.attenuationDistance;

@@ -282,6 +282,16 @@ WfShadeResult wfShade(GpuPtSceneDesc s, inout GpuPtPath path, GpuPtHit hit, PtRn
         return r;
     }
     uint dim = ptDimVertexBase(depth);
+    if (ptIsDispersive(surface)) {  // KHR_materials_dispersion (pathtrace::traceRadiance's twin)
+        uint stored = (path.flags & kPtPathChannelMask) >> kPtPathChannelShift;
+        uint channel = stored - 1u;
+        if (stored == 0u) {
+            channel = ptPickChannel(ptSample(rng, dim + kPtDimDispersion));  // DRAW ORDER: before NEE
+            path.throughput *= ptChannelWeight(channel);
+            path.flags = (path.flags & ~kPtPathChannelMask) | ((channel + 1u) << kPtPathChannelShift);
+        }
+        surface = ptDispersedSurface(surface, channel);
+    }
     if (nee) r.hasShadowRay = wfSampleDirect(s, path, surface, position, wo, dim, rng, r.shadowRay);
 
     float u0 = ptSample(rng, dim + kPtDimBsdfLobe);  // DRAW ORDER (see wfStartPath)

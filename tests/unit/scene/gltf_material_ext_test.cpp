@@ -150,6 +150,29 @@ TEST(GltfMaterialExt, DiffuseTransmissionIsLoadedAndChecked) {
     EXPECT_EQ(spaces[3], TextureColorSpace::Unused);
 }
 
+TEST(GltfMaterialExt, DispersionIsLoadedAndChecked) {
+    TempDir dir;
+    auto f = triangle();
+    f.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    f.doc["extensionsUsed"] = json::parse(R"(["KHR_materials_dispersion"])");
+    f.doc["extensionsRequired"] = json::parse(R"(["KHR_materials_dispersion"])");
+    f.doc["materials"] = json::parse(R"([
+        {"name": "flint", "extensions": {"KHR_materials_dispersion": {"dispersion": 0.5}}},
+        {"name": "negative", "extensions": {"KHR_materials_dispersion": {"dispersion": -2}}},
+        {"name": "huge", "extensions": {"KHR_materials_dispersion": {"dispersion": 1e9}}},
+        {"name": "word", "extensions": {"KHR_materials_dispersion": {"dispersion": "lots"}}}, {"name": "plain"}])");
+    const Scene s = loadGltf(f.write(dir));
+    EXPECT_EQ(s.materials[0].dispersion, 0.5f);
+    EXPECT_EQ(s.materials[1].dispersion, 0.0f);    // clamped to 0
+    EXPECT_EQ(s.materials[2].dispersion, 100.0f);  // capped
+    EXPECT_EQ(s.materials[3].dispersion, 0.0f);    // not a number: the default
+    EXPECT_EQ(s.materials[4].dispersion, 0.0f);
+    EXPECT_TRUE(anyWarningHas(s, "'negative'", "dispersion -2"));
+    EXPECT_TRUE(anyWarningHas(s, "'huge'", "dispersion 1000000000"));
+    EXPECT_TRUE(anyWarningHas(s, "'word'", "dispersion is not a number"));
+    EXPECT_FALSE(anyWarningHas(s, "'flint'", "dispersion"));
+}
+
 TEST(GltfMaterialExt, ExtensionTexturesAreLoaded) {
     TempDir dir;
     auto f = triangle();

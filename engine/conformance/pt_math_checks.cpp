@@ -65,6 +65,11 @@ GpuPtProbeCase randomCase(std::mt19937& gen, uint32_t i) {
     std::mt19937 anisoGen(i * 2654435761u + 1u);
     s.anisotropyStrength = i % 9 == 3 ? uni(anisoGen) : 0.0f;
     s.anisotropyDirection = i % 18 == 3 ? randomUnit(anisoGen) : glm::vec3(0.0f);
+    // KHR_materials_diffuse_transmission the same way (its own generator; the colour stays 1 on the other cases).
+    std::mt19937 diffTransGen(i * 2246822519u + 7u);
+    s.diffuseTransmission = i % 7 == 2 ? uni(diffTransGen) : 0.0f;
+    s.diffuseTransmissionColor = i % 7 == 2 ? glm::vec3(uni(diffTransGen), uni(diffTransGen), uni(diffTransGen))
+                                            : glm::vec3(1.0f);
     c.wo = randomUnit(gen);
     c.wi = randomUnit(gen);
     c.u = glm::vec3(uni(gen), uni(gen), uni(gen));
@@ -201,7 +206,7 @@ void bsdfProbe(CheckEnv& env, Verdict& v) {
     v.expect(sampled > count / 2, "sampled = " + std::to_string(sampled) + ", limit > " + std::to_string(count / 2));
     v.expect(lit > count / 3, "lit = " + std::to_string(lit) + ", limit > " + std::to_string(count / 3));
     for (uint32_t lobe : {kPtLobeDiffuse, kPtLobeSpecular, kPtLobeTransmission, kPtLobeMultiScatter, kPtLobeSheen,
-                          kPtLobeClearcoat})
+                          kPtLobeClearcoat, kPtLobeDiffuseTransmission})
         v.expect(lobeCounts[lobe] > 20u, "lobe " + std::to_string(lobe) + " is hardly sampled (" +
                                              std::to_string(lobeCounts[lobe]) + " cases): the cases miss it");
 }

@@ -94,6 +94,7 @@ glm::vec3 traceRadiance(const PathTraceScene& pts, glm::vec3 origin, glm::vec3 d
     float previousPdf = 0.0f;
     glm::vec3 previousPosition = origin;
     Medium medium;
+    uint32_t channel = gpu::kPtNoChannel;  // KHR_materials_dispersion (shared/pt_dispersion.h)
     const float envSelect = envSelectProbability(pts);
     for (uint32_t depth = 1; depth <= settings.maxDepth; ++depth) {
         const SceneHit hit = closestSurface(pts, origin, direction, bvh::kInfinity, rng);
@@ -113,7 +114,7 @@ glm::vec3 traceRadiance(const PathTraceScene& pts, glm::vec3 origin, glm::vec3 d
             radiance += throughput * le * w;
             break;
         }
-        const gpu::PtSurface& surface = hit.material.surface;
+        gpu::PtSurface surface = hit.material.surface;
         const glm::vec3 wo = -direction;
         const glm::vec3 position = hit.point.position;
         if (surface.emission != glm::vec3(0.0f)) {
@@ -130,6 +131,13 @@ glm::vec3 traceRadiance(const PathTraceScene& pts, glm::vec3 origin, glm::vec3 d
         if (depth == settings.maxDepth || hit.material.unlit) break;
 
         const uint32_t dim = gpu::ptDimVertexBase(depth);
+        if (gpu::ptIsDispersive(surface)) {  // KHR_materials_dispersion: the path keeps one channel from here on
+            if (channel == gpu::kPtNoChannel) {
+                channel = gpu::ptPickChannel(gpu::ptSample(rng, dim + gpu::kPtDimDispersion));
+                throughput *= gpu::ptChannelWeight(channel);
+            }
+            surface = gpu::ptDispersedSurface(surface, channel);
+        }
         if (settings.nee) radiance += throughput * sampleDirect(pts, surface, position, wo, medium, dim, rng);
 
         const float u0 = gpu::ptSample(rng, dim + gpu::kPtDimBsdfLobe);  // one draw per statement (see sampleDirect)
@@ -146,7 +154,9 @@ glm::vec3 traceRadiance(const PathTraceScene& pts, glm::vec3 origin, glm::vec3 d
         previousDelta = (lobe & gpu::kPtLobeDeltaFlag) != 0u;
         previousPdf = pdf;
         previousPosition = position;
-        if ((lobe & ~gpu::kPtLobeDeltaFlag) == gpu::kPtLobeTransmission && surface.thickness > 0.0f) {
+        const uint32_t through = lobe & ~gpu::kPtLobeDeltaFlag;  // into (or out of) a volume: both transmissions
+        if ((through == gpu::kPtLobeTransmission || through == gpu::kPtLobeDiffuseTransmission) &&
+            surface.thickness > 0.0f) {
             medium.inside = glm::dot(wi, surface.geometricNormal) < 0.0f;  // into the volume: against its outside
             medium.color = surface.attenuationColor;
             medium.distance = surface.attenuationDistance;

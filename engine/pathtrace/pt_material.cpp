@@ -91,6 +91,16 @@ PtMaterialHit evaluateMaterial(const PathTraceScene& pts, const PtHitPoint& hit,
     s.clearcoatRoughness = pm.clearcoatRoughness * sampleRef(pts, m.clearcoatRoughnessTexture, hit, false).g;
     s.sheenColor = pm.sheenColor * glm::vec3(sampleRef(pts, m.sheenColorTexture, hit, true));
     s.sheenRoughness = pm.sheenRoughness * sampleRef(pts, m.sheenRoughnessTexture, hit, false).a;
+    // KHR_materials_diffuse_transmission, KHR_materials_dispersion (wfEvaluateMaterial's twin).
+    s.diffuseTransmission = 0.0f;
+    s.diffuseTransmissionColor = glm::vec3(1.0f);
+    if (!m.unlit && m.diffuseTransmission > 0.0f) {
+        s.diffuseTransmission =
+            std::clamp(m.diffuseTransmission * sampleRef(pts, m.diffuseTransmissionTexture, hit, false).a, 0.0f, 1.0f);
+        s.diffuseTransmissionColor =
+            m.diffuseTransmissionColor * glm::vec3(sampleRef(pts, m.diffuseTransmissionColorTexture, hit, true));
+    }
+    s.dispersion = m.unlit ? 0.0f : m.dispersion;
 
     // Normal mapping in the vertex tangent frame (B = cross(N, T) * w), z rebuilt from the remapped xy.
     glm::vec3 n = hit.normal;
@@ -127,6 +137,8 @@ PtMaterialHit evaluateMaterial(const PathTraceScene& pts, const PtHitPoint& hit,
         s.clearcoat = 0.0f;
         s.sheenColor = glm::vec3(0.0f);
         s.anisotropyStrength = 0.0f;
+        s.diffuseTransmission = 0.0f;
+        s.dispersion = 0.0f;
     }
     return out;
 }

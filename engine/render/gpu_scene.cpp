@@ -86,6 +86,17 @@ gpu::GpuMaterial packMaterial(const scene::Material& m, const TextureBindings& b
     g.sheenRoughness = m.sheenRoughness;
     g.anisotropyStrength = m.anisotropyStrength;
     g.anisotropyRotation = m.anisotropyRotation;
+    // KHR_materials_diffuse_transmission (its textures only when the factor can transmit), _dispersion.
+    const bool diffuseTransmits = !m.unlit && m.diffuseTransmission > 0.0f;
+    g.slots[gpu::kSlotDiffuseTransmission] =
+        slotFor(diffuseTransmits ? m.diffuseTransmissionTexture : std::nullopt, b.white, b);
+    g.slots[gpu::kSlotDiffuseTransmissionColor] =
+        slotFor(diffuseTransmits ? m.diffuseTransmissionColorTexture : std::nullopt, b.white, b);
+    g.diffuseTransmission = m.diffuseTransmission;
+    g.diffuseTransmissionColor = m.diffuseTransmissionColor;
+    g.dispersion = m.dispersion;
+    if (diffuseTransmits) g.flags |= gpu::kMaterialDiffuseTransmission;
+    if (!m.unlit && m.dispersion > 0.0f) g.flags |= gpu::kMaterialDispersion;
     if (!m.unlit) {
         if (m.specular != 1.0f || m.specularColor != glm::vec3(1.0f) || m.specularTexture || m.specularColorTexture)
             g.flags |= gpu::kMaterialSpecular;
@@ -101,16 +112,19 @@ std::array<uint32_t, gpu::kSlotCount> slotTextures(const scene::Material& m) {
     const std::optional<scene::TextureRef>* refs[gpu::kSlotCount] = {
         &m.baseColorTexture,   &m.metallicRoughnessTexture,  &m.normalTexture,       &m.occlusionTexture,
         &m.emissiveTexture,    &m.specularTexture,           &m.specularColorTexture, &m.clearcoatTexture,
-        &m.clearcoatRoughnessTexture, &m.sheenColorTexture, &m.sheenRoughnessTexture};
+        &m.clearcoatRoughnessTexture, &m.sheenColorTexture, &m.sheenRoughnessTexture,
+        &m.diffuseTransmissionTexture, &m.diffuseTransmissionColorTexture};
     std::array<uint32_t, gpu::kSlotCount> t;
     for (uint32_t s = 0; s < gpu::kSlotCount; ++s) t[s] = *refs[s] ? (*refs[s])->texture : UINT32_MAX;
+    if (m.unlit || !(m.diffuseTransmission > 0.0f))  // packMaterial binds white there: nothing to stream
+        t[gpu::kSlotDiffuseTransmission] = t[gpu::kSlotDiffuseTransmissionColor] = UINT32_MAX;
     return t;
 }
 
 // Slots whose texture holds colour (sampled through an sRGB view); the rest hold data.
 bool isColorSlot(uint32_t slot) {
     return slot == gpu::kSlotBaseColor || slot == gpu::kSlotEmissive || slot == gpu::kSlotSpecularColor ||
-           slot == gpu::kSlotSheenColor;
+           slot == gpu::kSlotSheenColor || slot == gpu::kSlotDiffuseTransmissionColor;
 }
 
 gpu::GpuLight packLight(const scene::Light& l) {

@@ -1,12 +1,15 @@
 // gltf_material_ext.cpp: the BSDF material extensions of the loader: KHR_materials_specular, _clearcoat, _sheen,
-// _anisotropy.
+// _anisotropy, _diffuse_transmission, _dispersion.
 // Untrusted input: every factor is checked for type and finiteness and clamped to the range the specification
 // gives (out-of-range values warn, naming the material). Their textures (specularTexture A, specularColorTexture
 // sRGB RGB, clearcoatTexture R, clearcoatRoughnessTexture G, sheenColorTexture sRGB RGB, sheenRoughnessTexture A)
 // become TextureRefs with texCoord and KHR_texture_transform like the core ones; a reference without an index or
 // out of range warns and is dropped (the factor alone is used). clearcoatNormalTexture is validated and ignored
 // with a warning: the coat shares the base layer's shading normal in every renderer; so is anisotropyTexture (the
-// strength and rotation factors alone are used).
+// strength and rotation factors alone are used). KHR_materials_diffuse_transmission: diffuseTransmissionFactor and
+// diffuseTransmissionColorFactor clamped to [0, 1]; diffuseTransmissionTexture A, diffuseTransmissionColorTexture
+// sRGB RGB. KHR_materials_dispersion: dispersion (20 / Abbe number) >= 0, capped at 100 (an Abbe number of 0.2,
+// far beyond any real glass) so that hostile values keep the IOR formula finite.
 #include <algorithm>
 #include <cmath>
 
@@ -119,6 +122,18 @@ void loadMaterialExtensions(const Ctx& ctx, const tinygltf::Material& src, const
         mat.anisotropyRotation = rangedNumber(ctx, *ext, "anisotropyRotation", 0.0f, -1.0e4f, 1.0e4f, w);
         if (validTextureInfo(ctx, *ext, "anisotropyTexture", w))
             ctx.warn(w + ": anisotropyTexture is not supported yet (the strength and rotation factors alone are used)");
+    }
+    if (const auto* ext = extension(src.extensions, "KHR_materials_diffuse_transmission"); ext && ext->IsObject()) {
+        const std::string w = where + " KHR_materials_diffuse_transmission";
+        mat.diffuseTransmission = rangedNumber(ctx, *ext, "diffuseTransmissionFactor", 0.0f, 0.0f, 1.0f, w);
+        mat.diffuseTransmissionColor =
+            rangedColor(ctx, *ext, "diffuseTransmissionColorFactor", glm::vec3(1.0f), 0.0f, 1.0f, w);
+        mat.diffuseTransmissionTexture = extTexture(ctx, *ext, "diffuseTransmissionTexture", w);
+        mat.diffuseTransmissionColorTexture = extTexture(ctx, *ext, "diffuseTransmissionColorTexture", w);
+    }
+    if (const auto* ext = extension(src.extensions, "KHR_materials_dispersion"); ext && ext->IsObject()) {
+        const std::string w = where + " KHR_materials_dispersion";
+        mat.dispersion = rangedNumber(ctx, *ext, "dispersion", 0.0f, 0.0f, 100.0f, w);
     }
 }
 

@@ -112,6 +112,12 @@ struct Material {
     // KHR_materials_anisotropy
     float anisotropyStrength = 0.0f;       // KHR_materials_anisotropy anisotropyStrength, [0, 1]
     float anisotropyRotation = 0.0f;       // anisotropyRotation, radians counter-clockwise from the tangent
+    // KHR_materials_diffuse_transmission, KHR_materials_dispersion
+    float diffuseTransmission = 0.0f;            // diffuseTransmissionFactor, [0, 1]
+    glm::vec3 diffuseTransmissionColor{1.0f};    // diffuseTransmissionColorFactor, linear, [0, 1]
+    std::optional<TextureRef> diffuseTransmissionTexture;       // linear, A scales diffuseTransmission
+    std::optional<TextureRef> diffuseTransmissionColorTexture;  // sRGB, RGB scales diffuseTransmissionColor
+    float dispersion = 0.0f;                     // KHR_materials_dispersion: 20 / Abbe number V_d, >= 0 (0: none)
 };
 
 // Filtering and wrapping as glTF enums (9728 NEAREST, 9729 LINEAR, ...; 10497 REPEAT, 33071 CLAMP, 33648 MIRROR).

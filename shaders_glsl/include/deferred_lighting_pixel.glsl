@@ -41,8 +41,10 @@ bool deferredLightingPixel(LightingPush p, GpuFrame f, ivec2 pixel, out vec4 res
     if (layered > 0u && p.layers != kLightingNoLayers) {  // the extension textures' texels (gbuffer_fragment.glsl)
         uvec4 packed = imageLoad(gImagesRgba32ui[p.layers], pixel);
         vec4 scalars = unpackUnorm4x8(packed.x);
-        LayerTexels t = LayerTexels(scalars.x, srgbDecode(unpackUnorm4x8(packed.y).rgb), scalars.y, scalars.z,
-                                    srgbDecode(unpackUnorm4x8(packed.z).rgb), scalars.w);
+        vec4 specularColor = unpackUnorm4x8(packed.y);  // a: diffuseTransmissionTexture A
+        LayerTexels t = LayerTexels(scalars.x, srgbDecode(specularColor.rgb), scalars.y, scalars.z,
+                                    srgbDecode(unpackUnorm4x8(packed.z).rgb), scalars.w, specularColor.a,
+                                    srgbDecode(unpackUnorm4x8(packed.w).rgb));
         layers = texturedLayers(layers, t);
     }
     vec3 radiance = emissive.rgb;

@@ -28,6 +28,13 @@ void sampleLayerTexels(GpuMaterial m, vec2 uv0, vec2 uv1, out float specular, ou
     sheenRoughness = sampleMaterialSlot(m.slots[kSlotSheenRoughness], uv0, uv1).a;
 }
 
+// KHR_materials_diffuse_transmission's texture channels: diffuseTransmissionTexture A, diffuseTransmissionColorTexture
+// RGB (an sRGB view: linear). Call in uniform control flow.
+void sampleDiffuseTransmissionTexels(GpuMaterial m, vec2 uv0, vec2 uv1, out float factor, out vec3 color) {
+    factor = sampleMaterialSlot(m.slots[kSlotDiffuseTransmission], uv0, uv1).a;
+    color = sampleMaterialSlot(m.slots[kSlotDiffuseTransmissionColor], uv0, uv1).rgb;
+}
+
 // Tangent (t) and glTF bitangent (b) for the unit normal n; false when no frame exists (degenerate UVs).
 bool materialTangentFrame(vec3 n, vec4 tangent, vec3 worldPosition, vec2 uv, out vec3 t, out vec3 b) {
     if (tangent.w != 0.0) {  // vertex tangents: B = cross(N, T) * w (glTF 2.0, 3.7.2.1)

@@ -15,6 +15,13 @@
 // direction is known) an anisotropic material takes the isotropic lobe at the rms alpha sqrt((at^2 + ab^2) / 2),
 // the roughness the path tracer's energy compensation reads too. Ambient: the isotropic split-sum at the rms alpha
 // along the sample viewer's bent reflection vector (anisotropicReflection), an approximation of the lobe's shape.
+// KHR_materials_diffuse_transmission, a thin-surface approximation: the diffuse term keeps 1 - diffuseTransmission
+// of its weight and a light behind the surface (n.l < 0) gives diffuseTransmission * diffuseTransmissionColor / pi
+// * (1 - max F_dielectric at the mirrored half vector) * |n.l|, the path tracer's lobe for that light
+// (shared/pt_diffuse_transmission.h); surface_lighting.glsl adds the SH irradiance from behind the same way. It
+// omits what the path tracer has and one lookup per light cannot give: light scattered inside a thick volume
+// (thickness, attenuation), the transmitted part of the specular ambient and of VXGI/SSR's traced light (they
+// correct the reflected side only), and transmitted light from emissive surfaces.
 #ifndef IDK_MATERIAL_LAYERS_GLSL
 #define IDK_MATERIAL_LAYERS_GLSL
 #include "pbr.glsl"
@@ -33,17 +40,26 @@ struct SurfaceLayers {
     // KHR_materials_anisotropy
     float anisotropyStrength;  // 0: isotropic
     vec3 anisotropyDirection;  // world, unit; 0: unknown (the isotropic lobe at the rms alpha)
+    // KHR_materials_diffuse_transmission (read when flags has kMaterialDiffuseTransmission)
+    float diffuseTransmission;
+    vec3 diffuseTransmissionColor;
 };
 
-SurfaceLayers noLayers() { return SurfaceLayers(0u, 1.0, vec3(1.0), 0.0, 0.0, vec3(0.0), 0.0, 0.0, vec3(0.0)); }
+SurfaceLayers noLayers() {
+    return SurfaceLayers(0u, 1.0, vec3(1.0), 0.0, 0.0, vec3(0.0), 0.0, 0.0, vec3(0.0), 0.0, vec3(1.0));
+}
 
 SurfaceLayers materialLayers(GpuMaterial m) {
-    return SurfaceLayers(m.flags & (kMaterialLayers | kMaterialAnisotropy), clamp(m.specular, 0.0, 1.0),
+    return SurfaceLayers(m.flags & (kMaterialLayers | kMaterialAnisotropy | kMaterialDiffuseTransmission),
+                         clamp(m.specular, 0.0, 1.0),
                          max(m.specularColor, vec3(0.0)), clamp(m.clearcoat, 0.0, 1.0),
                          clamp(m.clearcoatRoughness, 0.0, 1.0), clamp(m.sheenColor, vec3(0.0), vec3(1.0)),
                          clamp(m.sheenRoughness, 0.0, 1.0),
                          (m.flags & kMaterialAnisotropy) != 0u ? clamp(m.anisotropyStrength, 0.0, 1.0) : 0.0,
-                         vec3(0.0));
+                         vec3(0.0),
+                         (m.flags & kMaterialDiffuseTransmission) != 0u ? clamp(m.diffuseTransmission, 0.0, 1.0)
+                                                                         : 0.0,
+                         clamp(m.diffuseTransmissionColor, vec3(0.0), vec3(1.0)));
 }
 
 // The anisotropy direction from a tangent frame (t, b: glTF's tangent and bitangent), turned by anisotropyRotation.
@@ -105,7 +121,8 @@ float baseDistributionVisibility(SurfaceLayers s, float alpha, vec3 n, vec3 v, v
 
 // The extension textures' channels at a fragment: specularTexture A, specularColorTexture RGB (linear,
 // decoded from sRGB), clearcoatTexture R, clearcoatRoughnessTexture G, sheenColorTexture RGB, sheenRoughnessTexture
-// A; 1 where a material has no such texture (white placeholder slots).
+// A, diffuseTransmissionTexture A, diffuseTransmissionColorTexture RGB; 1 where a material has no such texture
+// (white placeholder slots).
 struct LayerTexels {
     float specular;
     vec3 specularColor;
@@ -113,9 +130,11 @@ struct LayerTexels {
     float clearcoatRoughness;
     vec3 sheenColor;
     float sheenRoughness;
+    float diffuseTransmission;
+    vec3 diffuseTransmissionColor;
 };
 
-LayerTexels noLayerTexels() { return LayerTexels(1.0, vec3(1.0), 1.0, 1.0, vec3(1.0), 1.0); }
+LayerTexels noLayerTexels() { return LayerTexels(1.0, vec3(1.0), 1.0, 1.0, vec3(1.0), 1.0, 1.0, vec3(1.0)); }
 
 // The factors times the texels, as pathtrace::evaluateMaterial and wfEvaluateMaterial scale them.
 SurfaceLayers texturedLayers(SurfaceLayers s, LayerTexels t) {
@@ -125,6 +144,8 @@ SurfaceLayers texturedLayers(SurfaceLayers s, LayerTexels t) {
     s.clearcoatRoughness = clamp(s.clearcoatRoughness * t.clearcoatRoughness, 0.0, 1.0);
     s.sheenColor = clamp(s.sheenColor * t.sheenColor, vec3(0.0), vec3(1.0));
     s.sheenRoughness = clamp(s.sheenRoughness * t.sheenRoughness, 0.0, 1.0);
+    s.diffuseTransmission = clamp(s.diffuseTransmission * t.diffuseTransmission, 0.0, 1.0);
+    s.diffuseTransmissionColor = clamp(s.diffuseTransmissionColor * t.diffuseTransmissionColor, vec3(0.0), vec3(1.0));
     return s;
 }
 
@@ -134,12 +155,34 @@ vec3 layeredF0(SurfaceLayers s, vec3 baseColor, float metallic) {
 
 float maxOf(vec3 c) { return max(c.r, max(c.g, c.b)); }
 
+// The dielectric Fresnel of the base layer (the raster's Schlick with KHR_materials_specular) at v.h.
+vec3 dielectricFresnel(SurfaceLayers s, float VdotH) {
+    vec3 f0d = min(vec3(0.04) * s.specularColor, vec3(1.0)) * s.specular;
+    return f0d + (vec3(s.specular) - f0d) * pow(1.0 - VdotH, 5.0);
+}
+
+// KHR_materials_diffuse_transmission: f * |n.l| for a light behind the surface (n.l <= 0), beneath the clearcoat
+// and sheen layers as the reflected base is (the layer weights depend on n.v only).
+vec3 diffuseTransmissionCosine(SurfaceLayers s, float metallic, vec3 n, vec3 v, vec3 l) {
+    if ((s.flags & kMaterialDiffuseTransmission) == 0u || s.diffuseTransmission <= 0.0) return vec3(0.0);
+    float NdotL = dot(n, l);
+    vec3 mirrored = l - n * (2.0 * NdotL);
+    vec3 h = normalize(mirrored + v);
+    vec3 result = s.diffuseTransmissionColor * (s.diffuseTransmission * (1.0 - metallic) / kPi *
+                                                (1.0 - maxOf(dielectricFresnel(s, max(dot(v, h), 0.0)))));
+    float NdotV = max(dot(n, v), 1e-4);
+    if ((s.flags & kMaterialSheen) != 0u)
+        result *= max(1.0 - maxOf(s.sheenColor) * ptAlbedoSheen(NdotV, s.sheenRoughness), 0.0);
+    if ((s.flags & kMaterialClearcoat) != 0u) result *= 1.0 - s.clearcoat * fresnelSchlick(vec3(0.04), NdotV).x;
+    return result * -NdotL;
+}
+
 // f(l, v) * NdotL with the material's extension layers.
 vec3 layeredBrdfCosine(SurfaceLayers s, vec3 baseColor, float metallic, float perceptualRoughness, vec3 n, vec3 v,
                        vec3 l) {
     if (s.flags == 0u) return brdfCosine(baseColor, metallic, perceptualRoughness, n, v, l);
     float NdotL = dot(n, l);
-    if (NdotL <= 0.0) return vec3(0.0);
+    if (NdotL <= 0.0) return diffuseTransmissionCosine(s, metallic, n, v, l);
     float NdotV = max(dot(n, v), 1e-4);
     vec3 h = normalize(l + v);
     float NdotH = max(dot(n, h), 0.0);
@@ -150,7 +193,7 @@ vec3 layeredBrdfCosine(SurfaceLayers s, vec3 baseColor, float metallic, float pe
     vec3 f0d = min(vec3(0.04) * s.specularColor, vec3(1.0)) * s.specular;
     vec3 fDielectric = f0d + (vec3(s.specular) - f0d) * m5;
     vec3 F = mix(fDielectric, baseColor + (1.0 - baseColor) * m5, metallic);
-    vec3 diffuse = (1.0 - maxOf(fDielectric)) * baseColor * (1.0 - metallic) / kPi;
+    vec3 diffuse = (1.0 - maxOf(fDielectric)) * baseColor * (1.0 - metallic) * (1.0 - s.diffuseTransmission) / kPi;
     vec3 result = diffuse + F * baseDistributionVisibility(s, alpha, n, v, l, h, NdotL, NdotV, NdotH);
     if ((s.flags & kMaterialSheen) != 0u) {
         float sheenAlpha = ptSheenAlpha(s.sheenRoughness);

@@ -25,6 +25,7 @@ vec3 ambientReflected(SurfaceLayers layers, vec3 n, vec3 v, vec3 baseColor, floa
     float r = clamp(roughness, kMinRoughness, 1.0);
     vec3 specularAlbedo = ambientSpecularAlbedo(layers, baseColor, metallic, r, NdotV);
     vec3 diffuse = (1.0 - clamp(specularAlbedo, 0.0, 1.0)) * baseColor * (1.0 - metallic) / kPi * irradiance;
+    if ((layers.flags & kMaterialDiffuseTransmission) != 0u) diffuse *= 1.0 - layers.diffuseTransmission;
     vec3 ambient = diffuse + specularRadiance * specularAlbedo;
     if ((layers.flags & kMaterialSheen) != 0u) {
         float sheenAlbedo = ptAlbedoSheen(NdotV, layers.sheenRoughness);
@@ -40,6 +41,23 @@ vec3 ambientReflected(SurfaceLayers layers, vec3 n, vec3 v, vec3 baseColor, floa
     return ambient;
 }
 
+// KHR_materials_diffuse_transmission (thin-surface approximation, material_layers.glsl): the irradiance from
+// behind (SH on -n) through the surface, weighted like the reflected diffuse ambient (1 - E_s, the sheen and coat
+// layers above). Only the SH ambient: VXGI and SSR replace the reflected side's light, not this.
+vec3 ambientTransmitted(SurfaceLayers layers, vec3 n, vec3 v, vec3 baseColor, float metallic, float roughness,
+                        vec3 irradianceBehind) {
+    if ((layers.flags & kMaterialDiffuseTransmission) == 0u) return vec3(0.0);
+    float NdotV = max(dot(n, v), 1e-4);
+    vec3 specularAlbedo = ambientSpecularAlbedo(layers, baseColor, metallic, clamp(roughness, kMinRoughness, 1.0),
+                                                NdotV);
+    vec3 t = (1.0 - clamp(specularAlbedo, 0.0, 1.0)) * layers.diffuseTransmissionColor *
+             (layers.diffuseTransmission * (1.0 - metallic) / kPi) * irradianceBehind;
+    if ((layers.flags & kMaterialSheen) != 0u)
+        t *= max(1.0 - maxOf(layers.sheenColor) * ptAlbedoSheen(NdotV, layers.sheenRoughness), 0.0);
+    if ((layers.flags & kMaterialClearcoat) != 0u) t *= 1.0 - layers.clearcoat * fresnelSchlick(vec3(0.04), NdotV).x;
+    return t;
+}
+
 // n: unit shading normal on the viewer's side; v: unit direction to the eye. pointShadows: GpuPointShadow[] per
 // light, or 0 when no light casts a shadow. layers: the material's extensions (noLayers() for none).
 vec3 shadeSurface(GpuFrame f, uint64_t pointShadows, vec3 position, vec3 n, vec3 v, vec3 baseColor, float metallic,
@@ -52,9 +70,10 @@ vec3 shadeSurface(GpuFrame f, uint64_t pointShadows, vec3 position, vec3 n, vec3
         vec3 direct = layeredBrdfCosine(layers, baseColor, metallic, roughness, n, v, l) * incident;
         if (pointShadows != 0 && any(greaterThan(direct, vec3(0.0)))) {
             GpuPointShadow s = PointShadowBuffer(pointShadows).data[i];
-            if (s.mapCount != 0u) direct *= mapShadowVisibility(pointShadows, s, position, n, l);
+            vec3 ns = dot(n, l) < 0.0 ? -n : n;  // diffuse transmission: the lit side is the back, offset toward it
+            if (s.mapCount != 0u) direct *= mapShadowVisibility(pointShadows, s, position, ns, l);
             else if (s.cube == kRayTracedShadow) direct *= rtShadowVisibility(pointShadows, s);
-            else if (s.cube != kNoShadow) direct *= pointShadowVisibility(s, position, n, l);
+            else if (s.cube != kNoShadow) direct *= pointShadowVisibility(s, position, ns, l);
         }
         radiance += direct;
     }
@@ -68,6 +87,7 @@ vec3 shadeSurface(GpuFrame f, uint64_t pointShadows, vec3 position, vec3 n, vec3
                                     environmentRadiance(f, rBase,
                                                         environmentLod(f, clamp(ambientRoughness, kMinRoughness, 1.0))),
                                     environmentRadiance(f, r, environmentLod(f, cr)));
+    ambient += ambientTransmitted(layers, n, v, baseColor, metallic, ambientRoughness, shIrradiance(f, -n));
     return radiance + ambient * occlusion;
 }
 

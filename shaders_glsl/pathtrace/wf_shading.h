@@ -102,6 +102,16 @@ PtSurface wfEvaluateMaterial(GpuPtSceneDesc sc, WfHitPoint hit, vec3 wo, out boo
         s.sheenColor *= wfSampleSlot(m.slots[kSlotSheenColor], hit).rgb;
         s.sheenRoughness *= wfSampleSlot(m.slots[kSlotSheenRoughness], hit).a;
     }
+    // KHR_materials_diffuse_transmission, KHR_materials_dispersion (pathtrace::evaluateMaterial's twin).
+    s.diffuseTransmission = 0.0;
+    s.diffuseTransmissionColor = vec3(1.0);
+    if ((m.flags & kMaterialDiffuseTransmission) != 0u) {
+        s.diffuseTransmission = clamp(m.diffuseTransmission * wfSampleSlot(m.slots[kSlotDiffuseTransmission], hit).a,
+                                      0.0, 1.0);
+        s.diffuseTransmissionColor =
+            m.diffuseTransmissionColor * wfSampleSlot(m.slots[kSlotDiffuseTransmissionColor], hit).rgb;
+    }
+    s.dispersion = (m.flags & kMaterialDispersion) != 0u ? m.dispersion : 0.0;
     // Normal mapping in the vertex tangent frame (B = cross(N, T) * w), z rebuilt from the remapped xy. A slot
     // without a normal texture samples the flat placeholder (xy = 0), which leaves n unchanged.
     vec3 n = hit.normal;
@@ -134,6 +144,8 @@ PtSurface wfEvaluateMaterial(GpuPtSceneDesc sc, WfHitPoint hit, vec3 wo, out boo
         s.clearcoat = 0.0;
         s.sheenColor = vec3(0.0);
         s.anisotropyStrength = 0.0;
+        s.diffuseTransmission = 0.0;
+        s.dispersion = 0.0;
     }
     return s;
 }
@@ -270,6 +282,16 @@ WfShadeResult wfShade(GpuPtSceneDesc s, inout GpuPtPath path, GpuPtHit hit, PtRn
         return r;
     }
     uint dim = ptDimVertexBase(depth);
+    if (ptIsDispersive(surface)) {  // KHR_materials_dispersion (pathtrace::traceRadiance's twin)
+        uint stored = (path.flags & kPtPathChannelMask) >> kPtPathChannelShift;
+        uint channel = stored - 1u;
+        if (stored == 0u) {
+            channel = ptPickChannel(ptSample(rng, dim + kPtDimDispersion));  // DRAW ORDER: before NEE
+            path.throughput *= ptChannelWeight(channel);
+            path.flags = (path.flags & ~kPtPathChannelMask) | ((channel + 1u) << kPtPathChannelShift);
+        }
+        surface = ptDispersedSurface(surface, channel);
+    }
     if (nee) r.hasShadowRay = wfSampleDirect(s, path, surface, position, wo, dim, rng, r.shadowRay);
 
     float u0 = ptSample(rng, dim + kPtDimBsdfLobe);  // DRAW ORDER (see wfStartPath)
@@ -287,7 +309,8 @@ WfShadeResult wfShade(GpuPtSceneDesc s, inout GpuPtPath path, GpuPtHit hit, PtRn
     path.flags = (lobe & kPtLobeDeltaFlag) != 0u ? (path.flags | kPtPathDeltaBounce) : (path.flags & ~kPtPathDeltaBounce);
     path.bsdfPdf = pdf;
     path.previousPosition = position;
-    if ((lobe & ~kPtLobeDeltaFlag) == kPtLobeTransmission && surface.thickness > 0.0) {
+    uint through = lobe & ~kPtLobeDeltaFlag;  // into (or out of) a volume: both transmissions
+    if ((through == kPtLobeTransmission || through == kPtLobeDiffuseTransmission) && surface.thickness > 0.0) {
         bool inside = dot(wi, surface.geometricNormal) < 0.0;  // into the volume: against its outside
         path.flags = inside ? (path.flags | kPtPathInMedium) : (path.flags & ~kPtPathInMedium);
         path.attenuationColor = surface.attenuationColor;

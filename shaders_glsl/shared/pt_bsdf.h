@@ -3,7 +3,10 @@
 // (one-sample MIS: a non-delta sample returns the pdf summed over all lobes, so ptSampleBsdf's pdf equals
 // ptEvalBsdf's for the same direction):
 //   specular     GGX reflection, F = mix(dielectric F (KHR_materials_specular), Schlick(baseColor), metallic)
-//   diffuse      Lambert, (1 - metallic) (1 - transmission) (1 - max F_dielectric) baseColor / pi
+//   diffuse      Lambert, (1 - metallic) (1 - transmission) (1 - diffuseTransmission) (1 - max F_dielectric)
+//                baseColor / pi
+//   diffuse transmission  KHR_materials_diffuse_transmission (pt_diffuse_transmission.h): Lambert on the far side,
+//                (1 - metallic) (1 - transmission) diffuseTransmission (1 - max F_dielectric) color / pi
 //   transmission (1 - metallic) transmission (1 - max F_dielectric) baseColor: rough refraction (Walter 2007) when
 //                the material has a volume (thickness > 0), else the reflection lobe mirrored through the surface
 //   multiscatter GGX energy compensation (pt_energy.h), sampled by its own tabulated density
@@ -29,7 +32,8 @@ IDK_INLINE vec3 ptEvalLocal(PtBsdfFrame f, vec3 wi, float wiSide, IDK_OUT(float)
         vec3 h = normalize(wo + wi);
         float cosOH = max(dot(wo, h), 0.0f);
         float pass = ptDielectricPass(f, cosOH);
-        vec3 base = f.baseColor * ((1.0f - f.metallic) * (1.0f - f.transmission) * pass * kPtInvPi * wi.z);
+        vec3 base = f.baseColor * ((1.0f - f.metallic) * (1.0f - f.transmission) * (1.0f - f.diffTrans) * pass *
+                                   kPtInvPi * wi.z);
         pdf += f.pDiff * wi.z * kPtInvPi;
         if (!f.delta) {
             float d = ptBaseD(f, h);
@@ -48,7 +52,16 @@ IDK_INLINE vec3 ptEvalLocal(PtBsdfFrame f, vec3 wi, float wiSide, IDK_OUT(float)
             value += vec3(f.clearcoat * ptCoatFresnel(cosOH) * d * ptGgxG2(wo.z, wi.z, f.coatAlpha) / (4.0f * wo.z));
             pdf += f.pCoat * ptGgxG1(wo.z, f.coatAlpha) * d / (4.0f * wo.z);
         }
-    } else if (wi.z < 0.0f && wiSide < 0.0f && !f.transDelta && f.pTrans > 0.0f) {
+    } else if (wi.z < 0.0f && wiSide < 0.0f) {
+        if (f.pDiffTrans > 0.0f) {  // KHR_materials_diffuse_transmission
+            vec3 h = normalize(wo + ptDiffTransMirror(wi));
+            float pass = ptDielectricPass(f, max(dot(wo, h), 0.0f));
+            float weight = (1.0f - f.metallic) * (1.0f - f.transmission) * f.diffTrans * f.layer;
+            value += ptDiffTransValue(f.diffTransColor, weight, pass, wi);
+            pdf += f.pDiffTrans * ptDiffTransPdf(wi);
+        }
+    }
+    if (wi.z < 0.0f && wiSide < 0.0f && !f.transDelta && f.pTrans > 0.0f) {
         vec3 tint = f.baseColor * ((1.0f - f.metallic) * f.transmission * f.transScale * f.layer);
         if (f.thick) {
             vec3 h = normalize(wo + wi * f.eta);
@@ -117,6 +130,7 @@ IDK_INLINE uint ptSampleBsdf(PtSurface s, vec3 wo, vec3 u, IDK_OUT(vec3) wi, IDK
     float c2 = c1 + f.pSpec;
     float c3 = c2 + f.pMs;
     float c4 = c3 + f.pDiff;
+    float c5 = c4 + f.pDiffTrans;
     if (u.x < c0) {
         chosen = kPtLobeClearcoat;
         if (f.coatDelta) {
@@ -148,6 +162,9 @@ IDK_INLINE uint ptSampleBsdf(PtSurface s, vec3 wo, vec3 u, IDK_OUT(vec3) wi, IDK
     } else if (u.x < c4) {
         chosen = kPtLobeDiffuse;
         l = ptSampleCosine(u.y, u.z);
+    } else if (u.x < c5) {
+        chosen = kPtLobeDiffuseTransmission;
+        l = ptDiffTransMirror(ptSampleCosine(u.y, u.z));
     } else if (f.pTrans > 0.0f) {
         chosen = kPtLobeTransmission;
         vec3 h = f.transDelta ? vec3(0.0f, 0.0f, 1.0f) : ptBaseSampleVndf(f, o, u.y, u.z);
@@ -176,7 +193,7 @@ IDK_INLINE uint ptSampleBsdf(PtSurface s, vec3 wo, vec3 u, IDK_OUT(vec3) wi, IDK
     vec3 w = ptToWorld(l, f.t, f.b, f.n);
     float side = dot(w, f.ng);
     if (!ptFinite3(w)) return lobe;
-    bool reflects = chosen != kPtLobeTransmission;
+    bool reflects = chosen != kPtLobeTransmission && chosen != kPtLobeDiffuseTransmission;
     if ((reflects && (l.z <= 0.0f || side <= 0.0f)) || (!reflects && (l.z >= 0.0f || side >= 0.0f))) return lobe;
     if (isDelta) {
         if (!ptFinite3(deltaWeight)) return lobe;

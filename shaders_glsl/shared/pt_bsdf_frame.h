@@ -17,12 +17,16 @@
 //              mean over azimuths of the alpha Smith's Lambda sees (an approximation: the tables hold no
 //              anisotropy; tests/unit/pathtrace/anisotropy_test.cpp measures the white furnace). Clearcoat and
 //              sheen stay isotropic.
+//              KHR_materials_diffuse_transmission (pt_diffuse_transmission.h): the Lambert base splits into
+//              reflection (1 - diffuseTransmission) and a Lambert lobe through the surface tinted by the
+//              diffuseTransmissionColor, both beneath the dielectric Fresnel.
 #ifndef IDK_PT_BSDF_FRAME_H
 #define IDK_PT_BSDF_FRAME_H
 #include "pt_microfacet.h"
 #include "pt_energy.h"
 #include "pt_sheen.h"
 #include "pt_anisotropy.h"
+#include "pt_diffuse_transmission.h"
 
 IDK_GPU_BEGIN
 
@@ -66,6 +70,10 @@ struct PtBsdfFrame {
     bool aniso;         // the GGX lobes are anisotropic: alphaT along t, alphaB along b (alpha is unused then)
     float alphaT;
     float alphaB;
+    // KHR_materials_diffuse_transmission
+    float diffTrans;       // diffuseTransmission factor, sanitised (0: the lobe is off)
+    vec3 diffTransColor;   // diffuseTransmissionColor, sanitised
+    float pDiffTrans;      // selection probability of the lobe (with the six above, sum 1)
 };
 
 IDK_INLINE float ptCoatFresnel(float c) { return ptFresnelSchlick(vec3(0.04f), c).x; }
@@ -201,6 +209,9 @@ IDK_INLINE bool ptBsdfSetup(PtSurface s, vec3 wo, IDK_OUT(PtBsdfFrame) f) {
     f.pMs = 0.0f;
     f.pSheen = 0.0f;
     f.pCoat = 0.0f;
+    f.diffTrans = ptDiffTransFactor(s);
+    f.diffTransColor = ptDiffTransColor(s);
+    f.pDiffTrans = 0.0f;
     f.dielScale = 1.0f;
     f.transScale = 1.0f;
     f.msColor = vec3(0.0f);
@@ -263,6 +274,12 @@ IDK_INLINE bool ptBsdfSetup(PtSurface s, vec3 wo, IDK_OUT(PtBsdfFrame) f) {
     float pSpec = ptAverage(ptSpecularFresnel(f, mu));
     if (f.metallic > 0.0f || (f.etaFresnel != 1.0f && f.specular > 0.0f)) pSpec = max(pSpec, 1.0e-3f);
     float pDiff = base * (1.0f - f.transmission);
+    float pDiffTrans = 0.0f;
+    if (f.diffTrans > 0.0f) {  // split the diffuse base; its transmitted half is weighted by its own colour
+        float diffuseBase = dielectric * max(ptDielectricPass(f, mu), 0.05f) * (1.0f - f.transmission);
+        pDiffTrans = diffuseBase * f.diffTrans * max(ptAverage(f.diffTransColor), 1.0e-3f);
+        pDiff *= 1.0f - f.diffTrans;
+    }
     float pTrans = base * f.transmission;
     float pMs = msAlbedo;
     float pSheen = sheenMax > 0.0f ? max(sheenMax * sheenAlbedo, 1.0e-3f) * f.coatLayer : 0.0f;
@@ -271,7 +288,8 @@ IDK_INLINE bool ptBsdfSetup(PtSurface s, vec3 wo, IDK_OUT(PtBsdfFrame) f) {
     pDiff *= f.layer;
     pTrans *= f.layer;
     pMs *= f.layer;
-    float sum = pSpec + pDiff + pTrans + pMs + pSheen + pCoat;
+    pDiffTrans *= f.layer;
+    float sum = pSpec + pDiff + pTrans + pMs + pSheen + pCoat + pDiffTrans;
     if (!(sum > 0.0f) || !ptFinite(sum)) return false;
     f.pSpec = pSpec / sum;
     f.pDiff = pDiff / sum;
@@ -279,6 +297,7 @@ IDK_INLINE bool ptBsdfSetup(PtSurface s, vec3 wo, IDK_OUT(PtBsdfFrame) f) {
     f.pMs = pMs / sum;
     f.pSheen = pSheen / sum;
     f.pCoat = pCoat / sum;
+    f.pDiffTrans = pDiffTrans / sum;
     return true;
 }
 

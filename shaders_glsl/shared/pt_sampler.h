@@ -39,7 +39,8 @@ IDK_CONST(uint, kPtDimLightSlot, 4u);    // pair: alias-table slot and its coin
 IDK_CONST(uint, kPtDimLightAlias, 5u);
 IDK_CONST(uint, kPtDimBsdfLobe, 6u);     // pair: BSDF lobe choice and environment-vs-lights choice
 IDK_CONST(uint, kPtDimLightChoice, 7u);
-IDK_CONST(uint, kPtDimRoulette, 8u);     // (dimension 9 unused: keeps the blocks pair-aligned)
+IDK_CONST(uint, kPtDimRoulette, 8u);     // pair: Russian roulette and the dispersion channel (pt_dispersion.h,
+IDK_CONST(uint, kPtDimDispersion, 9u);   // drawn only at a path's first dispersive surface)
 
 struct PtRng {
     uint state;        // PCG state (independent sampler; also the sobol sampler's stream for BLEND alpha coins)

@@ -29,4 +29,5 @@
 #include "pt_common.h"
 #include "pt_bsdf.h"
 #include "pt_lights.h"
+#include "pt_dispersion.h"
 #endif

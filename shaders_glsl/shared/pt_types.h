@@ -126,8 +126,12 @@ struct PtSurface {
     // KHR_materials_anisotropy
     vec3 anisotropyDirection;  // world, unit tangent-plane direction of alpha_t (pt_anisotropy.h); 0: the BSDF's basis
     float anisotropyStrength;  // [0, 1], texture applied; 0: isotropic GGX
+    // KHR_materials_diffuse_transmission, KHR_materials_dispersion (defaults 0, 1, 0: the core BSDF)
+    float diffuseTransmission;      // [0, 1], texture applied: the share of the diffuse lobe that transmits
+    vec3 diffuseTransmissionColor;  // linear, texture applied: the tint of the transmitted diffuse light
+    float dispersion;               // 20 / V_d (pt_dispersion.h); 0: the IOR is the same for every wavelength
 };
-IDK_GPU_SIZE(PtSurface, 144);  // also a buffer element (conformance probe)
+IDK_GPU_SIZE(PtSurface, 164);  // also a buffer element (conformance probe)
 
 // Outcome of sampling the BSDF.
 IDK_CONST(uint, kPtLobeNone, 0);          // no valid direction (absorbed)
@@ -137,6 +141,7 @@ IDK_CONST(uint, kPtLobeTransmission, 3);  // refraction (thick) or straight-thro
 IDK_CONST(uint, kPtLobeMultiScatter, 4);  // GGX energy compensation (pt_energy.h), a reflection
 IDK_CONST(uint, kPtLobeSheen, 5);         // KHR_materials_sheen, a reflection
 IDK_CONST(uint, kPtLobeClearcoat, 6);     // KHR_materials_clearcoat, a reflection
+IDK_CONST(uint, kPtLobeDiffuseTransmission, 7);  // KHR_materials_diffuse_transmission, Lambert through the surface
 IDK_CONST(uint, kPtLobeDeltaFlag, 16u);   // OR-ed into the lobe when the sampled lobe is a delta (smooth) lobe
 
 IDK_GPU_END

@@ -23,6 +23,9 @@ IDK_CONST(uint, kSpecPtTlasStackSize, 3); // TLAS traversal stack entries
 IDK_CONST(uint, kPtPathDeltaBounce, 1u);  // the ray came from a delta (specular) lobe: no MIS on the next hit
 IDK_CONST(uint, kPtPathInMedium, 2u);     // the ray travels inside a transmissive volume (absorption applies)
 IDK_CONST(uint, kPtPathAlive, 4u);        // shade extended the path (it is in the next ray queue)
+// KHR_materials_dispersion: bits 4-5 hold 1 + the channel the path carries alone (0: all three, pt_dispersion.h)
+IDK_CONST(uint, kPtPathChannelShift, 4u);
+IDK_CONST(uint, kPtPathChannelMask, 48u);
 
 // GpuPtStagePush::flags
 IDK_CONST(uint, kPtPushSobol, 1u);        // the paths draw from the sobol sampler (shared/pt_sampler.h)

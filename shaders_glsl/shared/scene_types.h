@@ -61,7 +61,10 @@ IDK_CONST(uint, kSlotClearcoat, 7);           // linear: R scales clearcoat
 IDK_CONST(uint, kSlotClearcoatRoughness, 8);  // linear: G scales clearcoatRoughness
 IDK_CONST(uint, kSlotSheenColor, 9);          // sRGB: RGB scales sheenColor
 IDK_CONST(uint, kSlotSheenRoughness, 10);     // linear: A scales sheenRoughness
-IDK_CONST(uint, kSlotCount, 11);
+// KHR_materials_diffuse_transmission textures (white placeholders leave the factors unchanged).
+IDK_CONST(uint, kSlotDiffuseTransmission, 11);       // linear: A scales diffuseTransmission
+IDK_CONST(uint, kSlotDiffuseTransmissionColor, 12);  // sRGB: RGB scales diffuseTransmissionColor
+IDK_CONST(uint, kSlotCount, 13);
 
 IDK_CONST(uint, kAlphaOpaque, 0);
 IDK_CONST(uint, kAlphaMask, 1);
@@ -74,6 +77,9 @@ IDK_CONST(uint, kMaterialSpecular, 4u);     // KHR_materials_specular (factor or
 IDK_CONST(uint, kMaterialClearcoat, 8u);    // KHR_materials_clearcoat with clearcoatFactor > 0
 IDK_CONST(uint, kMaterialSheen, 16u);       // KHR_materials_sheen with a sheen colour above 0
 IDK_CONST(uint, kMaterialLayers, 28u);      // any of the three
+// KHR_materials_diffuse_transmission, KHR_materials_dispersion
+IDK_CONST(uint, kMaterialDiffuseTransmission, 32u);  // diffuseTransmissionFactor > 0
+IDK_CONST(uint, kMaterialDispersion, 64u);           // dispersion > 0
 // KHR_materials_anisotropy
 IDK_CONST(uint, kMaterialAnisotropy, 128u);  // KHR_materials_anisotropy with anisotropyStrength > 0
 
@@ -100,8 +106,12 @@ struct GpuMaterial {
     // KHR_materials_anisotropy
     float anisotropyStrength;  // KHR_materials_anisotropy anisotropyStrength (read when kMaterialAnisotropy)
     float anisotropyRotation;  // radians, counter-clockwise from the tangent
+    // KHR_materials_diffuse_transmission, KHR_materials_dispersion (defaults 0, 1, 0)
+    float diffuseTransmission;      // diffuseTransmissionFactor (read when kMaterialDiffuseTransmission)
+    vec3 diffuseTransmissionColor;  // diffuseTransmissionColorFactor, linear
+    float dispersion;               // 20 / V_d (read when kMaterialDispersion)
 };
-IDK_GPU_SIZE(GpuMaterial, 500);
+IDK_GPU_SIZE(GpuMaterial, 592);
 
 IDK_CONST(uint, kLightDirectional, 0);
 IDK_CONST(uint, kLightPoint, 1);

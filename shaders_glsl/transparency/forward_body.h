@@ -64,6 +64,9 @@ void main() {
     if ((m.flags & kMaterialLayers) != 0u)      // uniform per draw: derivatives stay defined
         sampleLayerTexels(m, inUv, inUv1, layerTexels.specular, layerTexels.specularColor, layerTexels.clearcoat,
                           layerTexels.clearcoatRoughness, layerTexels.sheenColor, layerTexels.sheenRoughness);
+    if ((m.flags & kMaterialDiffuseTransmission) != 0u)  // KHR_materials_diffuse_transmission textures
+        sampleDiffuseTransmissionTexels(m, inUv, inUv1, layerTexels.diffuseTransmission,
+                                        layerTexels.diffuseTransmissionColor);
     vec3 n = normalize(inNormal);
     vec3 t, b;
     bool haveFrame = materialTangentFrame(n, inTangent, inWorldPosition, inUv, t, b);

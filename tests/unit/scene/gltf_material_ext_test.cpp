@@ -1,6 +1,7 @@
 // gltf_material_ext_test.cpp: the loader's BSDF material extensions (scene/gltf_material_ext.cpp): the factors of
-// KHR_materials_specular, _clearcoat, _sheen, _anisotropy land in scene::Material; hostile values (out of range,
-// non-finite, wrong types) are clamped or replaced with a warning naming the material; extension textures load as
+// KHR_materials_specular, _clearcoat, _sheen, _anisotropy, _diffuse_transmission land in scene::Material; hostile
+// values (out of range, non-finite, wrong types) are clamped or replaced with a warning naming the material (a
+// diffuse-transmission factor of 0 leaves its textures undecoded); extension textures load as
 // TextureRefs with texCoord and KHR_texture_transform (bad references warn and are dropped; anisotropyTexture is
 // reported, not read yet); ToyCar's clearcoat texture loads without a warning; materials without the extensions
 // keep the neutral defaults; the
@@ -13,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "scene/gltf_loader.hpp"
+#include "scene/texture_decode.hpp"
 #include "test_files.hpp"
 #include "test_gltf.hpp"
 
@@ -101,6 +103,74 @@ TEST(GltfMaterialExt, AnisotropyIsLoadedAndChecked) {
     EXPECT_TRUE(anyWarningHas(s, "'hostile'", "anisotropyRotation"));
     EXPECT_TRUE(anyWarningHas(s, "anisotropyTexture", "not supported"));
     EXPECT_FALSE(anyWarningHas(s, "'brushed'", "anisotropy"));
+}
+
+TEST(GltfMaterialExt, DiffuseTransmissionIsLoadedAndChecked) {
+    TempDir dir;
+    auto f = triangle();
+    f.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    f.doc["extensionsUsed"] = json::parse(R"(["KHR_materials_diffuse_transmission"])");
+    f.doc["extensionsRequired"] = json::parse(R"(["KHR_materials_diffuse_transmission"])");
+    f.doc["textures"] = json::parse(R"([{}, {}, {}, {}])");
+    f.doc["materials"] = json::parse(R"([{"name": "leaf", "extensions": {"KHR_materials_diffuse_transmission": {
+            "diffuseTransmissionFactor": 0.75, "diffuseTransmissionColorFactor": [0.5, 1.0, 0.25],
+            "diffuseTransmissionTexture": {"index": 0},
+            "diffuseTransmissionColorTexture": {"index": 1, "texCoord": 1}}}},
+        {"name": "hostile", "extensions": {"KHR_materials_diffuse_transmission": {
+            "diffuseTransmissionFactor": 4, "diffuseTransmissionColorFactor": [2, -1, 0.5],
+            "diffuseTransmissionTexture": {"index": 9}}}},
+        {"name": "off", "extensions": {"KHR_materials_diffuse_transmission": {
+            "diffuseTransmissionTexture": {"index": 2}, "diffuseTransmissionColorTexture": {"index": 3}}}},
+        {"name": "plain"}])");
+    const Scene s = loadGltf(f.write(dir));
+    const Material& leaf = s.materials[0];
+    EXPECT_EQ(leaf.diffuseTransmission, 0.75f);
+    EXPECT_EQ(leaf.diffuseTransmissionColor, glm::vec3(0.5f, 1.0f, 0.25f));
+    ASSERT_TRUE(leaf.diffuseTransmissionTexture && leaf.diffuseTransmissionColorTexture);
+    EXPECT_EQ(leaf.diffuseTransmissionTexture->texture, 0u);
+    EXPECT_EQ(leaf.diffuseTransmissionColorTexture->texture, 1u);
+    EXPECT_EQ(leaf.diffuseTransmissionColorTexture->texCoord, 1u);
+    const Material& hostile = s.materials[1];
+    EXPECT_EQ(hostile.diffuseTransmission, 1.0f);                                  // clamped
+    EXPECT_EQ(hostile.diffuseTransmissionColor, glm::vec3(1.0f, 0.0f, 0.5f));     // each channel clamped
+    EXPECT_FALSE(hostile.diffuseTransmissionTexture.has_value());                  // texture 9 of 4: dropped
+    EXPECT_TRUE(anyWarningHas(s, "'hostile'", "diffuseTransmissionFactor 4"));
+    EXPECT_TRUE(anyWarningHas(s, "'hostile'", "diffuseTransmissionColorFactor component 2"));
+    EXPECT_TRUE(anyWarningHas(s, "'hostile'", "diffuseTransmissionColorFactor component -1"));
+    EXPECT_TRUE(anyWarningHas(s, "'hostile'", "diffuseTransmissionTexture names texture 9"));
+    EXPECT_FALSE(anyWarningHas(s, "'leaf'", "diffuseTransmission"));
+    EXPECT_EQ(s.materials[2].diffuseTransmission, 0.0f);  // the default factor
+    EXPECT_EQ(s.materials[3].diffuseTransmission, 0.0f);
+    EXPECT_EQ(s.materials[3].diffuseTransmissionColor, glm::vec3(1.0f));
+    // Textures load only for materials that use them: a factor of 0 never reads its textures.
+    const std::vector<TextureColorSpace> spaces = textureColorSpaces(s);
+    EXPECT_EQ(spaces[0], TextureColorSpace::Linear);
+    EXPECT_EQ(spaces[1], TextureColorSpace::Srgb);
+    EXPECT_EQ(spaces[2], TextureColorSpace::Unused);
+    EXPECT_EQ(spaces[3], TextureColorSpace::Unused);
+}
+
+TEST(GltfMaterialExt, DispersionIsLoadedAndChecked) {
+    TempDir dir;
+    auto f = triangle();
+    f.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    f.doc["extensionsUsed"] = json::parse(R"(["KHR_materials_dispersion"])");
+    f.doc["extensionsRequired"] = json::parse(R"(["KHR_materials_dispersion"])");
+    f.doc["materials"] = json::parse(R"([
+        {"name": "flint", "extensions": {"KHR_materials_dispersion": {"dispersion": 0.5}}},
+        {"name": "negative", "extensions": {"KHR_materials_dispersion": {"dispersion": -2}}},
+        {"name": "huge", "extensions": {"KHR_materials_dispersion": {"dispersion": 1e9}}},
+        {"name": "word", "extensions": {"KHR_materials_dispersion": {"dispersion": "lots"}}}, {"name": "plain"}])");
+    const Scene s = loadGltf(f.write(dir));
+    EXPECT_EQ(s.materials[0].dispersion, 0.5f);
+    EXPECT_EQ(s.materials[1].dispersion, 0.0f);    // clamped to 0
+    EXPECT_EQ(s.materials[2].dispersion, 100.0f);  // capped
+    EXPECT_EQ(s.materials[3].dispersion, 0.0f);    // not a number: the default
+    EXPECT_EQ(s.materials[4].dispersion, 0.0f);
+    EXPECT_TRUE(anyWarningHas(s, "'negative'", "dispersion -2"));
+    EXPECT_TRUE(anyWarningHas(s, "'huge'", "dispersion 1000000000"));
+    EXPECT_TRUE(anyWarningHas(s, "'word'", "dispersion is not a number"));
+    EXPECT_FALSE(anyWarningHas(s, "'flint'", "dispersion"));
 }
 
 TEST(GltfMaterialExt, ExtensionTexturesAreLoaded) {

@@ -10,6 +10,7 @@
 #include "surface_lighting.glsl"
 #include "vxgi_ambient.glsl"
 #include "ssr_specular.glsl"
+#include "gbuffer_anisotropy.glsl"
 
 // False for background pixels (depth 1: the sky writes them); else the radiance, alpha 1 (geometry).
 bool deferredLightingPixel(LightingPush p, GpuFrame f, ivec2 pixel, out vec4 result) {
@@ -44,6 +45,8 @@ bool deferredLightingPixel(LightingPush p, GpuFrame f, ivec2 pixel, out vec4 res
         LayerTexels t = LayerTexels(scalars.x, srgbDecode(unpackUnorm4x8(packed.y).rgb), scalars.y, scalars.z,
                                     srgbDecode(unpackUnorm4x8(packed.z).rgb), scalars.w);
         layers = texturedLayers(layers, t);
+        // KHR_materials_anisotropy: the direction the G-buffer stored (none: the isotropic lobe at the rms alpha).
+        if (layers.anisotropyStrength > 0.0) layers.anisotropyDirection = decodeAnisotropyDirection(packed.w, n);
     }
     vec3 radiance = emissive.rgb;
     gShadowPixel = pixel;  // ray-traced shadows read their mask here (include/rt_shadows.glsl)

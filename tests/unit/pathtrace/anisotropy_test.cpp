@@ -311,7 +311,7 @@ TEST(PtAnisotropyAlbedo, AverageIsTheLookupsHemisphericalMean) {
 // White furnace of white anisotropic surfaces (mean sampling weight = albedo, the lobes are too narrow across the
 // anisotropy for a quadrature grid): a grid of roughness 0..1 x strength 0..1 x anisotropy rotation against the
 // view x four view angles. Metal and thin-walled dielectric are compensated from the anisotropic table: both within
-// 1% of 1, like the isotropic furnace (measured: metal 0.26%, thin 0.28%; with the isotropic tables at the
+// 1% of 1, like the isotropic furnace (measured: metal 0.30%, thin 0.31%; with the isotropic tables at the
 // rms roughness, before the table, 40000 independent samples: metal 25.3%, thin 32.8%, at roughness 0.25, strength 1, viewed across the
 // direction at mu 0.15). A refracting volume still reads the isotropic dielectric table at the rms roughness:
 // its error is printed and bounded, not held to 1%.
@@ -366,17 +366,17 @@ double worstFurnace(float metallic, float thickness, double tolerance, int sampl
 }
 
 TEST(PtAnisotropy, WhiteFurnaceRoughAnisotropicMetal) {
-    std::printf("anisotropic white furnace, metal: worst |albedo - 1| %.4f\n", worstFurnace(1.0f, 0.0f, 0.01, 20000));
+    std::printf("anisotropic white furnace, metal: worst |albedo - 1| %.4f\n", worstFurnace(1.0f, 0.0f, 0.01, 8000));
 }
 
 TEST(PtAnisotropy, WhiteFurnaceRoughAnisotropicThinDielectric) {
     std::printf("anisotropic white furnace, thin-walled dielectric: worst |albedo - 1| %.4f\n",
-                worstFurnace(0.0f, 0.0f, 0.01, 20000));
+                worstFurnace(0.0f, 0.0f, 0.01, 8000));
 }
 
 TEST(PtAnisotropy, WhiteFurnaceRoughAnisotropicGlassIsBounded) {
     std::printf("anisotropic white furnace, glass (isotropic dielectric table at the rms roughness): worst "
-                "|albedo - 1| %.4f\n", worstFurnace(0.0f, 1.0f, 0.16, 10000));
+                "|albedo - 1| %.4f\n", worstFurnace(0.0f, 1.0f, 0.16, 4000));
 }
 
 }  // namespace

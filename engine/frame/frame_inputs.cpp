@@ -123,7 +123,12 @@ void FrameInputs::addPasses(FrameContext& f, render::GpuScene& s, const render::
     sb.colors = importBuffer(f.graph, "scene vertex colors", s.colors());
     sb.uv1 = importBuffer(f.graph, "scene uv1", s.uv1());
     sb.drawCount = s.drawCount();
-    sb.layerTexels = s.features().hasLayerTextures;
+    // The G-buffer's layers target carries the extension textures' texels and the anisotropy direction
+    // (include/gbuffer_anisotropy.glsl): allocated for scenes with either, no others.
+    sb.layerTexels = s.features().hasLayerTextures ||
+                     std::any_of(s.materials().begin(), s.materials().end(), [](const gpu::GpuMaterial& m) {
+                         return (m.flags & gpu::kMaterialAnisotropy) != 0u;
+                     });
     if (s.materialsDirty() && sb.materials.valid()) {
         sb.materials = passes::addSceneUpdatePass(f.graph, sb.materials, s.materials());
         s.clearMaterialsDirty();

@@ -1,6 +1,7 @@
 // gbuffer.cpp: rasterizes every (instance, primitive) of the GPU scene with ONE vkCmdDrawIndexedIndirect
 // (gl_DrawID selects instance and material) into albedo, normal, material and emissive targets plus depth, and
-// for scenes with KHR_materials_specular/_clearcoat/_sheen textures a layers target with their texels.
+// for scenes with KHR_materials_specular/_clearcoat/_sheen textures or KHR_materials_anisotropy a layers target
+// with their texels and the anisotropy direction.
 // Ports IDKEngine's RasterPipeline G-buffer step (GBuffer/VertexPath/vertex.glsl + GBuffer/fragment.glsl).
 // Deviation: IDKEngine draws twice (single-sided with culling, then double-sided); here one draw with culling
 // off and back faces of single-sided materials rejected in the fragment shader. With GPU culling (passes/cull.cpp)

@@ -59,7 +59,9 @@ struct SceneBuffers {
     graph::BufferHandle vertices, indices, meshes, instances, drawCommands, materials, lights;
     graph::BufferHandle colors, uv1;  // optional vertex streams
     uint32_t drawCount = 0;
-    bool layerTexels = false;  // scene::SceneFeatures::hasLayerTextures: the G-buffer adds its layers target
+    // The G-buffer adds its layers target: scene::SceneFeatures::hasLayerTextures, or an anisotropic material
+    // (frame/frame_inputs.cpp).
+    bool layerTexels = false;
 };
 
 // scene_update.cpp: copies patched materials (GpuScene::setTexture) into the material buffer; returns the
@@ -92,8 +94,8 @@ struct GBufferOutputs {
     graph::TextureHandle depth;     // R32F copy of the depth, 0 near .. 1 far (cleared to 1)
     graph::TextureHandle depthAttachment;  // D32 (transient, not stored)
     graph::TextureHandle ids;  // RG32UI (draw, triangle) of each kept fragment, ~0u background (only when asked)
-    // RGBA32UI texels of the KHR_materials_specular / _clearcoat / _sheen textures (include/gbuffer_fragment.glsl
-    // packs them), only when SceneBuffers::layerTexels.
+    // RGBA32UI texels of the KHR_materials_specular / _clearcoat / _sheen textures and the KHR_materials_anisotropy
+    // direction (include/gbuffer_fragment.glsl packs them), only when SceneBuffers::layerTexels.
     graph::TextureHandle layers;
 };
 // `culled` (passes/culling.hpp, optional): draw the culling pass's compacted commands with

@@ -2,11 +2,13 @@
 // Deterministic (cell midpoints, no random numbers), so the committed tables are reproducible bit for bit.
 #include "pathtrace/albedo_integrator.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 
 #include "shared/pt_albedo_layout.h"
+#include "shared/pt_anisotropy.h"
 #include "shared/pt_microfacet.h"
 #include "shared/pt_sheen.h"
 
@@ -45,6 +47,23 @@ float cosineWeightedMean(const float* values, uint32_t n) {
     return float(2.0 * sum);
 }
 
+// Eavg of the anisotropic table at one (r, s): (1 / pi) integral of E cos over the hemisphere, E the lookup's
+// interpolant, linear in mu and in q = |cos phi| between nodes. By symmetry it is (2 / pi) integral over q in
+// [0, 1] of M(q) / sqrt(1 - q^2) (dphi = dq / sqrt(1 - q^2) on [0, pi/2]), M(q) = 2 integral E mu dmu, itself
+// linear in q between the nodes' M_j: integrated exactly per segment with asin and sqrt(1 - q^2).
+float anisoCosineWeightedMean(const float* rows) {
+    double sum = 0.0;
+    std::vector<double> m(kPtAlbedoAnisoAz);
+    for (uint32_t j = 0; j < kPtAlbedoAnisoAz; ++j) m[j] = cosineWeightedMean(rows + j * kPtAlbedoAnisoMu, kPtAlbedoAnisoMu);
+    for (uint32_t j = 0; j + 1 < kPtAlbedoAnisoAz; ++j) {
+        const double a = double(j) / (kPtAlbedoAnisoAz - 1), b = double(j + 1) / (kPtAlbedoAnisoAz - 1);
+        const double i0 = std::asin(b) - std::asin(a);                        // integral of 1 / sqrt(1 - q^2)
+        const double i1 = std::sqrt(1.0 - a * a) - std::sqrt(1.0 - b * b);    // integral of q / sqrt(1 - q^2)
+        sum += m[j] * i0 + (m[j + 1] - m[j]) / (b - a) * (i1 - a * i0);
+    }
+    return float(sum * 2.0 / 3.14159265358979323846);
+}
+
 // C++ sees the array; GLSL sees only its offset in the packed table buffer (pt_energy.h), because glslang copies a
 // dynamically indexed constant array into a function-local variable at every use (tens of KB per lookup).
 void writeArray(std::ostringstream& out, const char* name, const std::vector<float>& values, uint32_t& offset) {
@@ -75,6 +94,28 @@ double ggxReflectionAlbedo(float mu, float roughness, int strata) {
             const glm::vec3 h = ptSampleGgxVndf(o, alpha, u1, (float(b) + 0.5f) / float(strata));
             const glm::vec3 l = h * (2.0f * glm::dot(o, h)) - o;
             if (l.z > 0.0f) sum += weight * ptGgxG2(o.z, l.z, alpha) / g1;
+        }
+    }
+    return sum / (double(strata) * double(strata));
+}
+
+double ggxAnisoReflectionAlbedo(float mu, float q, float roughness, float strength, int strata) {
+    const float c = std::max(mu, kPtAlbedoMinMu);
+    const float sinTheta = std::sqrt(std::max(0.0f, 1.0f - c * c));
+    const float qc = std::clamp(q, 0.0f, 1.0f);
+    const glm::vec3 o(sinTheta * qc, sinTheta * std::sqrt(std::max(0.0f, 1.0f - qc * qc)), c);
+    const float alpha = roughness * roughness;
+    const float ax = std::max(alpha + (1.0f - alpha) * strength * strength, kPtDeltaAlpha);  // mix(alpha, 1, s^2)
+    const float ay = std::max(alpha, kPtDeltaAlpha);
+    const double g1 = ptGgxAnisoG1(o, ax, ay);
+    double sum = 0.0;
+    for (int a = 0; a < strata; ++a) {
+        double weight;
+        const float u1 = tailWarp(a, strata, weight);
+        for (int b = 0; b < strata; ++b) {
+            const glm::vec3 h = ptSampleGgxAnisoVndf(o, ax, ay, u1, (float(b) + 0.5f) / float(strata));
+            const glm::vec3 l = h * (2.0f * glm::dot(o, h)) - o;
+            if (l.z > 0.0f) sum += weight * ptGgxAnisoG2(o, l, ax, ay) / g1;
         }
     }
     return sum / (double(strata) * double(strata));
@@ -147,6 +188,19 @@ AlbedoTables computeAlbedoTables(int strata) {
             t.msBins.push_back(float(total > 0.0 ? w[k] / total
                                                  : (double(2 * k + 1) / (kPtAlbedoMsBins * double(kPtAlbedoMsBins)))));
     }
+    for (uint32_t l = 0; l < kPtAlbedoAnisoStrength; ++l) {
+        const float strength = ptAlbedoNodeRough(l, kPtAlbedoAnisoStrength);
+        for (uint32_t k = 0; k < kPtAlbedoAnisoRough; ++k) {
+            const float r = ptAlbedoNodeRough(k, kPtAlbedoAnisoRough);
+            const size_t first = t.anisoMetal.size();
+            for (uint32_t j = 0; j < kPtAlbedoAnisoAz; ++j)
+                for (uint32_t i = 0; i < kPtAlbedoAnisoMu; ++i)
+                    t.anisoMetal.push_back(float(ggxAnisoReflectionAlbedo(ptAlbedoNodeMu(i, kPtAlbedoAnisoMu),
+                                                                          ptAlbedoNodeRough(j, kPtAlbedoAnisoAz), r,
+                                                                          strength, strata)));
+            t.anisoAvg.push_back(anisoCosineWeightedMean(&t.anisoMetal[first]));
+        }
+    }
     for (uint32_t side = 0; side < 2; ++side) {
         for (uint32_t k = 0; k < kPtAlbedoDielIor; ++k) {
             const float ior = ptAlbedoNodeIor(k, kPtAlbedoDielIor);
@@ -174,6 +228,8 @@ std::string albedoTablesHeader(const AlbedoTables& tables) {
     writeArray(out, "kPtAlbedoDielectric", tables.dielectric, offset);
     writeArray(out, "kPtAlbedoSheen", tables.sheen, offset);
     writeArray(out, "kPtAlbedoMsBinTable", tables.msBins, offset);
+    writeArray(out, "kPtAlbedoAnisoMetal", tables.anisoMetal, offset);
+    writeArray(out, "kPtAlbedoAnisoAvg", tables.anisoAvg, offset);
     out << "IDK_CONST(uint, kPtAlbedoTableFloats, " << offset << "u);  // all tables, packed in this order\n\n";
     out << "IDK_GPU_END\n\n#endif\n";
     return out.str();

@@ -11,6 +11,11 @@ namespace idk::pathtrace {
 // visible-normal samples (strata x strata cells) whose mirror direction is above the horizon.
 double ggxReflectionAlbedo(float mu, float roughness, int strata);
 
+// Albedo of the anisotropic GGX reflection (KHR_materials_anisotropy, F = 1) for the view at cos theta mu and
+// azimuth |cos phi| = q from the anisotropy direction, perceptual base roughness r and strength s (the alphas of
+// pt_anisotropy.h); the same quadrature as ggxReflectionAlbedo.
+double ggxAnisoReflectionAlbedo(float mu, float q, float roughness, float strength, int strata);
+
 // Reflection + refraction of a rough dielectric interface (white, energy: no eta^2 radiance factor) for light
 // leaving at mu on the side where the far medium has relative IOR eta (eta = ior outside, 1 / ior inside).
 double ggxDielectricAlbedo(float mu, float roughness, float eta, int strata);
@@ -24,6 +29,8 @@ struct AlbedoTables {
     std::vector<float> dielectric;  // [side][ior][r][mu]
     std::vector<float> sheen;       // [r][mu]
     std::vector<float> msBins;      // [r][bin]
+    std::vector<float> anisoMetal;  // [s][r][q][mu], kPtAlbedoAnisoStrength x Rough x Az x Mu
+    std::vector<float> anisoAvg;    // [s][r]
 };
 
 // Every table at its nodes (pt_albedo_layout.h). strata: the quadrature of each entry (the committed tables use

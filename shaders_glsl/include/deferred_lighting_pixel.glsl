@@ -10,6 +10,7 @@
 #include "surface_lighting.glsl"
 #include "vxgi_ambient.glsl"
 #include "ssr_specular.glsl"
+#include "gbuffer_anisotropy.glsl"
 
 // False for background pixels (depth 1: the sky writes them); else the radiance, alpha 1 (geometry).
 bool deferredLightingPixel(LightingPush p, GpuFrame f, ivec2 pixel, out vec4 result) {
@@ -42,10 +43,14 @@ bool deferredLightingPixel(LightingPush p, GpuFrame f, ivec2 pixel, out vec4 res
         uvec4 packed = imageLoad(gImagesRgba32ui[p.layers], pixel);
         vec4 scalars = unpackUnorm4x8(packed.x);
         vec4 specularColor = unpackUnorm4x8(packed.y);  // a: diffuseTransmissionTexture A
+        vec4 sheenColor = unpackUnorm4x8(packed.z);  // a: diffuseTransmissionColorTexture R
+        vec2 diffTransColorGB = unpackUnorm4x8(packed.w >> 16).xy;  // low 16 bits: the anisotropy direction
         LayerTexels t = LayerTexels(scalars.x, srgbDecode(specularColor.rgb), scalars.y, scalars.z,
-                                    srgbDecode(unpackUnorm4x8(packed.z).rgb), scalars.w, specularColor.a,
-                                    srgbDecode(unpackUnorm4x8(packed.w).rgb));
+                                    srgbDecode(sheenColor.rgb), scalars.w, specularColor.a,
+                                    srgbDecode(vec3(sheenColor.a, diffTransColorGB)));
         layers = texturedLayers(layers, t);
+        // KHR_materials_anisotropy: the direction the G-buffer stored (none: the isotropic lobe at the rms alpha).
+        if (layers.anisotropyStrength > 0.0) layers.anisotropyDirection = decodeAnisotropyDirection(packed.w & 0xFFFFu, n);
     }
     vec3 radiance = emissive.rgb;
     gShadowPixel = pixel;  // ray-traced shadows read their mask here (include/rt_shadows.glsl)

@@ -6,6 +6,7 @@
 #include "octahedral.glsl"
 #include "color.glsl"
 #include "material_eval.glsl"
+#include "gbuffer_anisotropy.glsl"
 
 layout(push_constant, scalar) uniform Push { GBufferPush p; };
 
@@ -24,8 +25,10 @@ layout(location = 3) out vec4 outEmissive;  // RGBA16F: emitted radiance, alpha:
 layout(location = 4) out float outDepth;    // R32F: the fragment's depth (what the depth test kept)
 // KHR_materials_specular / _clearcoat / _sheen texels of layered materials, for the lighting pass:
 // x = unorm8 (specular A, clearcoat R, clearcoatRoughness G, sheenRoughness A), y / z = sRGB-encoded unorm8
-// specularColor / sheenColor RGB, y.a = diffuseTransmissionTexture A, w = sRGB-encoded diffuseTransmissionColor
-// RGB. Discarded when the scene has no such texture (no attachment).
+// specularColor / sheenColor RGB, y.a = diffuseTransmissionTexture A, w = KHR_materials_anisotropy's direction in
+// its low 16 bits (gbuffer_anisotropy.glsl), and the sRGB-encoded diffuseTransmissionColor texel in z.a (R) and
+// w's high 16 bits (G, B). Discarded when the scene has neither such a texture nor an anisotropic material (no
+// attachment).
 layout(location = 5) out uvec4 outLayers;
 #ifdef GBUFFER_IDS
 layout(location = 6) out uvec2 outIds;      // RG32UI: the draw and its triangle (gl_PrimitiveID) of the kept fragment
@@ -70,6 +73,10 @@ void main() {
 
     outAlbedo = vec4(srgbEncode(baseColor.rgb), m.alphaMode == kAlphaOpaque ? 1.0 : baseColor.a);
     outNormal = packSnorm2x16(octEncode(n));
+    uint anisotropyWord = 0u;  // the direction the forward pass builds (withAnisotropyFrame), else none
+    if ((m.flags & kMaterialAnisotropy) != 0u && haveFrame)
+        anisotropyWord = encodeAnisotropyDirection(t * cos(m.anisotropyRotation) + b * sin(m.anisotropyRotation),
+                                                   octDecode(unpackSnorm2x16(outNormal)));
     outMaterial = vec4(clamp(m.metallicFactor * mr.b, 0.0, 1.0), clamp(m.roughnessFactor * mr.g, 0.0, 1.0),
                        1.0 + m.occlusionStrength * (ao - 1.0), (m.flags & kMaterialUnlit) != 0u ? 0.0 : 1.0);
     // Emissive alpha: 1 + the material index when the material uses a BSDF extension (the lighting pass reads its
@@ -78,10 +85,11 @@ void main() {
     bool layered = (m.flags & (kMaterialLayers | kMaterialAnisotropy | kMaterialDiffuseTransmission)) != 0u &&
                    materialIndex < 2047u;
     outEmissive = vec4(emissive, layered ? float(materialIndex + 1u) : 0.0);
+    vec3 diffTransColorEnc = srgbEncode(clamp(diffTransColorT, 0.0, 1.0));
     outLayers = uvec4(packUnorm4x8(vec4(specularT, coatT, coatRoughnessT, sheenRoughnessT)),
                       packUnorm4x8(vec4(srgbEncode(clamp(specularColorT, 0.0, 1.0)), diffTransT)),
-                      packUnorm4x8(vec4(srgbEncode(clamp(sheenColorT, 0.0, 1.0)), 0.0)),
-                      packUnorm4x8(vec4(srgbEncode(clamp(diffTransColorT, 0.0, 1.0)), 0.0)));
+                      packUnorm4x8(vec4(srgbEncode(clamp(sheenColorT, 0.0, 1.0)), diffTransColorEnc.r)),
+                      anisotropyWord | (packUnorm4x8(vec4(diffTransColorEnc.gb, 0.0, 0.0)) << 16));
     outDepth = gl_FragCoord.z;
 #ifdef GBUFFER_IDS
     outIds = uvec2(inDraw, uint(gl_PrimitiveID));

@@ -11,10 +11,12 @@
 // rough metal in a uniform environment reflects it all, as the path tracer's compensation makes it.
 // KHR_materials_anisotropy: the base's GGX D and V become the extension's anisotropic ones (shared/pt_anisotropy.h,
 // the path tracer's functions) in the frame of the anisotropy direction, which the forward pass builds from its
-// tangent frame (withAnisotropyFrame). The deferred G-buffer stores no tangent, so there (and wherever no
-// direction is known) an anisotropic material takes the isotropic lobe at the rms alpha sqrt((at^2 + ab^2) / 2),
-// the roughness the path tracer's energy compensation reads too. Ambient: the isotropic split-sum at the rms alpha
-// along the sample viewer's bent reflection vector (anisotropicReflection), an approximation of the lobe's shape.
+// tangent frame (withAnisotropyFrame) and the deferred pass reads back from the G-buffer (gbuffer_anisotropy.glsl);
+// wherever no direction is known an anisotropic material takes the isotropic lobe at the rms alpha sqrt((at^2 + ab^2) / 2),
+// the path tracer's sampling roughness too. Ambient: the isotropic split-sum at the rms alpha along the sample
+// viewer's bent reflection vector (anisotropicReflection), an approximation of the lobe's shape, scaled to the
+// anisotropic lobe's directional albedo E at the view's azimuth (shared/pt_energy.h's table, as the path tracer's
+// compensation) wherever the direction is known.
 // KHR_materials_diffuse_transmission, a thin-surface approximation: the diffuse term keeps 1 - diffuseTransmission
 // of its weight and a light behind the surface (n.l < 0) gives diffuseTransmission * diffuseTransmissionColor / pi
 // * (1 - max F_dielectric at the mirrored half vector) * |n.l|, the path tracer's lobe for that light
@@ -97,6 +99,18 @@ vec3 anisotropicReflection(SurfaceLayers s, vec3 n, vec3 v, float perceptualRoug
     a *= a;
     bent = normalize(mix(normalize(bent), n, a));
     return reflect(-v, bent);
+}
+
+// The F = 1 directional albedo E of the base layer's GGX towards v (perceptual roughness): the anisotropic table at
+// v's azimuth from the anisotropy direction, else the isotropic table (at the rms roughness when the material is
+// anisotropic but no direction is known).
+float baseLayerAlbedo(SurfaceLayers s, vec3 n, vec3 v, float perceptualRoughness) {
+    float NdotV = max(dot(n, v), 1e-4);
+    if (s.anisotropyStrength <= 0.0) return ptAlbedoMetal(NdotV, perceptualRoughness);
+    vec3 d = s.anisotropyDirection - n * dot(s.anisotropyDirection, n);
+    if (dot(d, d) < 1e-8) return ptAlbedoMetal(NdotV, anisotropicRoughness(s, perceptualRoughness));
+    vec3 t = normalize(d);
+    return ptAlbedoAnisoMetal(vec3(dot(v, t), dot(v, cross(n, t)), NdotV), perceptualRoughness, s.anisotropyStrength);
 }
 
 // D * V of the base layer's GGX: anisotropic in the frame of the anisotropy direction, else isotropic (at the rms
@@ -221,12 +235,14 @@ vec2 environmentBrdfAB(float perceptualRoughness, float NdotV) {
 
 // The ambient specular albedo of the base layer with the multiple-scattering compensation. The split-sum's
 // total A + B is the tabulated GGX albedo E of the path tracer (height-correlated Smith, the same lobe the direct
-// term uses), its split into the f0 and f90 parts the analytic fit's; times 1 + f0 (1 / E - 1).
-vec3 ambientSpecularAlbedo(SurfaceLayers s, vec3 baseColor, float metallic, float roughness, float NdotV) {
+// term uses; baseLayerAlbedo), its split into the f0 and f90 parts the analytic fit's (at the rms roughness when
+// anisotropic); times 1 + f0 (1 / E - 1). roughness: the material's perceptual roughness (clamped).
+vec3 ambientSpecularAlbedo(SurfaceLayers s, vec3 baseColor, float metallic, float roughness, vec3 n, vec3 v) {
+    float NdotV = max(dot(n, v), 1e-4);
     vec3 f0 = layeredF0(s, baseColor, metallic);
     float f90 = mix(s.specular, 1.0, metallic);
-    vec2 ab = environmentBrdfAB(roughness, NdotV);
-    float e = max(ptAlbedoMetal(NdotV, roughness), 0.05);
+    vec2 ab = environmentBrdfAB(anisotropicRoughness(s, roughness), NdotV);
+    float e = max(baseLayerAlbedo(s, n, v, roughness), 0.05);
     ab *= e / max(ab.x + ab.y, 1e-4);
     vec3 albedo = f0 * ab.x + f90 * ab.y;
     return albedo * (1.0 + f0 * (1.0 / e - 1.0));

@@ -16,9 +16,8 @@ vec3 ssrSpecularDelta(GpuFrame f, uint ssrImage, uint vxgiDiffuse, uint vxgiSpec
     if (ssrImage == kSsrNoImage) return vec3(0.0);
     vec4 reflected = imageLoad(gImagesRgba16f[ssrImage], pixel);
     if (reflected.a <= 0.0) return vec3(0.0);  // miss: the environment / VXGI term stays
-    float NdotV = max(dot(n, v), 1e-4);
     float r = clamp(roughness, kMinRoughness, 1.0);
-    vec3 specularAlbedo = ambientSpecularAlbedo(layers, baseColor, metallic, r, NdotV);
+    vec3 specularAlbedo = ambientSpecularAlbedo(layers, baseColor, metallic, r, n, v);
     vec3 fallback = environmentRadiance(f, reflect(-v, n), environmentLod(f, r));
     if (vxgiDiffuse != kNoVxgi && imageLoad(gImagesRgba16f[vxgiDiffuse], pixel).a > 0.0)
         fallback = imageLoad(gImagesRgba16f[vxgiSpecular], pixel).rgb;

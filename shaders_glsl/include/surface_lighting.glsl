@@ -12,7 +12,8 @@
 #include "rt_shadows.glsl"
 
 // The ambient light reflected towards v (before occlusion), from the irradiance E on n and the radiance arriving
-// along the reflection at the base layer's roughness (specular) and at the clearcoat's (coat). Specular: split-sum,
+// along the reflection at the base layer's roughness (specular) and at the clearcoat's (coat); roughness: the
+// material's perceptual roughness (anisotropic materials: ambientSpecularAlbedo takes their rms and E itself). Specular: split-sum,
 // the radiance times the directional albedo E_s = f0 A + f90 B with the multiple-scattering factor
 // (material_layers.glsl). Diffuse: c_diff / pi * E, weighted by (1 - E_s) as the direct term's (1 - F), so a white
 // surface in a constant environment reflects exactly the environment (the furnace test checks it). Sheen and
@@ -23,7 +24,7 @@ vec3 ambientReflected(SurfaceLayers layers, vec3 n, vec3 v, vec3 baseColor, floa
                       vec3 irradiance, vec3 specularRadiance, vec3 coatRadiance) {
     float NdotV = max(dot(n, v), 1e-4);
     float r = clamp(roughness, kMinRoughness, 1.0);
-    vec3 specularAlbedo = ambientSpecularAlbedo(layers, baseColor, metallic, r, NdotV);
+    vec3 specularAlbedo = ambientSpecularAlbedo(layers, baseColor, metallic, r, n, v);
     vec3 diffuse = (1.0 - clamp(specularAlbedo, 0.0, 1.0)) * baseColor * (1.0 - metallic) / kPi * irradiance;
     if ((layers.flags & kMaterialDiffuseTransmission) != 0u) diffuse *= 1.0 - layers.diffuseTransmission;
     vec3 ambient = diffuse + specularRadiance * specularAlbedo;
@@ -83,7 +84,7 @@ vec3 shadeSurface(GpuFrame f, uint64_t pointShadows, vec3 position, vec3 n, vec3
     // KHR_materials_anisotropy: the isotropic split-sum at the rms roughness along the bent reflection.
     float ambientRoughness = anisotropicRoughness(layers, roughness);
     vec3 rBase = anisotropicReflection(layers, n, v, clamp(roughness, kMinRoughness, 1.0));
-    vec3 ambient = ambientReflected(layers, n, v, baseColor, metallic, ambientRoughness, shIrradiance(f, n),
+    vec3 ambient = ambientReflected(layers, n, v, baseColor, metallic, roughness, shIrradiance(f, n),
                                     environmentRadiance(f, rBase,
                                                         environmentLod(f, clamp(ambientRoughness, kMinRoughness, 1.0))),
                                     environmentRadiance(f, r, environmentLod(f, cr)));

@@ -23,7 +23,7 @@ vec3 vxgiAmbientDelta(GpuFrame f, uint diffuseImage, uint specularImage, ivec2 p
     vec3 environmentSpecular =
         environmentRadiance(f, rBase, environmentLod(f, clamp(ambientRoughness, kMinRoughness, 1.0)));
     vec3 environmentCoat = environmentRadiance(f, r, environmentLod(f, cr));
-    return ambientReflected(layers, n, v, baseColor, metallic, ambientRoughness, traced.rgb - shIrradiance(f, n),
+    return ambientReflected(layers, n, v, baseColor, metallic, roughness, traced.rgb - shIrradiance(f, n),
                             tracedSpecular - environmentSpecular, tracedSpecular - environmentCoat) *
            occlusion;
 }

@@ -39,7 +39,7 @@ IDK_INLINE vec3 ptEvalLocal(PtBsdfFrame f, vec3 wi, float wiSide, IDK_OUT(float)
             float d = ptBaseD(f, h);
             base += ptSpecularFresnel(f, cosOH) * (d * ptBaseG2(f, wo, wi) / (4.0f * wo.z));
             pdf += f.pSpec * ptBaseG1(f, wo) * d / (4.0f * wo.z);
-            base += f.msColor * ((1.0f - ptAlbedoMetal(wi.z, f.roughness)) * wi.z);
+            base += f.msColor * ((1.0f - ptBaseAlbedo(f, wi)) * wi.z);
             if (f.pMs > 0.0f) pdf += f.pMs * ptMsPdf(wi.z, f.roughness);
         }
         value += base * f.layer;

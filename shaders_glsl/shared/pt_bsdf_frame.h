@@ -13,10 +13,13 @@
 //              1 - specular * max(F). Multiple scattering: pt_energy.h.
 //              KHR_materials_anisotropy: the GGX of the reflection and transmission lobes becomes anisotropic
 //              (pt_anisotropy.h) in a frame whose tangent is the anisotropy direction; the energy compensation
-//              reads the isotropic tables at the root-mean-square alpha sqrt((alpha_t^2 + alpha_b^2) / 2), the
-//              mean over azimuths of the alpha Smith's Lambda sees (an approximation: the tables hold no
-//              anisotropy; tests/unit/pathtrace/anisotropy_test.cpp measures the white furnace). Clearcoat and
-//              sheen stay isotropic.
+//              reads the anisotropic albedo table at the view's and the light's azimuth in that frame (pt_energy.h;
+//              white furnace in tests/unit/pathtrace/anisotropy_test.cpp); a thin-walled transmission is
+//              compensated by the same table (its lobes are the F = 1 reflection and its mirror image), a refracting
+//              volume still by the isotropic dielectric table at the rms alpha (there the furnace errs by up to
+//              ~14% at strength 1, grazing view: an anisotropic dielectric table is not built yet); the
+//              multiple-scattering lobe is sampled by the isotropic tables' density at the root-mean-square alpha
+//              sqrt((alpha_t^2 + alpha_b^2) / 2) (a sampling choice only). Clearcoat and sheen stay isotropic.
 //              KHR_materials_diffuse_transmission (pt_diffuse_transmission.h): the Lambert base splits into
 //              reflection (1 - diffuseTransmission) and a Lambert lobe through the surface tinted by the
 //              diffuseTransmissionColor, both beneath the dielectric Fresnel.
@@ -74,6 +77,9 @@ struct PtBsdfFrame {
     float diffTrans;       // diffuseTransmission factor, sanitised (0: the lobe is off)
     vec3 diffTransColor;   // diffuseTransmissionColor, sanitised
     float pDiffTrans;      // selection probability of the lobe (with the six above, sum 1)
+    // KHR_materials_anisotropy
+    float anisoRoughness;  // the material's perceptual roughness and anisotropy strength: the anisotropic table's
+    float anisoStrength;   // coordinates (pt_energy.h)
 };
 
 IDK_INLINE float ptCoatFresnel(float c) { return ptFresnelSchlick(vec3(0.04f), c).x; }
@@ -115,10 +121,15 @@ IDK_INLINE float ptBaseVndfPdf(PtBsdfFrame f, vec3 wo, vec3 h) {
     return f.aniso ? ptGgxAnisoVndfPdf(wo, h, f.alphaT, f.alphaB) : ptGgxVndfPdf(wo, h, f.alpha);
 }
 
+// The F = 1 albedo E of the base GGX lobe for a local direction: the multiple-scattering lobe's (1 - E) factors.
+IDK_INLINE float ptBaseAlbedo(PtBsdfFrame f, vec3 w) {
+    return f.aniso ? ptAlbedoAnisoMetal(w, f.anisoRoughness, f.anisoStrength) : ptAlbedoMetal(w.z, f.roughness);
+}
+
 // KHR_materials_anisotropy: alpha_t = mix(alpha, 1, strength^2), alpha_b = alpha, the frame's tangent turned to
 // the anisotropy direction (projected onto the shading normal's plane; the basis's own tangent when the surface
-// gives none), and the roughness the albedo tables read set to the root-mean-square alpha's (the mean over
-// azimuths of the projected alpha^2 that Lambda sees; closer in the white furnace than the geometric mean).
+// gives none), and f.roughness set to the root-mean-square alpha's (the mean over azimuths of the projected alpha^2
+// that Lambda sees), which only picks the multiple-scattering lobe's sampling density.
 IDK_INLINE void ptAnisotropySetup(PtSurface s, vec3 wo, IDK_INOUT(PtBsdfFrame) f) {
     f.aniso = false;
     f.alphaT = f.alpha;
@@ -133,6 +144,8 @@ IDK_INLINE void ptAnisotropySetup(PtSurface s, vec3 wo, IDK_INOUT(PtBsdfFrame) f
     f.transDelta = false;
     f.alphaT = alphaT;
     f.alphaB = max(alpha, kPtDeltaAlpha);
+    f.anisoRoughness = f.roughness;
+    f.anisoStrength = strength;
     f.alpha = sqrt(0.5f * (f.alphaT * f.alphaT + f.alphaB * f.alphaB));
     f.roughness = sqrt(f.alpha);
     vec3 d = ptFinite3(s.anisotropyDirection) ? s.anisotropyDirection : vec3(0.0f);
@@ -194,6 +207,8 @@ IDK_INLINE bool ptBsdfSetup(PtSurface s, vec3 wo, IDK_OUT(PtBsdfFrame) f) {
     f.aniso = false;
     f.alphaT = f.alpha;
     f.alphaB = f.alpha;
+    f.anisoRoughness = f.roughness;
+    f.anisoStrength = 0.0f;
     f.specular = ptSaturate(s.specular);
     f.clearcoat = ptSaturate(s.clearcoat);
     float coatRoughness = ptSaturate(s.clearcoatRoughness);
@@ -243,8 +258,8 @@ IDK_INLINE bool ptBsdfSetup(PtSurface s, vec3 wo, IDK_OUT(PtBsdfFrame) f) {
     // Energy compensation (pt_energy.h). Refraction: both single-scattering lobes of the transmitted part
     // scaled by 1 / E_dielectric (thin-walled: reflection + mirrored reflection = the F = 1 GGX albedo).
     if (!f.delta) {
-        float eMetal = ptAlbedoMetal(mu, f.roughness);
-        float eAvg = ptAlbedoMetalAvg(f.roughness);
+        float eMetal = ptBaseAlbedo(f, f.wo);
+        float eAvg = f.aniso ? ptAlbedoAnisoAvg(f.anisoRoughness, f.anisoStrength) : ptAlbedoMetalAvg(f.roughness);
         if (f.transmission > 0.0f && !f.transDelta) {
             float e = f.thick ? ptAlbedoDielectric(mu, f.roughness, ior, !outside) : eMetal;
             f.transScale = 1.0f / max(e, 0.05f);

@@ -6,6 +6,9 @@
 //   f_ms(o, i) = Fms (1 - E(mu_o)) (1 - E(mu_i)) / (pi (1 - Eavg)),  Fms = Favg^2 Eavg / (1 - Favg (1 - Eavg))
 // (exactly 1 - E(mu_o) more albedo for a white metal), and for refraction through a rough dielectric interface
 // the single-scattering lobes are scaled by 1 / E_dielectric(mu_o) (not reciprocal, as refraction is not).
+// KHR_materials_anisotropy: E(o) also depends on the view's azimuth in the anisotropy frame, and the same lobe with
+// the anisotropic table's E(o), E(i) and its hemispherical mean Eavg stays reciprocal and adds exactly 1 - E(o) for
+// a white metal (the integral of (1 - E(i)) cos / pi is 1 - Eavg for the interpolant the lookup reads).
 // The tables are constant arrays: lookups here are bilinear/trilinear by hand so C++ and GLSL agree. On a
 // discrete GPU a divergent index into a large constant array is served from local/constant memory one lane at a
 // time; there a 2D/3D texture with hardware filtering would be the choice (lavapipe gains nothing from it).
@@ -88,6 +91,47 @@ IDK_INLINE float ptAlbedoDielectric(float mu, float roughness, float ior, bool i
         e[dk] = mix(a, b, fy);
     }
     return mix(e[0], e[1], fz);
+}
+
+// KHR_materials_anisotropy: E(wo) of the anisotropic GGX with F = 1 for a local direction (x along the anisotropy
+// direction), perceptual base roughness and strength; quadrilinear in (mu, |cos phi|, roughness, strength).
+IDK_INLINE uint ptAlbedoAnisoIndex(uint l, uint k, uint j, uint i) {
+    return ((l * kPtAlbedoAnisoRough + k) * kPtAlbedoAnisoAz + j) * kPtAlbedoAnisoMu + i;
+}
+
+IDK_INLINE float ptAlbedoAnisoMetal(vec3 w, float roughness, float strength) {
+    float fx;
+    float fq;
+    float fr;
+    float fs;
+    float p2 = w.x * w.x + w.y * w.y;
+    float q = p2 > 1.0e-12f ? abs(w.x) * inversesqrt(p2) : 1.0f;  // at the pole every azimuth gives the same E
+    uint i = ptAlbedoCell(w.z, kPtAlbedoAnisoMu, fx);
+    uint j = ptAlbedoCell(q, kPtAlbedoAnisoAz, fq);
+    uint k = ptAlbedoCell(roughness, kPtAlbedoAnisoRough, fr);
+    uint l = ptAlbedoCell(strength, kPtAlbedoAnisoStrength, fs);
+    float e = 0.0f;
+    for (uint corner = 0u; corner < 4u; ++corner) {  // the four (r, s) corners, bilinear in (mu, q) at each
+        uint dk = corner & 1u;
+        uint dl = corner >> 1u;
+        uint base = ptAlbedoAnisoIndex(l + dl, k + dk, j, i);
+        float a = mix(IDK_ALBEDO(kPtAlbedoAnisoMetal, base), IDK_ALBEDO(kPtAlbedoAnisoMetal, base + 1u), fx);
+        float b = mix(IDK_ALBEDO(kPtAlbedoAnisoMetal, base + kPtAlbedoAnisoMu),
+                      IDK_ALBEDO(kPtAlbedoAnisoMetal, base + kPtAlbedoAnisoMu + 1u), fx);
+        e += mix(a, b, fq) * (dk == 1u ? fr : 1.0f - fr) * (dl == 1u ? fs : 1.0f - fs);
+    }
+    return e;
+}
+
+IDK_INLINE float ptAlbedoAnisoAvg(float roughness, float strength) {
+    float fr;
+    float fs;
+    uint k = ptAlbedoCell(roughness, kPtAlbedoAnisoRough, fr);
+    uint l = ptAlbedoCell(strength, kPtAlbedoAnisoStrength, fs);
+    uint a = l * kPtAlbedoAnisoRough + k;
+    uint b = a + kPtAlbedoAnisoRough;
+    return mix(mix(IDK_ALBEDO(kPtAlbedoAnisoAvg, a), IDK_ALBEDO(kPtAlbedoAnisoAvg, a + 1u), fr),
+               mix(IDK_ALBEDO(kPtAlbedoAnisoAvg, b), IDK_ALBEDO(kPtAlbedoAnisoAvg, b + 1u), fr), fs);
 }
 
 // The multiple-scattering lobe's sampling density, ~ (1 - E(mu)) mu like the lobe itself (a cosine density

@@ -3,14 +3,16 @@
 // D_GGX_anisotropic with f = (alpha_b T.H, alpha_t B.H, alpha_t alpha_b N.H) and V_GGX_anisotropic, written
 // differently from the BSDF's), at chosen angles; strength 0 leaves the isotropic BSDF bit for bit; the anisotropic
 // functions reduce to the isotropic ones at alpha_t = alpha_b; sampling agrees with evaluation (pdf, weight, and
-// the mean weight with a quadrature of f cos); reciprocity; and the white furnace of a rough anisotropic white
-// metal, whose energy compensation reads the isotropic tables at the mean roughness.
+// the mean weight with a quadrature of f cos); reciprocity; the anisotropic albedo table (shared/pt_energy.h) against
+// a quadrature of the specification's f cos and its hemispherical mean against the lookup's; and the white furnace
+// of rough anisotropic white metals and thin-walled dielectrics, compensated from that table.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <random>
 
+#include "pathtrace/albedo_integrator.hpp"
 #include "shared/pt_sampling.h"
 
 namespace idk::test {
@@ -62,8 +64,7 @@ TEST(PtAnisotropy, GgxByHand) {
     const glm::vec3 base(0.9f, 0.6f, 0.3f);
     const PtSurface s = metal(base, 0.5f, 0.6f, glm::vec3(t));
     const double alpha = 0.25, at = alpha + (1.0 - alpha) * 0.36, ab = alpha;
-    const double meanRoughness = std::sqrt(std::sqrt(0.5 * (at * at + ab * ab)));
-    const double eavg = ptAlbedoMetalAvg(float(meanRoughness));
+    const double eavg = ptAlbedoAnisoAvg(0.5f, 0.6f);
     int checked = 0;
     for (double cosO : {0.9, 0.5}) {
         for (double phiI : {0.7 + kPi, 0.7 + kPi / 2.0, 2.0}) {  // mirror plane along t, across it, in between
@@ -74,9 +75,9 @@ TEST(PtAnisotropy, GgxByHand) {
             const double m = std::pow(1.0 - glm::dot(wo, h), 5.0);
             const dvec3 F = dvec3(base) + (1.0 - dvec3(base)) * m;
             const dvec3 single = F * specD(t, b, n, h, at, ab) * specV(t, b, n, wo, wi, at, ab) * wi.z;
-            // Kulla-Conty term with the isotropic tables at the rms alpha (pt_energy.h, energy_test).
-            const double eo = ptAlbedoMetal(float(wo.z), float(meanRoughness));
-            const double ei = ptAlbedoMetal(float(wi.z), float(meanRoughness));
+            // Kulla-Conty term with the anisotropic table at wo's and wi's directions in the frame (t, b, n).
+            const double eo = ptAlbedoAnisoMetal(glm::vec3(glm::dot(wo, t), glm::dot(wo, b), wo.z), 0.5f, 0.6f);
+            const double ei = ptAlbedoAnisoMetal(glm::vec3(glm::dot(wi, t), glm::dot(wi, b), wi.z), 0.5f, 0.6f);
             const dvec3 favg = dvec3(base) + (1.0 - dvec3(base)) / 21.0;
             const dvec3 fms = favg * favg * eavg / (1.0 - favg * (1.0 - eavg));
             const dvec3 ms = fms * (1.0 - eo) * (1.0 - ei) / (kPi * (1.0 - eavg)) * wi.z;
@@ -245,48 +246,137 @@ TEST(PtAnisotropy, ReflectionIsReciprocal) {
     }
 }
 
-// White furnace of a white anisotropic metal: the single-scattering lobe is exact; the multiple-scattering lobe
-// reads the isotropic tables at the rms alpha, so the albedo is 1 only approximately: too high viewed along the
-// anisotropy direction, too low across it. Measured (40000 samples each, roughness 0.2..1, strength 0.25..1, four
-// view angles along and across): |albedo - 1| <= 1.2% for strength 0.25 at roughness >= 0.5 (the isotropic
-// tolerance is 1%), <= 18.4% at roughness >= 0.5 (strength 1, mu 0.15 across), and up to 25% for a smooth base
-// stretched to alpha_t = 1 (roughness 0.2, strength 1, mu 0.15 across); asserted with a little margin over those,
-// the worst printed.
-// Mean sampling weight (= albedo); the lobes here are too narrow across the anisotropy for a quadrature grid.
-double sampledAlbedo(const PtSurface& s, glm::vec3 wo, std::mt19937& gen) {
+// The anisotropic albedo table against a direct quadrature of the specification's D V (n.l) over the light's
+// hemisphere (midpoint rule in cos theta and phi, double), at points between the table's nodes and moderately rough
+// lobes (a grid resolves them): the integrator's entries and the quadrilinear lookup both within 1%.
+TEST(PtAnisotropyAlbedo, TableMatchesQuadratureOfTheSpecificationBrdf) {
+    const dvec3 t(1.0, 0.0, 0.0), b(0.0, 1.0, 0.0), n(0.0, 0.0, 1.0);
+    int checked = 0;
+    for (float r : {0.45f, 0.8f}) {
+        for (float strength : {0.35f, 0.9f}) {
+            for (float q : {0.3f, 0.85f}) {
+                for (float mu : {0.25f, 0.6f, 0.95f}) {
+                    const double alpha = double(r) * r;
+                    const double at = alpha + (1.0 - alpha) * double(strength) * strength, ab = alpha;
+                    const double so = std::sqrt(1.0 - double(mu) * mu);
+                    const dvec3 v(so * q, so * std::sqrt(1.0 - double(q) * q), mu);
+                    const int nt = 600, np = 600;
+                    double sum = 0.0;
+                    for (int i = 0; i < nt; ++i) {
+                        const double c = (i + 0.5) / nt;
+                        for (int j = 0; j < np; ++j) {
+                            const dvec3 l = dir(c, 2.0 * kPi * (j + 0.5) / np);
+                            const dvec3 h = glm::normalize(v + l);
+                            sum += specD(t, b, n, h, at, ab) * specV(t, b, n, v, l, at, ab) * c;
+                        }
+                    }
+                    const double expected = sum * 2.0 * kPi / (double(nt) * np);
+                    const double integrated = pathtrace::ggxAnisoReflectionAlbedo(mu, q, r, strength, 48);
+                    const double looked = ptAlbedoAnisoMetal(glm::vec3(v), r, strength);
+                    EXPECT_NEAR(integrated, expected, 0.01 * expected) << r << " " << strength << " " << q << " " << mu;
+                    EXPECT_NEAR(looked, expected, 0.01 * expected) << r << " " << strength << " " << q << " " << mu;
+                    ++checked;
+                }
+            }
+        }
+    }
+    EXPECT_EQ(checked, 24);
+}
+
+// Eavg (what makes the multiple-scattering lobe add exactly 1 - E(wo)) equals the hemispherical mean of E cos / pi
+// of the lookup itself, integrated here on a fine midpoint grid, at nodes and between them; and at strength 0 the
+// anisotropic table is the isotropic integrator's albedo (same lobe).
+TEST(PtAnisotropyAlbedo, AverageIsTheLookupsHemisphericalMean) {
+    for (float r : {0.0f, 0.3f, 0.6f, 1.0f}) {
+        for (float strength : {0.0f, 0.5f, 0.77f, 1.0f}) {
+            const int nt = 400, np = 200;
+            double sum = 0.0;
+            for (int i = 0; i < nt; ++i) {
+                const double c = (i + 0.5) / nt;
+                for (int j = 0; j < np; ++j)
+                    sum += ptAlbedoAnisoMetal(glm::vec3(dir(c, 0.5 * kPi * (j + 0.5) / np)), r, strength) * c;
+            }
+            const double mean = 2.0 * sum / (double(nt) * np);  // (1 / pi) * 4 quarter-hemispheres * (pi / 2) / np
+            EXPECT_NEAR(ptAlbedoAnisoAvg(r, strength), mean, 2e-4) << r << " " << strength;
+        }
+    }
+    for (uint32_t k = 0; k < kPtAlbedoAnisoRough; k += 3) {
+        const float r = ptAlbedoNodeRough(k, kPtAlbedoAnisoRough);
+        for (float mu : {0.1f, 0.5f, 0.9f})
+            EXPECT_NEAR(ptAlbedoAnisoMetal(glm::vec3(dir(mu, 0.3)), r, 0.0f), pathtrace::ggxReflectionAlbedo(mu, r, 48), 2e-3)
+                << r << " " << mu;
+    }
+}
+
+// White furnace of white anisotropic surfaces (mean sampling weight = albedo, the lobes are too narrow across the
+// anisotropy for a quadrature grid): a grid of roughness 0..1 x strength 0..1 x anisotropy rotation against the
+// view x four view angles. Metal and thin-walled dielectric are compensated from the anisotropic table: both within
+// 1% of 1, like the isotropic furnace (measured: metal 0.30%, thin 0.31%; with the isotropic tables at the
+// rms roughness, before the table, 40000 independent samples: metal 25.3%, thin 32.8%, at roughness 0.25, strength 1, viewed across the
+// direction at mu 0.15). A refracting volume still reads the isotropic dielectric table at the rms roughness:
+// its error is printed and bounded, not held to 1%.
+// The uniforms are a Halton sequence (bases 2, 3, 5) rotated by a random shift per configuration (Cranley-Patterson,
+// unbiased): ~10x less error than independent samples at equal count, so the grid fits in a few seconds.
+float radicalInverse(uint32_t i, uint32_t base) {
+    double inv = 1.0 / base, f = inv, r = 0.0;
+    for (; i > 0; i /= base, f *= inv) r += f * double(i % base);
+    return float(r);
+}
+
+double sampledAlbedo(const PtSurface& s, glm::vec3 wo, std::mt19937& gen, int n) {
     std::uniform_real_distribution<float> uni(0.0f, 1.0f);
-    const int n = 40000;
+    const glm::vec3 shift(uni(gen), uni(gen), uni(gen));
     double sum = 0.0;
     for (int i = 0; i < n; ++i) {
         glm::vec3 wi, weight;
         float pdf;
         uint lobe;
-        ptSampleBsdf(s, wo, glm::vec3(uni(gen), uni(gen), uni(gen)), wi, weight, pdf, lobe);
-        if (lobe != kPtLobeNone) sum += weight.y;
+        glm::vec3 u = glm::fract(glm::vec3(radicalInverse(uint32_t(i), 2), radicalInverse(uint32_t(i), 3),
+                                           radicalInverse(uint32_t(i), 5)) + shift);
+        ptSampleBsdf(s, wo, glm::min(u, glm::vec3(0.99999994f)), wi, weight, pdf, lobe);
+        if (lobe == kPtLobeNone) continue;
+        double w = weight.y;
+        if (s.thickness > 0.0f && wi.z < 0.0f) w *= double(s.ior) * s.ior;  // energy, not radiance, through the volume
+        sum += w;
     }
     return sum / n;
 }
 
-TEST(PtAnisotropy, WhiteFurnaceRoughAnisotropicMetal) {
+double worstFurnace(float metallic, float thickness, double tolerance, int samples) {
     std::mt19937 gen(3);
     double worst = 0.0;
-    for (float r : {0.2f, 0.5f, 0.8f, 1.0f}) {
-        for (float strength : {0.25f, 0.6f, 1.0f}) {
-            for (float mu : {0.95f, 0.7f, 0.4f, 0.15f}) {
-                PtSurface s = metal(glm::vec3(1.0f), r, strength, glm::vec3(1.0f, 0.0f, 0.0f));
-                for (float phi : {0.0f, 1.5707963f}) {
-                    const glm::vec3 wo(std::sqrt(1.0f - mu * mu) * std::cos(phi),
-                                       std::sqrt(1.0f - mu * mu) * std::sin(phi), mu);
-                    const double albedo = sampledAlbedo(s, wo, gen);
-                    const double tolerance = r < 0.5f ? 0.26 : (strength <= 0.25f ? 0.015 : 0.2);
-                    EXPECT_NEAR(albedo, 1.0, tolerance) << "roughness " << r << " strength " << strength << " mu " << mu
-                                                   << " phi " << phi;
+    for (float r : {0.0f, 0.25f, 0.5f, 0.75f, 1.0f}) {
+        for (float strength : {0.0f, 0.25f, 0.5f, 0.75f, 1.0f}) {
+            for (float rotation : {0.0f, 0.6f, 1.5707963f}) {
+                PtSurface s = metal(glm::vec3(1.0f), r, strength, glm::vec3(std::cos(rotation), std::sin(rotation), 0.0f));
+                s.metallic = metallic;
+                s.transmission = 1.0f - metallic;
+                s.thickness = thickness;
+                for (float mu : {0.95f, 0.7f, 0.4f, 0.15f}) {
+                    const double albedo = sampledAlbedo(s, glm::vec3(std::sqrt(1.0f - mu * mu), 0.0f, mu), gen, samples);
+                    EXPECT_NEAR(albedo, 1.0, tolerance) << "metallic " << metallic << " thickness " << thickness
+                                                        << " roughness " << r << " strength " << strength
+                                                        << " rotation " << rotation << " mu " << mu;
                     worst = std::max(worst, std::abs(albedo - 1.0));
                 }
             }
         }
     }
-    std::printf("anisotropic white furnace worst |albedo - 1| %.4f\n", worst);
+    return worst;
+}
+
+TEST(PtAnisotropy, WhiteFurnaceRoughAnisotropicMetal) {
+    std::printf("anisotropic white furnace, metal: worst |albedo - 1| %.4f\n", worstFurnace(1.0f, 0.0f, 0.01, 8000));
+}
+
+TEST(PtAnisotropy, WhiteFurnaceRoughAnisotropicThinDielectric) {
+    std::printf("anisotropic white furnace, thin-walled dielectric: worst |albedo - 1| %.4f\n",
+                worstFurnace(0.0f, 0.0f, 0.01, 8000));
+}
+
+TEST(PtAnisotropy, WhiteFurnaceRoughAnisotropicGlassIsBounded) {
+    std::printf("anisotropic white furnace, glass (isotropic dielectric table at the rms roughness): worst "
+                "|albedo - 1| %.4f\n", worstFurnace(0.0f, 1.0f, 0.16, 4000));
 }
 
 }  // namespace

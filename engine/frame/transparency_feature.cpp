@@ -17,7 +17,7 @@ void TransparencyFeature::addPasses(FrameContext& f, const render::GpuScene& sce
     const vk::Buffer& sorted = draws_->sort(f.slot, scene.data(), f.camera.position);
     passes::TransparencyInputs t{f.scene,    importBuffer(f.graph, "sorted blend draws", sorted),
                                  draws_->count(), f.frameConstants, f.gbuffer.depth, f.environment,
-                                 f.pointShadows};
+                                 f.pointShadows, f.vxgiCones};
     switch (f.settings.oit) {
         case render::OitMode::Weighted:
             f.hdr = passes::addWeightedOitPasses(f.graph, f.ctx, f.shaders, t, f.hdr, &f.log);

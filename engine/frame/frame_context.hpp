@@ -66,6 +66,7 @@ struct FrameContext {
     graph::TextureHandle voxelGrid;                // VXGI: RGBA16F radiance + coverage grid (vxgi_feature.hpp)
     passes::VoxelGridBox voxelBox;                 // its world cube
     passes::IndirectLightImages indirectLight;     // VXGI cone-traced light per pixel (deferred lighting reads it)
+    passes::ForwardVxgiInputs vxgiCones;           // VXGI cone parameters + volumes for forward passes (transparency)
     bool temporalStatic = false;                   // nothing moved or changed since last frame (temporal history)
     graph::TextureHandle reflections;              // SSR: RGBA16F reflected radiance + hit weight (ssr_feature.hpp)
 };

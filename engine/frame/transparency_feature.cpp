@@ -17,7 +17,7 @@ void TransparencyFeature::addPasses(FrameContext& f, const render::GpuScene& sce
     const vk::Buffer& sorted = draws_->sort(f.slot, scene.data(), f.camera.position);
     passes::TransparencyInputs t{f.scene,    importBuffer(f.graph, "sorted blend draws", sorted),
                                  draws_->count(), f.frameConstants, f.gbuffer.depth, f.environment,
-                                 f.pointShadows};
+                                 f.pointShadows, {}};
     switch (f.settings.oit) {
         case render::OitMode::Weighted:
             f.hdr = passes::addWeightedOitPasses(f.graph, f.ctx, f.shaders, t, f.hdr, &f.log);
@@ -26,6 +26,9 @@ void TransparencyFeature::addPasses(FrameContext& f, const render::GpuScene& sce
             f.hdr = passes::addLayeredOitPasses(f.graph, f.ctx, f.shaders, t, f.hdr, &f.log);
             break;
         case render::OitMode::Sorted:
+            // --gi vxgi: the fragments inside the grid trace cones (the OIT rungs keep the SH ambient, see
+            // transparency/forward_body.h).
+            t.vxgi = f.vxgiCones;
             f.hdr = passes::addTransparencyPass(f.graph, f.ctx, f.shaders, t, f.hdr, &f.log);
             break;
     }

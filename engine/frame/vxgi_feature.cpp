@@ -3,9 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
+#include "frame/frame_inputs.hpp"
 #include "render/draw_bounds.hpp"
+#include "shared/vxgi_types.h"
 #include "vk/check.hpp"
+#include "vk/transfer.hpp"
 
 namespace idk::frame {
 
@@ -36,6 +40,10 @@ VxgiFeature::~VxgiFeature() { release(); }
 
 void VxgiFeature::release() {
     gl_.reset();
+    for (vk::StorageBufferIndex i : coneParamsIndex_) ctx_.bindless().release(i);
+    for (vk::Buffer& b : coneParams_) ctx_.destroy(b);
+    coneParamsIndex_.clear();
+    coneParams_.clear();
     if (!grid_.image.image) return;
     grid_.release(ctx_);
     for (VoxelVolume& d : directions_) d.release(ctx_);
@@ -135,6 +143,36 @@ void VxgiFeature::addConeTracing(FrameContext& f) {
     in.halfResolution = f.settings.vxgi.resolution == GiResolution::Half;
     in.mipped = &mipped_;
     f.indirectLight = passes::addConeTracePasses(f.graph, f.ctx, f.shaders, in);
+
+    // The same parameters for forward passes (transparent surfaces trace per fragment), in this frame slot's
+    // host-visible buffer: the frame ring has waited until the GPU finished the slot's previous frame.
+    if (coneParams_.empty()) {
+        for (uint32_t i = 0; i < f.framesInFlight; ++i) {
+            vk::BufferDesc desc;
+            desc.size = sizeof(gpu::VxgiConeParams);
+            desc.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+            desc.memory = vk::MemoryUsage::Upload;
+            desc.name = "vxgi cone parameters " + std::to_string(i);
+            desc.category = "frame constants";
+            coneParams_.push_back(ctx_.createBuffer(desc));
+            coneParamsIndex_.push_back(ctx_.bindless().addBuffer(coneParams_.back().buffer));
+        }
+    }
+    gpu::VxgiConeParams c{};
+    c.gridMin = box_.gridMin;
+    c.voxelSize = box_.voxelSize;
+    c.gridSize = box_.size;
+    c.maxLod = float(directions_[0].levelStorage.size() - 1);
+    c.stepFactor = in.stepFactor;
+    c.ringCones = in.ringCones;
+    for (uint32_t d = 0; d < 6; ++d) c.directions[d] = in.directionSampled[d];
+    c.gridSampler = in.gridSampler;
+    const uint32_t slot = f.slot % uint32_t(coneParams_.size());
+    vk::uploadBuffer(ctx_, coneParams_[slot], &c, sizeof(c));
+    f.vxgiCones.params = importBuffer(f.graph, "vxgi cone parameters", coneParams_[slot]);
+    f.vxgiCones.paramsIndex = coneParamsIndex_[slot].value;
+    f.vxgiCones.volumes = mipped_;
+    f.vxgiCones.grid = f.voxelGrid;
 }
 
 void VxgiFeature::addDebugView(FrameContext& f) {

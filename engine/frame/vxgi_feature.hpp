@@ -1,7 +1,8 @@
 // vxgi_feature.hpp: voxel global illumination. Owns the persistent RGBA16F voxel grid and its six directional mip
 // volumes (created only while --gi vxgi is on, re-created when the size changes) whose cube fits the scene's
 // bounds; adds the voxelization passes before the G-buffer and the mip + cone-tracing passes after it
-// (passes/vxgi_passes.hpp); fills FrameContext::voxelGrid / voxelBox / indirectLight. Ports IDKEngine's
+// (passes/vxgi_passes.hpp); fills FrameContext::voxelGrid / voxelBox / indirectLight / vxgiCones (the cone
+// parameters for the forward pass of transparent surfaces, written once per frame). Ports IDKEngine's
 // VXGI/Voxelizer.cs (its grid box is set by hand or follows the camera; here it fits the scene or follows the camera
 // in quantised steps, --gi-grid).
 #pragma once
@@ -65,6 +66,9 @@ private:
     graph::TextureHandle directionHandles_[6];  // this frame's imports
     std::array<graph::TextureHandle, 6> mipped_;  // this frame's directional volumes after the mip passes
     std::unique_ptr<passes::VxgiGlAccumulator> gl_;  // "vxgi-atomics" gl-interop rung only
+    // The cone parameters for forward passes (gpu::VxgiConeParams), one host-visible buffer per frame in flight.
+    std::vector<vk::Buffer> coneParams_;
+    std::vector<vk::StorageBufferIndex> coneParamsIndex_;
 };
 
 }  // namespace idk::frame

@@ -3,6 +3,8 @@
 #pragma once
 #include <glm/glm.hpp>
 
+#include <array>
+
 #include <string>
 #include <string_view>
 #include <vector>
@@ -185,6 +187,17 @@ graph::TextureHandle addSkyPass(graph::RenderGraph& graph, vk::Context& ctx, vk:
 
 // transparency.cpp: BLEND draws back to front (render/blend_draws.hpp), forward-shaded and "over"-blended into
 // the HDR `target` after sky, depth-tested against the G-buffer depth; returns the target's new version.
+// --gi vxgi in the forward pass: the cone parameters' buffer (one gpu::VxgiConeParams, written by
+// frame/vxgi_feature.cpp) and the directional volumes its cones sample; `params` invalid: GI off (the SH ambient).
+struct ForwardVxgiInputs {
+    graph::BufferHandle params;
+    uint32_t paramsIndex = 0xFFFFFFFFu;  // its bindless storage-buffer index
+    std::array<graph::TextureHandle, 6> volumes;
+    // The grid itself: the cones do not sample it, but a draw that uses the bindless 3D array counts for the
+    // synchronization validation layer as reading every 3D image in it, so its next write must wait for this pass.
+    graph::TextureHandle grid;
+};
+
 struct TransparencyInputs {
     SceneBuffers scene;
     graph::BufferHandle sortedDraws;  // the frame's back-to-front commands (firstInstance = instance)
@@ -193,6 +206,7 @@ struct TransparencyInputs {
     graph::TextureHandle depth;        // GBufferOutputs::depth
     graph::TextureHandle environment;
     PointShadowOutputs shadows;
+    ForwardVxgiInputs vxgi;
 };
 graph::TextureHandle addTransparencyPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                          const TransparencyInputs& inputs, graph::TextureHandle target,

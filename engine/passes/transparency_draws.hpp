@@ -5,6 +5,7 @@
 #include "passes/indirect_draw.hpp"
 #include "passes/passes.hpp"
 #include "shared/shadow_types.h"
+#include "shared/vxgi_types.h"
 
 namespace idk::passes {
 
@@ -29,6 +30,11 @@ inline void readTransparencyInputs(graph::PassBuilder& b, const TransparencyInpu
         b.read(t.shadows.table, graph::Access::StorageRead, kFs);
         for (graph::TextureHandle cube : t.shadows.cubes) b.read(cube, graph::Access::SampledRead, kFs);
     }
+    if (t.vxgi.params.valid()) {  // --gi vxgi: the fragments trace cones through the directional volumes
+        b.read(t.vxgi.params, graph::Access::StorageRead, kFs);
+        for (graph::TextureHandle v : t.vxgi.volumes) b.read(v, graph::Access::SampledRead, kFs);
+        b.read(t.vxgi.grid, graph::Access::SampledRead, kFs);
+    }
 }
 
 inline gpu::TransparencyPush transparencyPush(graph::PassContext& pc, const TransparencyInputs& t) {
@@ -43,6 +49,7 @@ inline gpu::TransparencyPush transparencyPush(graph::PassContext& pc, const Tran
     push.uv1 = s.uv1.valid() ? pc.buffer(s.uv1).address : 0;
     push.pointShadows = t.shadows.table.valid() ? pc.buffer(t.shadows.table).address : 0;
     push.depth = pc.texture(t.depth).storageIndex;
+    push.vxgiCones = t.vxgi.params.valid() ? t.vxgi.paramsIndex : gpu::kNoVxgi;
     return push;
 }
 

@@ -1,6 +1,8 @@
 // cone_trace.glsl: marching one cone through the voxel grid's mip chain (the march, level choice and compositing
-// are shared/vxgi_cone.h, which the CPU cone tracer compiles too; here only the fetches), and the sky seen through
-// what the cone leaves transparent. Ports IDKEngine's include/TraceCone.glsl without its GIBoost / GISkyBoxBoost.
+// are shared/vxgi_cone.h, which the CPU cone tracer compiles too; here only the fetches), the sky seen through
+// what the cone leaves transparent, and the cone set of one receiver (diffuse irradiance, specular radiance), shared
+// by the G-buffer pass (vxgi/cone_trace.comp) and the forward pass of transparent surfaces
+// (transparency/forward_body.h). Ports IDKEngine's include/TraceCone.glsl without its GIBoost / GISkyBoxBoost.
 #ifndef IDK_CONE_TRACE_GLSL
 #define IDK_CONE_TRACE_GLSL
 #include "bindless.glsl"
@@ -8,12 +10,12 @@
 #include "vxgi_types.h"
 #include "vxgi_cone.h"
 
-vec4 sampleVolume(ConeTracePush c, uint volume, vec3 uvw, float lod) {
+vec4 sampleVolume(VxgiConeParams c, uint volume, vec3 uvw, float lod) {
     return textureLod(sampler3D(gTextures3D[nonuniformEXT(volume)], gSamplers[nonuniformEXT(c.gridSampler)]), uvw, lod);
 }
 
 // The grid seen along `dir` at `lod` (grid levels: level L of the directional volumes).
-vec4 sampleVoxels(ConeTracePush c, vec3 uvw, vec3 dir, float lod) {
+vec4 sampleVoxels(VxgiConeParams c, vec3 uvw, vec3 dir, float lod) {
     vec4 sx = sampleVolume(c, c.directions[vxgiDirectionIndex(dir, 0u)], uvw, lod);
     vec4 sy = sampleVolume(c, c.directions[vxgiDirectionIndex(dir, 1u)], uvw, lod);
     vec4 sz = sampleVolume(c, c.directions[vxgiDirectionIndex(dir, 2u)], uvw, lod);
@@ -22,7 +24,7 @@ vec4 sampleVoxels(ConeTracePush c, vec3 uvw, vec3 dir, float lod) {
 
 // Radiance arriving at the receiver `origin` (geometric normal `plane`) through the cone (unit axis `dir`, tangent
 // of its half-angle `tanHalf`).
-vec3 traceCone(GpuFrame f, ConeTracePush c, vec3 origin, vec3 plane, vec3 dir, float tanHalf) {
+vec3 traceCone(GpuFrame f, VxgiConeParams c, vec3 origin, vec3 plane, vec3 dir, float tanHalf) {
     VxgiMarch m = vxgiMarchBegin(origin, plane, dir, tanHalf, c.voxelSize);
     while (vxgiMarchNext(m, c.gridMin, c.voxelSize, c.gridSize, c.maxLod))
         vxgiMarchTake(m, sampleVoxels(c, m.uvw, dir, m.lod), c.stepFactor);
@@ -30,6 +32,38 @@ vec3 traceCone(GpuFrame f, ConeTracePush c, vec3 origin, vec3 plane, vec3 dir, f
     float texels = 2.0 * atan(tanHalf) * f.environmentWidth / 6.28318530717959;
     float skyLod = clamp(log2(max(texels, 1.0)), 0.0, f.environmentMaxLod);
     return m.radiance + (1.0 - m.opacity) * environmentRadiance(f, dir, skyLod);
+}
+
+// Whether `position` lies inside the grid (outside it the SH ambient stays).
+bool insideVoxelGrid(VxgiConeParams c, vec3 position) {
+    vec3 g = (position - c.gridMin) / (c.voxelSize * float(c.gridSize));
+    return all(greaterThanEqual(g, vec3(0.0))) && all(lessThanEqual(g, vec3(1.0)));
+}
+
+// Irradiance E at `position` (geometric normal `plane`, shading normal `n`) from the cosine-weighted cone set: one
+// cap cone along n (polar angles 0..30 degrees, 1/4 of the cosine-weighted hemisphere) and c.ringCones cones evenly
+// in azimuth at 52.2 degrees (the cosine-weighted median of the 30..90 degree ring, which holds the other 3/4);
+// returns E / pi = sum(w_i L_i), the cosine-weighted mean radiance.
+vec3 traceMeanRadiance(GpuFrame f, VxgiConeParams c, vec3 position, vec3 plane, vec3 n) {
+    vec3 t, b;
+    vxgiTangents(n, t, b);
+    vec3 e = 0.25 * traceCone(f, c, position, plane, n, kVxgiCapTan);
+    float ringTan = vxgiRingTan(c.ringCones);
+    for (uint i = 0; i < c.ringCones; ++i)
+        e += (0.75 / float(c.ringCones)) *
+             traceCone(f, c, position, plane, vxgiRingDirection(i, c.ringCones, n, t, b), ringTan);
+    return e;
+}
+
+// Radiance along the reflection of `v` about n through the specular cone of `roughness` (its half-angle the GGX
+// lobe's up to 0.5 rad), blended towards the diffuse set's E / pi (`meanRadiance`) for wider lobes
+// (vxgiSpecularCone).
+vec3 traceSpecular(GpuFrame f, VxgiConeParams c, vec3 position, vec3 plane, vec3 n, vec3 v, float roughness,
+                   vec3 meanRadiance) {
+    float specularTan;
+    float toDiffuse = vxgiSpecularCone(roughness, specularTan);
+    vec3 spec = toDiffuse < 1.0 ? traceCone(f, c, position, plane, reflect(-v, n), specularTan) : vec3(0.0);
+    return mix(spec, meanRadiance, toDiffuse);
 }
 
 #endif

@@ -79,7 +79,8 @@ struct TransparencyPush {
     DeviceAddress uv1;           // 0 when absent
     DeviceAddress pointShadows;  // GpuPointShadow[lightCount] or 0 (no shadow-casting light)
     uint depth;                  // R32F storage image: the G-buffer depth (the opaque surfaces, 1 = sky)
-    uint pad;
+    uint vxgiCones;              // --gi vxgi: bindless storage buffer of one VxgiConeParams (vxgi_types.h): the
+                                 // fragments inside the grid trace cones; kNoVxgi (0xFFFFFFFF): the SH ambient
 };
 IDK_GPU_SIZE(TransparencyPush, 72);
 

@@ -172,6 +172,12 @@ IDK_INLINE vec4 vxgiCombine(vec3 dir, vec4 sx, vec4 sy, vec4 sz) {
 // room's dark half then got 24% of the lit half's light instead of 5%). So a surface also covers
 // kVxgiEdgeOpacity of the part it does not face, standing for the rays that cross its plane at grazing angles
 // inside the voxel, which meet either side equally: they show the mean of both sides' radiance.
+// Measured (Cornell box 128x128, indirect rel. L1 vs the depth-3 path tracer at 64/128/256^3 voxels; closed room
+// mean error; split room dark / lit): edge 0.5: 0.451/0.450/0.502, +7.4%, 0.063. Edge 0.25: 0.439/0.439/0.497,
+// +9.5%, 0.095. Edge 0: 0.417/0.412/0.486, +10.3%, 0.236. Isotropic level 0 (opacity 1 from every side):
+// 0.455/0.452/0.506. The edge only trades the Cornell box against the room and the wall. The Cornell error comes
+// from elsewhere: 1 + 5 cones resolve the point light's hot spot on the ceiling 1 cm above it badly (1 + 12 cones:
+// 0.418/0.416/0.471).
 IDK_INLINE vec4 vxgiVoxelTowards(vec4 voxel, vec4 facing, uint k) {
     uint axis = k / 2u;
     float s = axis == 0u ? facing.x : (axis == 1u ? facing.y : facing.z);

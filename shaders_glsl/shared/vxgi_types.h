@@ -89,6 +89,23 @@ struct VoxelMipPush {
 };
 IDK_GPU_SIZE(VoxelMipPush, 56);
 
+// The cone tracer's parameters (include/cone_trace.glsl). The G-buffer pass has them in its push block
+// (ConeTracePush); the forward pass of transparent surfaces (transparency/forward_body.h), whose push block has no
+// room left, reads them from a small storage buffer the VXGI feature writes once per frame (its bindless index in
+// TransparencyPush::vxgiCones).
+struct VxgiConeParams {
+    vec3 gridMin;
+    float voxelSize;
+    uint gridSize;
+    float maxLod;          // the directional volumes' top level (log2 gridSize)
+    float stepFactor;      // march step = sample diameter * stepFactor
+    uint ringCones;        // diffuse cones around the normal's cap cone
+    uint directions[6];    // sampled indices of the directional volumes (+x -x +y -y +z -z), levels 0..maxLod
+    uint gridSampler;      // trilinear, clamp to edge
+    uint pad;
+};
+IDK_GPU_SIZE(VxgiConeParams, 64);
+
 IDK_CONST(uint, kConeGroupSize, 8u);   // cone_trace: 8x8 pixels
 IDK_CONST(uint, kNoVxgi, 0xFFFFFFFFu); // LightingPush::vxgiDiffuse when GI is off
 

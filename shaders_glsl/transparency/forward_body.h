@@ -1,12 +1,24 @@
 // forward_body.h (GLSL include): body of transparency/forward.frag and oit/weighted.frag: forward shading of BLEND materials over the lit opaque image: the material as the G-buffer
 // samples it, the same lights, point shadows and environment ambient as deferred lighting (surface_lighting.glsl),
 // output (radiance, alpha) for "over" blending. Depth-tested against the G-buffer's depth copy without writing.
+// With --gi vxgi, the sorted rung's fragments inside the voxel grid trace the cone set themselves (include/cone_trace.glsl, the
+// parameters from the VXGI feature's buffer, TransparencyPush::vxgiCones) in place of the SH ambient, as deferred
+// lighting does with the G-buffer pass's traced images (vxgi_ambient.glsl).
 // Ports IDKEngine's RecordTransparent/fragment.glsl, sorted back to front instead of its k-buffer (reference 2.14).
 #extension GL_GOOGLE_include_directive : require
 #include "scene_buffers.glsl"
 #include "bindless.glsl"
 #include "material_eval.glsl"
 #include "surface_lighting.glsl"
+#ifdef IDK_FORWARD_VXGI
+// Only the sorted rung (transparency/forward.frag) traces cones: a draw whose shader uses the bindless 3D array
+// counts for the synchronization validation layer as reading the voxel grid, which the OIT rungs' graphs order
+// against its writes with a reported write-after-write; they keep the SH ambient.
+#include "cone_trace.glsl"
+#include "vxgi_ambient.glsl"
+
+IDK_BINDLESS_BUFFER_READONLY(gVxgiCones, VxgiConeParams);
+#endif
 
 #if defined(IDK_OIT_LAYER_DEPTHS) || defined(IDK_OIT_LAYERS)
 // The fixed-layer rung (oit/layers_depth.frag, oit/layers_shade.frag): its arrays follow the forward push block.
@@ -54,7 +66,11 @@ void main() {
     GpuInstance instance = InstanceBuffer(p.instances).data[inInstance];
     GpuMaterial m = MaterialBuffer(p.materials).data[nonuniformEXT(MeshBuffer(p.meshes).data[instance.mesh].material)];
 
-    // Every sample happens before any discard so implicit derivatives stay defined for the whole quad.
+    // Every sample happens before any discard so implicit derivatives stay defined for the whole quad; so does the
+    // triangle's plane (the cones' receiver plane), from the world position's screen derivatives.
+#ifdef IDK_FORWARD_VXGI
+    vec3 geometric = cross(dFdx(inWorldPosition), dFdy(inWorldPosition));
+#endif
     vec4 baseColor = m.baseColorFactor * sampleMaterialSlot(m.slots[kSlotBaseColor], inUv, inUv1) * inColor;
     vec4 mr = sampleMaterialSlot(m.slots[kSlotMetallicRoughness], inUv, inUv1);
     vec4 nt = sampleMaterialSlot(m.slots[kSlotNormal], inUv, inUv1);
@@ -97,9 +113,23 @@ void main() {
     float metallic = clamp(m.metallicFactor * mr.b, 0.0, 1.0);
     float roughness = clamp(m.roughnessFactor * mr.g, 0.0, 1.0);
     float occlusion = 1.0 + m.occlusionStrength * (ao - 1.0);
+    SurfaceLayers layers = haveFrame ? withAnisotropyFrame(texturedLayers(materialLayers(m), layerTexels), m, t, b)
+                                     : texturedLayers(materialLayers(m), layerTexels);
     vec3 radiance = emissive + shadeSurface(f, p.pointShadows, inWorldPosition, n, v, baseColor.rgb, metallic,
-                                            roughness, occlusion,
-                                            haveFrame ? withAnisotropyFrame(texturedLayers(materialLayers(m), layerTexels), m, t, b)
-                                                      : texturedLayers(materialLayers(m), layerTexels));
+                                            roughness, occlusion, layers);
+#ifdef IDK_FORWARD_VXGI
+    if (p.vxgiCones != kNoVxgi) {
+        VxgiConeParams c = gVxgiCones[p.vxgiCones].data[0];  // one index for the whole draw
+        if (insideVoxelGrid(c, inWorldPosition)) {
+            // The geometric normal on the shading normal's side (a degenerate plane: the shading normal).
+            vec3 plane = dot(geometric, geometric) > 0.0 ? normalize(geometric) : n;
+            if (dot(plane, n) < 0.0) plane = -plane;
+            vec3 e = traceMeanRadiance(f, c, inWorldPosition, plane, n);
+            vec3 specular = traceSpecular(f, c, inWorldPosition, plane, n, v, roughness, e);
+            radiance += vxgiAmbientDeltaOf(f, e * 3.14159265358979, specular, n, v, baseColor.rgb, metallic, roughness,
+                                           occlusion, layers);
+        }
+    }
+#endif
     writeTransparent(vec4(radiance, baseColor.a));
 }

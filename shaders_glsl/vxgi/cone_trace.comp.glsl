@@ -22,6 +22,20 @@
 layout(local_size_x = kConeGroupSize, local_size_y = kConeGroupSize) in;
 layout(push_constant, scalar) uniform Push { ConeTracePush p; };
 
+VxgiConeParams coneParams(ConeTracePush q) {
+    VxgiConeParams c;
+    c.gridMin = q.gridMin;
+    c.voxelSize = q.voxelSize;
+    c.gridSize = q.gridSize;
+    c.maxLod = q.maxLod;
+    c.stepFactor = q.stepFactor;
+    c.ringCones = q.ringCones;
+    c.directions = q.directions;
+    c.gridSampler = q.gridSampler;
+    c.pad = 0u;
+    return c;
+}
+
 vec3 worldPosition(GpuFrame f, ivec2 pixel, float depth) {
     vec2 ndc = (vec2(pixel) + 0.5) / vec2(f.extent) * 2.0 - 1.0;
     vec4 h = f.inverseViewProjection * vec4(ndc, depth, 1.0);
@@ -74,18 +88,8 @@ void main() {
         if (dot(c, c) > 0.0) plane = normalize(c) * (dot(c, n) < 0.0 ? -1.0 : 1.0);
     }
 
-    vec3 t, b;
-    vxgiTangents(n, t, b);
-    vec3 e = 0.25 * traceCone(f, p, position, plane, n, kVxgiCapTan);
-    float ringTan = vxgiRingTan(p.ringCones);
-    for (uint i = 0; i < p.ringCones; ++i)
-        e += (0.75 / float(p.ringCones)) * traceCone(f, p, position, plane, vxgiRingDirection(i, p.ringCones, n, t, b),
-                                                     ringTan);
+    VxgiConeParams c = coneParams(p);
+    vec3 e = traceMeanRadiance(f, c, position, plane, n);
     imageStore(gImagesRgba16f[p.diffuse], dst, vec4(e * 3.14159265358979, 1.0));
-
-    float specularTan;
-    float toDiffuse = vxgiSpecularCone(roughness, specularTan);
-    vec3 r = reflect(-v, n);
-    vec3 spec = toDiffuse < 1.0 ? traceCone(f, p, position, plane, r, specularTan) : vec3(0.0);
-    imageStore(gImagesRgba16f[p.specular], dst, vec4(mix(spec, e, toDiffuse), 1.0));
+    imageStore(gImagesRgba16f[p.specular], dst, vec4(traceSpecular(f, c, position, plane, n, v, roughness, e), 1.0));
 }

@@ -35,9 +35,9 @@ constexpr uint32_t kSize = 64;
 constexpr uint32_t kVoxels = 64;
 
 scene::Scene litRoom() {
-    scene::Scene s = closedRoomScene(glm::vec3(4.0f), {glm::vec3(0.7f), glm::vec3(0.8f, 0.1f, 0.1f),
-                                                        glm::vec3(0.1f, 0.8f, 0.1f), glm::vec3(0.2f, 0.3f, 0.8f),
-                                                        glm::vec3(0.6f)});
+    scene::Scene s = closedRoomScene(glm::vec3(4.0f), closedRoomQuads({glm::vec3(0.7f), glm::vec3(0.8f, 0.1f, 0.1f),
+                                                                       glm::vec3(0.1f, 0.8f, 0.1f),
+                                                                       glm::vec3(0.2f, 0.3f, 0.8f), glm::vec3(0.6f)}));
     // Each wall glows with its own colour (voxel radiance is emission + direct light; there is no light here).
     for (size_t i = 0; i < 5; ++i)
         s.materials[i].emissive = glm::vec3(s.materials[i].baseColorFactor) * (0.5f + 0.1f * float(i));

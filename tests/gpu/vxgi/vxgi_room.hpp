@@ -6,6 +6,7 @@
 #include <array>
 #include <vector>
 
+#include "scene/camera.hpp"
 #include "support/placed_quads.hpp"
 
 namespace idk::test {
@@ -20,10 +21,11 @@ inline PlacedQuad roomWall(glm::vec3 centre, glm::vec3 normal, glm::vec2 half, g
     return q;
 }
 
-// `walls`: the base colours of floor, left, right, back and front; the panel and the strips are grey 0.6.
-inline scene::Scene closedRoomScene(glm::vec3 panelEmission, const std::array<glm::vec3, 5>& walls = {
-                                        glm::vec3(0.6f), glm::vec3(0.6f), glm::vec3(0.6f), glm::vec3(0.6f),
-                                        glm::vec3(0.6f)}) {
+// The room's quads: `walls` the base colours of floor, left, right, back and front; the panel and the strips are
+// grey 0.6.
+inline std::vector<PlacedQuad> closedRoomQuads(const std::array<glm::vec3, 5>& walls = {
+                                                   glm::vec3(0.6f), glm::vec3(0.6f), glm::vec3(0.6f), glm::vec3(0.6f),
+                                                   glm::vec3(0.6f)}) {
     const auto wall = roomWall;
     const glm::vec3 grey(0.6f);
     std::vector<PlacedQuad> q;
@@ -38,7 +40,12 @@ inline scene::Scene closedRoomScene(glm::vec3 panelEmission, const std::array<gl
     q.push_back(wall({0.65f, 1, 0}, {0, -1, 0}, {0.35f, 1}, grey));
     q.push_back(wall({0, 1, -0.65f}, {0, -1, 0}, {0.3f, 0.35f}, grey));
     q.push_back(wall({0, 1, 0.65f}, {0, -1, 0}, {0.3f, 0.35f}, grey));
-    scene::Scene s = makePlacedQuadScene(q);
+    return q;
+}
+
+// The room's scene (closedRoomQuads), dielectric, quad 5 emitting `panelEmission`.
+inline scene::Scene closedRoomScene(glm::vec3 panelEmission, const std::vector<PlacedQuad>& quads = closedRoomQuads()) {
+    scene::Scene s = makePlacedQuadScene(quads);
     for (scene::Material& m : s.materials) m.metallic = 0.0f;
     s.materials[5].emissive = panelEmission;
     return s;

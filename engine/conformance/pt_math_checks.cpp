@@ -65,6 +65,11 @@ GpuPtProbeCase randomCase(std::mt19937& gen, uint32_t i) {
     std::mt19937 anisoGen(i * 2654435761u + 1u);
     s.anisotropyStrength = i % 9 == 3 ? uni(anisoGen) : 0.0f;
     s.anisotropyDirection = i % 18 == 3 ? randomUnit(anisoGen) : glm::vec3(0.0f);
+    // KHR_materials_iridescence on a share of the cases (own generator, as above); a few with thickness 0.
+    std::mt19937 iridGen(i * 2246822519u + 7u);
+    s.iridescence = i % 7 == 4 ? uni(iridGen) : 0.0f;
+    s.iridescenceIor = 1.0f + 1.5f * uni(iridGen);
+    s.iridescenceThickness = i % 21 == 4 ? 0.0f : 1000.0f * uni(iridGen);
     c.wo = randomUnit(gen);
     c.wi = randomUnit(gen);
     c.u = glm::vec3(uni(gen), uni(gen), uni(gen));

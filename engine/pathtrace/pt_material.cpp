@@ -91,6 +91,13 @@ PtMaterialHit evaluateMaterial(const PathTraceScene& pts, const PtHitPoint& hit,
     s.clearcoatRoughness = pm.clearcoatRoughness * sampleRef(pts, m.clearcoatRoughnessTexture, hit, false).g;
     s.sheenColor = pm.sheenColor * glm::vec3(sampleRef(pts, m.sheenColorTexture, hit, true));
     s.sheenRoughness = pm.sheenRoughness * sampleRef(pts, m.sheenRoughnessTexture, hit, false).a;
+    // KHR_materials_iridescence: factor x R, thickness = mix(min, max, G) (no texture: G = 1, the maximum).
+    if (m.iridescence > 0.0f) {
+        s.iridescence = std::clamp(m.iridescence * sampleRef(pts, m.iridescenceTexture, hit, false).r, 0.0f, 1.0f);
+        s.iridescenceIor = m.iridescenceIor;
+        const float g = sampleRef(pts, m.iridescenceThicknessTexture, hit, false).g;
+        s.iridescenceThickness = glm::mix(m.iridescenceThicknessMin, m.iridescenceThicknessMax, g);
+    }
 
     // Normal mapping in the vertex tangent frame (B = cross(N, T) * w), z rebuilt from the remapped xy.
     glm::vec3 n = hit.normal;
@@ -127,6 +134,7 @@ PtMaterialHit evaluateMaterial(const PathTraceScene& pts, const PtHitPoint& hit,
         s.clearcoat = 0.0f;
         s.sheenColor = glm::vec3(0.0f);
         s.anisotropyStrength = 0.0f;
+        s.iridescence = 0.0f;
     }
     return out;
 }

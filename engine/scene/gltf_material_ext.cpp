@@ -1,5 +1,6 @@
 // gltf_material_ext.cpp: the BSDF material extensions of the loader: KHR_materials_specular, _clearcoat, _sheen,
-// _anisotropy.
+// _anisotropy, _iridescence (iridescenceTexture R, iridescenceThicknessTexture G; factor [0, 1], film IOR [1, 4],
+// thicknesses in nanometres [0, 1e5]).
 // Untrusted input: every factor is checked for type and finiteness and clamped to the range the specification
 // gives (out-of-range values warn, naming the material). Their textures (specularTexture A, specularColorTexture
 // sRGB RGB, clearcoatTexture R, clearcoatRoughnessTexture G, sheenColorTexture sRGB RGB, sheenRoughnessTexture A)
@@ -119,6 +120,17 @@ void loadMaterialExtensions(const Ctx& ctx, const tinygltf::Material& src, const
         mat.anisotropyRotation = rangedNumber(ctx, *ext, "anisotropyRotation", 0.0f, -1.0e4f, 1.0e4f, w);
         if (validTextureInfo(ctx, *ext, "anisotropyTexture", w))
             ctx.warn(w + ": anisotropyTexture is not supported yet (the strength and rotation factors alone are used)");
+    }
+    if (const auto* ext = extension(src.extensions, "KHR_materials_iridescence"); ext && ext->IsObject()) {
+        const std::string w = where + " KHR_materials_iridescence";
+        mat.iridescence = rangedNumber(ctx, *ext, "iridescenceFactor", 0.0f, 0.0f, 1.0f, w);
+        // The specification asks for an IOR >= 1; above 4 no thin film exists and the BSDF's Fresnel maths is
+        // not meant for it. Thicknesses are nanometres >= 0; 100 um bounds what hostile files can ask for.
+        mat.iridescenceIor = rangedNumber(ctx, *ext, "iridescenceIor", 1.3f, 1.0f, 4.0f, w);
+        mat.iridescenceThicknessMin = rangedNumber(ctx, *ext, "iridescenceThicknessMinimum", 100.0f, 0.0f, 1.0e5f, w);
+        mat.iridescenceThicknessMax = rangedNumber(ctx, *ext, "iridescenceThicknessMaximum", 400.0f, 0.0f, 1.0e5f, w);
+        mat.iridescenceTexture = extTexture(ctx, *ext, "iridescenceTexture", w);
+        mat.iridescenceThicknessTexture = extTexture(ctx, *ext, "iridescenceThicknessTexture", w);
     }
 }
 

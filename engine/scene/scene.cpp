@@ -36,11 +36,13 @@ SceneFeatures Scene::features() const {
         const bool textured = m.baseColorTexture || m.metallicRoughnessTexture || m.normalTexture ||
                               m.occlusionTexture || m.emissiveTexture || m.transmissionTexture || m.thicknessTexture ||
                               m.specularTexture || m.specularColorTexture || m.clearcoatTexture ||
-                              m.clearcoatRoughnessTexture || m.sheenColorTexture || m.sheenRoughnessTexture;
+                              m.clearcoatRoughnessTexture || m.sheenColorTexture || m.sheenRoughnessTexture ||
+                              m.iridescenceTexture || m.iridescenceThicknessTexture || m.clearcoatNormalTexture ||
+                              m.anisotropyTexture;
         f.hasTextures = f.hasTextures || textured;
         f.hasLayerTextures = f.hasLayerTextures || m.specularTexture || m.specularColorTexture ||
                              m.clearcoatTexture || m.clearcoatRoughnessTexture || m.sheenColorTexture ||
-                             m.sheenRoughnessTexture;
+                             m.sheenRoughnessTexture || m.iridescenceTexture || m.iridescenceThicknessTexture;
         f.hasNormalMaps = f.hasNormalMaps || m.normalTexture.has_value();
         f.hasTransmission = f.hasTransmission || m.transmission > 0.0f || m.transmissionTexture.has_value();
         f.hasVolume = f.hasVolume || m.thickness > 0.0f;

@@ -41,9 +41,12 @@ bool deferredLightingPixel(LightingPush p, GpuFrame f, ivec2 pixel, out vec4 res
     if (layered > 0u && p.layers != kLightingNoLayers) {  // the extension textures' texels (gbuffer_fragment.glsl)
         uvec4 packed = imageLoad(gImagesRgba32ui[p.layers], pixel);
         vec4 scalars = unpackUnorm4x8(packed.x);
-        LayerTexels t = LayerTexels(scalars.x, srgbDecode(unpackUnorm4x8(packed.y).rgb), scalars.y, scalars.z,
-                                    srgbDecode(unpackUnorm4x8(packed.z).rgb), scalars.w);
+        vec4 specularColorT = unpackUnorm4x8(packed.y), sheenColorT = unpackUnorm4x8(packed.z);
+        LayerTexels t = LayerTexels(scalars.x, srgbDecode(specularColorT.rgb), scalars.y, scalars.z,
+                                    srgbDecode(sheenColorT.rgb), scalars.w);
         layers = texturedLayers(layers, t);
+        layers = withIridescenceTexels(layers, MaterialBuffer(p.materials).data[layered - 1u],
+                                       vec2(specularColorT.a, sheenColorT.a));
     }
     vec3 radiance = emissive.rgb;
     gShadowPixel = pixel;  // ray-traced shadows read their mask here (include/rt_shadows.glsl)

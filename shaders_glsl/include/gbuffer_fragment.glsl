@@ -24,7 +24,7 @@ layout(location = 3) out vec4 outEmissive;  // RGBA16F: emitted radiance, alpha:
 layout(location = 4) out float outDepth;    // R32F: the fragment's depth (what the depth test kept)
 // KHR_materials_specular / _clearcoat / _sheen texels of layered materials, for the lighting pass:
 // x = unorm8 (specular A, clearcoat R, clearcoatRoughness G, sheenRoughness A), y / z = sRGB-encoded unorm8
-// specularColor / sheenColor RGB. Discarded when the scene has no such texture (no attachment).
+// specularColor / sheenColor RGB, their alphas KHR_materials_iridescence's texels (factor R, thickness G). Discarded when the scene has no such texture (no attachment).
 layout(location = 5) out uvec4 outLayers;
 #ifdef GBUFFER_IDS
 layout(location = 6) out uvec2 outIds;      // RG32UI: the draw and its triangle (gl_PrimitiveID) of the kept fragment
@@ -48,6 +48,9 @@ void main() {
     if ((m.flags & kMaterialLayers) != 0u)  // uniform per draw: derivatives stay defined
         sampleLayerTexels(m, inUv, inUv1, specularT, specularColorT, coatT, coatRoughnessT, sheenColorT,
                           sheenRoughnessT);
+    vec2 iridescenceT = vec2(1.0);  // KHR_materials_iridescence: R of its texture, G of its thickness texture
+    if ((m.flags & kMaterialIridescence) != 0u)
+        iridescenceT = vec2(sampleSlot(m.slots[kSlotIridescence]).r, sampleSlot(m.slots[kSlotIridescenceThickness]).g);
 
     vec3 n = normalize(inNormal);
     vec3 t, b;
@@ -70,11 +73,12 @@ void main() {
     // Emissive alpha: 1 + the material index when the material uses a BSDF extension (the lighting pass reads its
     // factors from the material buffer), else 0. RGBA16F holds integers exactly up to 2048; a material past that
     // is shaded without its extensions (a real renderer with more would add an R16UI target).
-    bool layered = (m.flags & (kMaterialLayers | kMaterialAnisotropy)) != 0u && materialIndex < 2047u;
+    bool layered = (m.flags & (kMaterialLayers | kMaterialAnisotropy | kMaterialIridescence)) != 0u &&
+                   materialIndex < 2047u;
     outEmissive = vec4(emissive, layered ? float(materialIndex + 1u) : 0.0);
     outLayers = uvec4(packUnorm4x8(vec4(specularT, coatT, coatRoughnessT, sheenRoughnessT)),
-                      packUnorm4x8(vec4(srgbEncode(clamp(specularColorT, 0.0, 1.0)), 0.0)),
-                      packUnorm4x8(vec4(srgbEncode(clamp(sheenColorT, 0.0, 1.0)), 0.0)), 0u);
+                      packUnorm4x8(vec4(srgbEncode(clamp(specularColorT, 0.0, 1.0)), iridescenceT.x)),
+                      packUnorm4x8(vec4(srgbEncode(clamp(sheenColorT, 0.0, 1.0)), iridescenceT.y)), 0u);
     outDepth = gl_FragCoord.z;
 #ifdef GBUFFER_IDS
     outIds = uvec2(inDraw, uint(gl_PrimitiveID));

@@ -102,6 +102,17 @@ PtSurface wfEvaluateMaterial(GpuPtSceneDesc sc, WfHitPoint hit, vec3 wo, out boo
         s.sheenColor *= wfSampleSlot(m.slots[kSlotSheenColor], hit).rgb;
         s.sheenRoughness *= wfSampleSlot(m.slots[kSlotSheenRoughness], hit).a;
     }
+    // KHR_materials_iridescence: factor x R, thickness = mix(min, max, G) (white placeholder: the maximum).
+    s.iridescence = 0.0;
+    s.iridescenceIor = 1.3;
+    s.iridescenceThickness = 0.0;
+    s.clearcoatNormal = vec3(0.0);
+    if ((m.flags & kMaterialIridescence) != 0u) {
+        s.iridescence = clamp(m.iridescence * wfSampleSlot(m.slots[kSlotIridescence], hit).r, 0.0, 1.0);
+        s.iridescenceIor = m.iridescenceIor;
+        s.iridescenceThickness = mix(m.iridescenceThicknessMin, m.iridescenceThicknessMax,
+                                     wfSampleSlot(m.slots[kSlotIridescenceThickness], hit).g);
+    }
     // Normal mapping in the vertex tangent frame (B = cross(N, T) * w), z rebuilt from the remapped xy. A slot
     // without a normal texture samples the flat placeholder (xy = 0), which leaves n unchanged.
     vec3 n = hit.normal;
@@ -134,6 +145,7 @@ PtSurface wfEvaluateMaterial(GpuPtSceneDesc sc, WfHitPoint hit, vec3 wo, out boo
         s.clearcoat = 0.0;
         s.sheenColor = vec3(0.0);
         s.anisotropyStrength = 0.0;
+        s.iridescence = 0.0;
     }
     return s;
 }

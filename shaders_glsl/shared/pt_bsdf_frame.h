@@ -11,6 +11,9 @@
 //              Fresnel curve of the IOR remapped to [0, 1] (w = (F_exact - f0) / (1 - f0)), so without the
 //              extension F is the exact dielectric Fresnel; beneath it Lambert diffuse / transmission weighted
 //              1 - specular * max(F). Multiple scattering: pt_energy.h.
+//              KHR_materials_iridescence: both Fresnel terms become mix(F, F_film, iridescence), F_film the thin
+//              film over the base's f0 (pt_iridescence.h; dielectric: f0' with KHR_materials_specular's weight,
+//              metal: baseColor); the multiple-scattering lobe keeps the film-less average Fresnel (approximation).
 //              KHR_materials_anisotropy: the GGX of the reflection and transmission lobes becomes anisotropic
 //              (pt_anisotropy.h) in a frame whose tangent is the anisotropy direction; the energy compensation
 //              reads the isotropic tables at the root-mean-square alpha sqrt((alpha_t^2 + alpha_b^2) / 2), the
@@ -23,6 +26,7 @@
 #include "pt_energy.h"
 #include "pt_sheen.h"
 #include "pt_anisotropy.h"
+#include "pt_iridescence.h"
 
 IDK_GPU_BEGIN
 
@@ -66,6 +70,10 @@ struct PtBsdfFrame {
     bool aniso;         // the GGX lobes are anisotropic: alphaT along t, alphaB along b (alpha is unused then)
     float alphaT;
     float alphaB;
+    // KHR_materials_iridescence
+    float iridescence;           // 0: no film (also when the thickness is 0)
+    float iridescenceIor;
+    float iridescenceThickness;  // nanometres
 };
 
 IDK_INLINE float ptCoatFresnel(float c) { return ptFresnelSchlick(vec3(0.04f), c).x; }
@@ -74,7 +82,9 @@ IDK_INLINE float ptCoatFresnel(float c) { return ptFresnelSchlick(vec3(0.04f), c
 IDK_INLINE vec3 ptDielectricFresnel(PtBsdfFrame f, float c) {
     float exact = ptFresnelDielectric(c, f.etaFresnel);
     float w = f.f0Ior < 1.0e-6f ? exact : clamp((exact - f.f0Ior) / (1.0f - f.f0Ior), 0.0f, 1.0f);
-    return f.specular * (f.specularF0 + (vec3(1.0f) - f.specularF0) * w);
+    vec3 plain = f.specular * (f.specularF0 + (vec3(1.0f) - f.specularF0) * w);
+    return ptIridescentFresnel(plain, c, f.iridescence, f.iridescenceIor, f.iridescenceThickness, f.specularF0,
+                               f.specular);
 }
 
 // What passes beneath the dielectric reflection (into diffuse or transmission).
@@ -84,7 +94,9 @@ IDK_INLINE float ptDielectricPass(PtBsdfFrame f, float c) {
 
 // The reflection lobe's Fresnel (energy compensation of refraction included), before the layer weight.
 IDK_INLINE vec3 ptSpecularFresnel(PtBsdfFrame f, float c) {
-    return mix(ptDielectricFresnel(f, c) * f.dielScale, ptFresnelSchlick(f.baseColor, c), f.metallic);
+    vec3 metal = ptIridescentFresnel(ptFresnelSchlick(f.baseColor, c), c, f.iridescence, f.iridescenceIor,
+                                     f.iridescenceThickness, f.baseColor, 1.0f);
+    return mix(ptDielectricFresnel(f, c) * f.dielScale, metal, f.metallic);
 }
 
 // ---------------------------------------------------------------------------------------------------- GGX hooks
@@ -195,6 +207,11 @@ IDK_INLINE bool ptBsdfSetup(PtSurface s, vec3 wo, IDK_OUT(PtBsdfFrame) f) {
     f.sheenColor = vec3(ptSaturate(s.sheenColor.x), ptSaturate(s.sheenColor.y), ptSaturate(s.sheenColor.z));
     f.sheenRoughness = ptSaturate(s.sheenRoughness);
     f.sheenAlpha = ptSheenAlpha(f.sheenRoughness);
+    // KHR_materials_iridescence (pt_iridescence.h): the film's Fresnel replaces the dielectric and metal ones,
+    // weighted by the factor; seen from air on whichever side wo is (inside a refracting volume an approximation).
+    f.iridescenceThickness = ptFinite(s.iridescenceThickness) ? max(s.iridescenceThickness, 0.0f) : 0.0f;
+    f.iridescence = f.iridescenceThickness > 0.0f ? ptSaturate(s.iridescence) : 0.0f;
+    f.iridescenceIor = ptFinite(s.iridescenceIor) ? clamp(s.iridescenceIor, 1.0f, 4.0f) : 1.3f;
     f.pSpec = 0.0f;
     f.pDiff = 0.0f;
     f.pTrans = 0.0f;

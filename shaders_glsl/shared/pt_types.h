@@ -126,8 +126,13 @@ struct PtSurface {
     // KHR_materials_anisotropy
     vec3 anisotropyDirection;  // world, unit tangent-plane direction of alpha_t (pt_anisotropy.h); 0: the BSDF's basis
     float anisotropyStrength;  // [0, 1], texture applied; 0: isotropic GGX
+    // KHR_materials_iridescence, clearcoat normal and anisotropy textures
+    float iridescence;           // iridescenceFactor, texture applied; 0: no thin film (pt_iridescence.h)
+    float iridescenceIor;        // the film's IOR
+    float iridescenceThickness;  // nanometres, texture applied; 0: no thin film
+    vec3 clearcoatNormal;        // world, unit, the coat's own normal map applied; 0: the shading normal
 };
-IDK_GPU_SIZE(PtSurface, 144);  // also a buffer element (conformance probe)
+IDK_GPU_SIZE(PtSurface, 168);  // also a buffer element (conformance probe)
 
 // Outcome of sampling the BSDF.
 IDK_CONST(uint, kPtLobeNone, 0);          // no valid direction (absorbed)

@@ -61,7 +61,12 @@ IDK_CONST(uint, kSlotClearcoat, 7);           // linear: R scales clearcoat
 IDK_CONST(uint, kSlotClearcoatRoughness, 8);  // linear: G scales clearcoatRoughness
 IDK_CONST(uint, kSlotSheenColor, 9);          // sRGB: RGB scales sheenColor
 IDK_CONST(uint, kSlotSheenRoughness, 10);     // linear: A scales sheenRoughness
-IDK_CONST(uint, kSlotCount, 11);
+// KHR_materials_iridescence, clearcoat normal and anisotropy textures (read only when the flag below says so).
+IDK_CONST(uint, kSlotIridescence, 11);           // linear: R scales iridescence
+IDK_CONST(uint, kSlotIridescenceThickness, 12);  // linear: G, thickness = mix(min, max, G)
+IDK_CONST(uint, kSlotClearcoatNormal, 13);       // linear: the coat's tangent-space normal, xy remapped to [-1, 1]
+IDK_CONST(uint, kSlotAnisotropy, 14);            // linear: RG direction remapped to [-1, 1], B scales strength
+IDK_CONST(uint, kSlotCount, 15);
 
 IDK_CONST(uint, kAlphaOpaque, 0);
 IDK_CONST(uint, kAlphaMask, 1);
@@ -76,6 +81,10 @@ IDK_CONST(uint, kMaterialSheen, 16u);       // KHR_materials_sheen with a sheen 
 IDK_CONST(uint, kMaterialLayers, 28u);      // any of the three
 // KHR_materials_anisotropy
 IDK_CONST(uint, kMaterialAnisotropy, 128u);  // KHR_materials_anisotropy with anisotropyStrength > 0
+// KHR_materials_iridescence, clearcoat normal and anisotropy textures
+IDK_CONST(uint, kMaterialIridescence, 256u);         // KHR_materials_iridescence with iridescenceFactor > 0
+IDK_CONST(uint, kMaterialClearcoatNormal, 512u);     // clearcoat with a clearcoatNormalTexture (kSlotClearcoatNormal)
+IDK_CONST(uint, kMaterialAnisotropyTexture, 1024u);  // anisotropy with an anisotropyTexture (kSlotAnisotropy)
 
 // glTF metallic-roughness material (core + KHR_materials_emissive_strength, KHR_texture_transform, and the
 // factors and textures of KHR_materials_specular, _clearcoat, _sheen).
@@ -100,8 +109,14 @@ struct GpuMaterial {
     // KHR_materials_anisotropy
     float anisotropyStrength;  // KHR_materials_anisotropy anisotropyStrength (read when kMaterialAnisotropy)
     float anisotropyRotation;  // radians, counter-clockwise from the tangent
+    // KHR_materials_iridescence, clearcoat normal and anisotropy textures
+    float iridescence;              // iridescenceFactor (read when kMaterialIridescence)
+    float iridescenceIor;
+    float iridescenceThicknessMin;  // nanometres
+    float iridescenceThicknessMax;  // nanometres (the thickness without a thickness texture)
+    float clearcoatNormalScale;     // read when kMaterialClearcoatNormal
 };
-IDK_GPU_SIZE(GpuMaterial, 500);
+IDK_GPU_SIZE(GpuMaterial, 664);
 
 IDK_CONST(uint, kLightDirectional, 0);
 IDK_CONST(uint, kLightPoint, 1);

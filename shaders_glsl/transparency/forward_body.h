@@ -64,6 +64,10 @@ void main() {
     if ((m.flags & kMaterialLayers) != 0u)      // uniform per draw: derivatives stay defined
         sampleLayerTexels(m, inUv, inUv1, layerTexels.specular, layerTexels.specularColor, layerTexels.clearcoat,
                           layerTexels.clearcoatRoughness, layerTexels.sheenColor, layerTexels.sheenRoughness);
+    vec2 iridescenceTexels = vec2(1.0);  // KHR_materials_iridescence: R of its texture, G of its thickness texture
+    if ((m.flags & kMaterialIridescence) != 0u)
+        iridescenceTexels = vec2(sampleMaterialSlot(m.slots[kSlotIridescence], inUv, inUv1).r,
+                                 sampleMaterialSlot(m.slots[kSlotIridescenceThickness], inUv, inUv1).g);
     vec3 n = normalize(inNormal);
     vec3 t, b;
     bool haveFrame = materialTangentFrame(n, inTangent, inWorldPosition, inUv, t, b);
@@ -94,9 +98,9 @@ void main() {
     float metallic = clamp(m.metallicFactor * mr.b, 0.0, 1.0);
     float roughness = clamp(m.roughnessFactor * mr.g, 0.0, 1.0);
     float occlusion = 1.0 + m.occlusionStrength * (ao - 1.0);
+    SurfaceLayers layers = withIridescenceTexels(texturedLayers(materialLayers(m), layerTexels), m, iridescenceTexels);
     vec3 radiance = emissive + shadeSurface(f, p.pointShadows, inWorldPosition, n, v, baseColor.rgb, metallic,
                                             roughness, occlusion,
-                                            haveFrame ? withAnisotropyFrame(texturedLayers(materialLayers(m), layerTexels), m, t, b)
-                                                      : texturedLayers(materialLayers(m), layerTexels));
+                                            haveFrame ? withAnisotropyFrame(layers, m, t, b) : layers);
     writeTransparent(vec4(radiance, baseColor.a));
 }

@@ -5,7 +5,9 @@
 // flip on rounding), and the means agree within 1%. The extensions' effect is real: removing them changes the
 // CPU image by more than 5% of its mean radiance. KHR_materials_anisotropy the same way, on the spheres given
 // azimuthal (brushed) tangents and anisotropic materials: GPU equals CPU, and anisotropy changes the image by more
-// than 2% of its mean radiance.
+// than 2% of its mean radiance. KHR_materials_iridescence likewise, with factors on three spheres and its two
+// textures (support/layer_textures.hpp) on two: GPU equals CPU, the film changes the image, and an
+// iridescenceTexture of constant R renders as the factor R / 255 without it.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,6 +19,7 @@
 #include "pathtrace/pt_scene.hpp"
 #include "scene/gltf_loader.hpp"
 #include "support/gpu_fixture.hpp"
+#include "support/layer_textures.hpp"
 
 namespace idk::test {
 namespace {
@@ -137,6 +140,62 @@ TEST_F(PtMaterialExtTest, AnisotropyGpuGivesTheCpuSamples) {
     std::printf("anisotropic spheres: RMSE with vs without anisotropy %.5f (%.1f%% of the mean)\n", change,
                 100.0 * change / meanCpu);
     EXPECT_GT(change, 0.02 * meanCpu);  // measured 4.0% (the spheres cover a small part of the frame)
+}
+
+TEST_F(PtMaterialExtTest, IridescenceGpuGivesTheCpuSamples) {
+    namespace lt = layer_textures;
+    scene::Scene sc = materialSpheres();
+    lt::sideUvs(sc, 1);
+    lt::sideUvs(sc, 4);
+    scene::Material& plastic = sc.materials[1];  // factor 0.8 from a constant texture (R 204, decoys elsewhere)
+    plastic.iridescence = 1.0f;
+    plastic.iridescenceIor = 1.3f;
+    plastic.iridescenceThicknessMax = 380.0f;
+    plastic.iridescenceTexture = lt::addTexture(sc, {{204, lt::kDecoy, lt::kDecoy, lt::kDecoy}});
+    scene::Material& gold = sc.materials[4];  // thickness 150 nm on the -x half, 600 nm on the +x half
+    gold.iridescence = 1.0f;
+    gold.iridescenceIor = 1.8f;
+    gold.iridescenceThicknessMin = 150.0f;
+    gold.iridescenceThicknessMax = 600.0f;
+    gold.iridescenceThicknessTexture =
+        lt::addTexture(sc, {{lt::kDecoy, 0, lt::kDecoy, lt::kDecoy}, {lt::kDecoy, 255, lt::kDecoy, lt::kDecoy}});
+    scene::Material& coat = sc.materials[2];  // under the clearcoat
+    coat.iridescence = 0.7f;
+    coat.iridescenceThicknessMax = 250.0f;
+    const glm::vec3 environment(0.6f, 0.7f, 0.8f);
+    const pathtrace::PathTraceScene pts = pathtrace::buildPathTraceScene(sc, nullptr, 1.0f, environment);
+    const scene::CameraView camera = scene::defaultCamera(sc);
+    const core::ImageRgba32f cpu = pathtrace::renderReference(pts, camera, kSize, kSize, settings());
+    render::PathTracerOptions options;
+    options.traversal = render::PtTraversal::Bvh;
+    render::PathTracer tracer(ctx(), shaders(), sc, pts, options);
+    const core::ImageRgba32f gpu = tracer.render(camera, kSize, kSize, settings()).image;
+    EXPECT_EQ(nonFiniteCount(gpu), 0u);
+    const double same = samePixelFraction(gpu, cpu);
+    const double meanCpu = meanRadiance(cpu), meanGpu = meanRadiance(gpu);
+    std::printf("iridescent spheres: %.1f%% of the pixels equal to the CPU's at the same seed; mean GPU %.5f CPU "
+                "%.5f\n", 100.0 * same, meanGpu, meanCpu);
+    EXPECT_GT(same, 0.9);
+    EXPECT_NEAR(meanGpu, meanCpu, 0.01 * meanCpu);
+
+    scene::Scene bare = sc;
+    for (scene::Material& m : bare.materials) m.iridescence = 0.0f;
+    const pathtrace::PathTraceScene barePts = pathtrace::buildPathTraceScene(bare, nullptr, 1.0f, environment);
+    const double change = rmse(pathtrace::renderReference(barePts, camera, kSize, kSize, settings()), cpu);
+    std::printf("iridescent spheres: RMSE with vs without the film %.5f (%.1f%% of the mean)\n", change,
+                100.0 * change / meanCpu);
+    EXPECT_GT(change, 0.02 * meanCpu);
+
+    // The texture's R channel scales the factor: the same scene with the factor 204 / 255 and no texture renders
+    // the same CPU image (nearest 1x1 texel: the same numbers up to the float product's rounding).
+    scene::Scene factor = sc;
+    factor.materials[1].iridescence = 204.0f / 255.0f;
+    factor.materials[1].iridescenceTexture.reset();
+    const pathtrace::PathTraceScene factorPts = pathtrace::buildPathTraceScene(factor, nullptr, 1.0f, environment);
+    const core::ImageRgba32f byFactor = pathtrace::renderReference(factorPts, camera, kSize, kSize, settings());
+    const double sameFactor = samePixelFraction(byFactor, cpu);
+    std::printf("iridescent spheres: texture R 204 vs factor 0.8: %.2f%% of the pixels equal\n", 100.0 * sameFactor);
+    EXPECT_GT(sameFactor, 0.99);
 }
 
 }  // namespace

@@ -22,6 +22,21 @@ glm::vec4 sampleRef(const PathTraceScene& pts, const std::optional<scene::Textur
     return sampleTexture(pts.textures[ref->texture], uv, srgb);
 }
 
+// Normal mapping in the vertex tangent frame (B = cross(N, T) * w), z rebuilt from the remapped xy; n when the
+// hit has no usable tangent.
+glm::vec3 mapNormal(const PtHitPoint& hit, const glm::vec4& texel, float scale) {
+    const glm::vec3 n = hit.normal;
+    if (hit.tangent.w == 0.0f) return n;
+    glm::vec3 t = glm::vec3(hit.tangent) - n * glm::dot(n, glm::vec3(hit.tangent));
+    const float len2 = glm::dot(t, t);
+    if (!(len2 > 1e-20f)) return n;
+    t /= std::sqrt(len2);
+    const glm::vec3 b = glm::cross(n, t) * hit.tangent.w;
+    const glm::vec2 xy = glm::vec2(texel) * 2.0f - 1.0f;
+    const glm::vec3 tn(xy * scale, std::sqrt(std::max(1.0f - glm::dot(xy, xy), 0.0f)));
+    return safeNormalize(t * tn.x + b * tn.y + n * tn.z, n);
+}
+
 }  // namespace
 
 PtHitPoint hitPoint(const PathTraceScene& pts, uint32_t instance, uint32_t triangle, float u, float v) {
@@ -101,22 +116,18 @@ PtMaterialHit evaluateMaterial(const PathTraceScene& pts, const PtHitPoint& hit,
 
     // Normal mapping in the vertex tangent frame (B = cross(N, T) * w), z rebuilt from the remapped xy.
     glm::vec3 n = hit.normal;
-    if (m.normalTexture && hit.tangent.w != 0.0f) {
-        const glm::vec4 texel = sampleRef(pts, m.normalTexture, hit, false);
-        glm::vec3 t = glm::vec3(hit.tangent) - n * glm::dot(n, glm::vec3(hit.tangent));
-        const float len2 = glm::dot(t, t);
-        if (len2 > 1e-20f) {
-            t /= std::sqrt(len2);
-            const glm::vec3 b = glm::cross(n, t) * hit.tangent.w;
-            const glm::vec2 xy = glm::vec2(texel) * 2.0f - 1.0f;
-            const glm::vec3 tn(xy * m.normalScale, std::sqrt(std::max(1.0f - glm::dot(xy, xy), 0.0f)));
-            n = safeNormalize(t * tn.x + b * tn.y + n * tn.z, n);
-        }
-    }
+    if (m.normalTexture && hit.tangent.w != 0.0f)
+        n = mapNormal(hit, sampleRef(pts, m.normalTexture, hit, false), m.normalScale);
     // Interpolated normals may point to the other side of the triangle than its winding says: keep the shading
     // normal on the geometric normal's side (the BSDF turns both toward wo).
     if (glm::dot(n, hit.geometricNormal) < 0.0f) n = -n;
     s.shadingNormal = n;
+    // clearcoatNormalTexture: the coat's own normal, mapped from the interpolated normal like the base's (0: none).
+    if (m.clearcoatNormalTexture && s.clearcoat > 0.0f && hit.tangent.w != 0.0f) {
+        glm::vec3 c = mapNormal(hit, sampleRef(pts, m.clearcoatNormalTexture, hit, false), m.clearcoatNormalScale);
+        if (glm::dot(c, hit.geometricNormal) < 0.0f) c = -c;
+        s.clearcoatNormal = c;
+    }
     // KHR_materials_anisotropy: the direction in the vertex frame (its texture is not read yet: RG = (1, 0.5)).
     s.anisotropyStrength = std::clamp(pm.anisotropyStrength, 0.0f, 1.0f);
     s.anisotropyDirection = s.anisotropyStrength > 0.0f

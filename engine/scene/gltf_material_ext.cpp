@@ -5,9 +5,9 @@
 // gives (out-of-range values warn, naming the material). Their textures (specularTexture A, specularColorTexture
 // sRGB RGB, clearcoatTexture R, clearcoatRoughnessTexture G, sheenColorTexture sRGB RGB, sheenRoughnessTexture A)
 // become TextureRefs with texCoord and KHR_texture_transform like the core ones; a reference without an index or
-// out of range warns and is dropped (the factor alone is used). clearcoatNormalTexture is validated and ignored
-// with a warning: the coat shares the base layer's shading normal in every renderer; so is anisotropyTexture (the
-// strength and rotation factors alone are used).
+// out of range warns and is dropped (the factor alone is used). clearcoatNormalTexture (with its scale) gives the
+// coat its own shading normal. anisotropyTexture is validated and ignored with a warning (the strength and
+// rotation factors alone are used).
 #include <algorithm>
 #include <cmath>
 
@@ -103,8 +103,10 @@ void loadMaterialExtensions(const Ctx& ctx, const tinygltf::Material& src, const
         mat.clearcoatRoughness = rangedNumber(ctx, *ext, "clearcoatRoughnessFactor", 0.0f, 0.0f, 1.0f, w);
         mat.clearcoatTexture = extTexture(ctx, *ext, "clearcoatTexture", w);
         mat.clearcoatRoughnessTexture = extTexture(ctx, *ext, "clearcoatRoughnessTexture", w);
-        if (validTextureInfo(ctx, *ext, "clearcoatNormalTexture", w))
-            ctx.warn(w + ": clearcoatNormalTexture is not supported (the coat uses the base layer's normal)");
+        mat.clearcoatNormalTexture = extTexture(ctx, *ext, "clearcoatNormalTexture", w);
+        if (mat.clearcoatNormalTexture)  // a normalTextureInfo: its scale multiplies the map's xy
+            mat.clearcoatNormalScale = rangedNumber(ctx, ext->Get("clearcoatNormalTexture"), "scale", 1.0f, -1.0e4f,
+                                                    1.0e4f, w + " clearcoatNormalTexture");
     }
     if (const auto* ext = extension(src.extensions, "KHR_materials_sheen"); ext && ext->IsObject()) {
         const std::string w = where + " KHR_materials_sheen";

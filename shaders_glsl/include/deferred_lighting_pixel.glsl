@@ -45,8 +45,10 @@ bool deferredLightingPixel(LightingPush p, GpuFrame f, ivec2 pixel, out vec4 res
         LayerTexels t = LayerTexels(scalars.x, srgbDecode(specularColorT.rgb), scalars.y, scalars.z,
                                     srgbDecode(sheenColorT.rgb), scalars.w);
         layers = texturedLayers(layers, t);
-        layers = withIridescenceTexels(layers, MaterialBuffer(p.materials).data[layered - 1u],
-                                       vec2(specularColorT.a, sheenColorT.a));
+        GpuMaterial material = MaterialBuffer(p.materials).data[layered - 1u];
+        layers = withIridescenceTexels(layers, material, vec2(specularColorT.a, sheenColorT.a));
+        if ((material.flags & kMaterialClearcoatNormal) != 0u)  // the coat's own normal
+            layers.clearcoatNormal = octDecode(unpackSnorm2x16(packed.w));
     }
     vec3 radiance = emissive.rgb;
     gShadowPixel = pixel;  // ray-traced shadows read their mask here (include/rt_shadows.glsl)

@@ -24,7 +24,8 @@ layout(location = 3) out vec4 outEmissive;  // RGBA16F: emitted radiance, alpha:
 layout(location = 4) out float outDepth;    // R32F: the fragment's depth (what the depth test kept)
 // KHR_materials_specular / _clearcoat / _sheen texels of layered materials, for the lighting pass:
 // x = unorm8 (specular A, clearcoat R, clearcoatRoughness G, sheenRoughness A), y / z = sRGB-encoded unorm8
-// specularColor / sheenColor RGB, their alphas KHR_materials_iridescence's texels (factor R, thickness G). Discarded when the scene has no such texture (no attachment).
+// specularColor / sheenColor RGB, their alphas KHR_materials_iridescence's texels (factor R, thickness G); w = the
+// coat's normal (clearcoatNormalTexture; the shading normal's interpolated one otherwise), octahedral. Discarded when the scene has no such texture (no attachment).
 layout(location = 5) out uvec4 outLayers;
 #ifdef GBUFFER_IDS
 layout(location = 6) out uvec2 outIds;      // RG32UI: the draw and its triangle (gl_PrimitiveID) of the kept fragment
@@ -48,6 +49,8 @@ void main() {
     if ((m.flags & kMaterialLayers) != 0u)  // uniform per draw: derivatives stay defined
         sampleLayerTexels(m, inUv, inUv1, specularT, specularColorT, coatT, coatRoughnessT, sheenColorT,
                           sheenRoughnessT);
+    vec4 coatNormalT = vec4(0.5, 0.5, 1.0, 1.0);  // clearcoatNormalTexture (flat without one)
+    if ((m.flags & kMaterialClearcoatNormal) != 0u) coatNormalT = sampleSlot(m.slots[kSlotClearcoatNormal]);
     vec2 iridescenceT = vec2(1.0);  // KHR_materials_iridescence: R of its texture, G of its thickness texture
     if ((m.flags & kMaterialIridescence) != 0u)
         iridescenceT = vec2(sampleSlot(m.slots[kSlotIridescence]).r, sampleSlot(m.slots[kSlotIridescenceThickness]).g);
@@ -57,6 +60,9 @@ void main() {
     bool haveFrame = materialTangentFrame(n, inTangent, inWorldPosition, inUv, t, b);
     vec2 xy = nt.xy * 2.0 - 1.0;                          // remap first, then reconstruct z from it
     vec3 tn = vec3(xy * m.normalScale, sqrt(max(1.0 - dot(xy, xy), 0.0)));
+    vec2 cxy = coatNormalT.xy * 2.0 - 1.0;                // the coat's own normal map, from the same frame
+    vec3 ctn = vec3(cxy * m.clearcoatNormalScale, sqrt(max(1.0 - dot(cxy, cxy), 0.0)));
+    vec3 nc = haveFrame ? normalize(t * ctn.x + b * ctn.y + n * ctn.z) : n;
     if (haveFrame) n = normalize(t * tn.x + b * tn.y + n * tn.z);
 
     // Single-sided materials reject back faces here rather than with the pipeline's cull mode, so that one
@@ -64,7 +70,10 @@ void main() {
     bool front = gl_FrontFacing != ((instance.flags & kInstanceMirrored) != 0u);
     bool doubleSided = (m.flags & kMaterialDoubleSided) != 0u;
     if ((!front && !doubleSided) || (m.alphaMode == kAlphaMask && baseColor.a < m.alphaCutoff)) discard;
-    if (!front) n = -n;
+    if (!front) {
+        n = -n;
+        nc = -nc;
+    }
 
     outAlbedo = vec4(srgbEncode(baseColor.rgb), m.alphaMode == kAlphaOpaque ? 1.0 : baseColor.a);
     outNormal = packSnorm2x16(octEncode(n));
@@ -78,7 +87,8 @@ void main() {
     outEmissive = vec4(emissive, layered ? float(materialIndex + 1u) : 0.0);
     outLayers = uvec4(packUnorm4x8(vec4(specularT, coatT, coatRoughnessT, sheenRoughnessT)),
                       packUnorm4x8(vec4(srgbEncode(clamp(specularColorT, 0.0, 1.0)), iridescenceT.x)),
-                      packUnorm4x8(vec4(srgbEncode(clamp(sheenColorT, 0.0, 1.0)), iridescenceT.y)), 0u);
+                      packUnorm4x8(vec4(srgbEncode(clamp(sheenColorT, 0.0, 1.0)), iridescenceT.y)),
+                      packSnorm2x16(octEncode(nc)));
     outDepth = gl_FragCoord.z;
 #ifdef GBUFFER_IDS
     outIds = uvec2(inDraw, uint(gl_PrimitiveID));

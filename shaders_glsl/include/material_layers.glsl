@@ -9,6 +9,8 @@
 // Ambient: the split-sum E_s = f0 A + f90 B with A + B = E(n.v), the GGX directional albedo of the path tracer's
 // tables (shared/pt_albedo_tables.h), times Turquin's multiple-scattering factor 1 + f0 (1 / E - 1), so a white
 // rough metal in a uniform environment reflects it all, as the path tracer's compensation makes it.
+// clearcoatNormalTexture: the coat term (its D, V, cosines, and the n.v of its layer weight) uses the coat's own
+// normal (SurfaceLayers::clearcoatNormal; the deferred G-buffer carries it octahedral in its layer texels).
 // KHR_materials_iridescence: the base's dielectric and metal Fresnel become mix(F, F_film, iridescence) at v.h
 // (shared/pt_iridescence.h, as the path tracer); ambient: f0 becomes the film's at n.v through Schlick's curve.
 // KHR_materials_anisotropy: the base's GGX D and V become the extension's anisotropic ones (shared/pt_anisotropy.h,
@@ -40,10 +42,12 @@ struct SurfaceLayers {
     float iridescence;           // 0: no film
     float iridescenceIor;
     float iridescenceThickness;  // nanometres
+    // KHR_materials_clearcoat's clearcoatNormalTexture
+    vec3 clearcoatNormal;  // world, unit, on the viewer's side; 0: the coat uses the shading normal
 };
 
 SurfaceLayers noLayers() {
-    return SurfaceLayers(0u, 1.0, vec3(1.0), 0.0, 0.0, vec3(0.0), 0.0, 0.0, vec3(0.0), 0.0, 1.3, 0.0);
+    return SurfaceLayers(0u, 1.0, vec3(1.0), 0.0, 0.0, vec3(0.0), 0.0, 0.0, vec3(0.0), 0.0, 1.3, 0.0, vec3(0.0));
 }
 
 // The factors; the iridescence thickness is the maximum (what a material without a thickness texture has).
@@ -55,7 +59,12 @@ SurfaceLayers materialLayers(GpuMaterial m) {
                          clamp(m.sheenRoughness, 0.0, 1.0),
                          (m.flags & kMaterialAnisotropy) != 0u ? clamp(m.anisotropyStrength, 0.0, 1.0) : 0.0,
                          vec3(0.0), film ? clamp(m.iridescence, 0.0, 1.0) : 0.0, m.iridescenceIor,
-                         film ? max(m.iridescenceThicknessMax, 0.0) : 0.0);
+                         film ? max(m.iridescenceThicknessMax, 0.0) : 0.0, vec3(0.0));
+}
+
+// The coat's normal: its own (clearcoatNormalTexture) or the shading normal n.
+vec3 coatNormal(SurfaceLayers s, vec3 n) {
+    return dot(s.clearcoatNormal, s.clearcoatNormal) > 0.5 ? s.clearcoatNormal : n;
 }
 
 // KHR_materials_iridescence's textures: texel.x (iridescenceTexture R) scales the factor, texel.y
@@ -187,14 +196,20 @@ vec3 layeredBrdfCosine(SurfaceLayers s, vec3 baseColor, float metallic, float pe
                            NdotL);
         result += s.sheenColor * (ptSheenD(NdotH, sheenAlpha) * vis);
     }
-    if ((s.flags & kMaterialClearcoat) != 0u) {
+    vec3 coat = vec3(0.0);
+    if ((s.flags & kMaterialClearcoat) != 0u) {  // in the coat normal's frame (clearcoatNormalTexture)
+        vec3 nc = coatNormal(s, n);
+        float NdotVc = max(dot(nc, v), 1e-4);
+        float NdotLc = dot(nc, l);
         float coatRoughness = clamp(s.clearcoatRoughness, kMinRoughness, 1.0);
         float coatAlpha = coatRoughness * coatRoughness;
-        result *= 1.0 - s.clearcoat * fresnelSchlick(vec3(0.04), NdotV).x;
-        result += vec3(s.clearcoat * fresnelSchlick(vec3(0.04), VdotH).x * distributionGgx(NdotH, coatAlpha) *
-                       visibilitySmithGgxCorrelated(NdotL, NdotV, coatAlpha));
+        result *= 1.0 - s.clearcoat * fresnelSchlick(vec3(0.04), NdotVc).x;
+        if (NdotLc > 0.0)
+            coat = vec3(s.clearcoat * fresnelSchlick(vec3(0.04), VdotH).x *
+                        distributionGgx(max(dot(nc, h), 0.0), coatAlpha) *
+                        visibilitySmithGgxCorrelated(NdotLc, NdotVc, coatAlpha) * NdotLc);
     }
-    return result * NdotL;
+    return result * NdotL + coat;
 }
 
 // Split-sum scale and bias (f0 A + f90 B) of environmentBrdfApprox, separately.

@@ -15,7 +15,7 @@ vec3 vxgiAmbientDelta(GpuFrame f, uint diffuseImage, uint specularImage, ivec2 p
     vec4 traced = imageLoad(gImagesRgba16f[diffuseImage], pixel);
     if (traced.a <= 0.0) return vec3(0.0);  // outside the grid
     vec3 tracedSpecular = imageLoad(gImagesRgba16f[specularImage], pixel).rgb;
-    vec3 r = reflect(-v, n);
+    vec3 r = reflect(-v, coatNormal(layers, n));  // the coat's reflection, as shadeSurface's (cancels exactly)
     float cr = clamp(layers.clearcoatRoughness, kMinRoughness, 1.0);
     // KHR_materials_anisotropy: the lookup shadeSurface subtracts (rms roughness, bent reflection) cancels exactly.
     float ambientRoughness = anisotropicRoughness(layers, roughness);

@@ -64,6 +64,9 @@ void main() {
     if ((m.flags & kMaterialLayers) != 0u)      // uniform per draw: derivatives stay defined
         sampleLayerTexels(m, inUv, inUv1, layerTexels.specular, layerTexels.specularColor, layerTexels.clearcoat,
                           layerTexels.clearcoatRoughness, layerTexels.sheenColor, layerTexels.sheenRoughness);
+    vec4 coatNormalTexel = vec4(0.5, 0.5, 1.0, 1.0);  // clearcoatNormalTexture (flat without one)
+    if ((m.flags & kMaterialClearcoatNormal) != 0u)
+        coatNormalTexel = sampleMaterialSlot(m.slots[kSlotClearcoatNormal], inUv, inUv1);
     vec2 iridescenceTexels = vec2(1.0);  // KHR_materials_iridescence: R of its texture, G of its thickness texture
     if ((m.flags & kMaterialIridescence) != 0u)
         iridescenceTexels = vec2(sampleMaterialSlot(m.slots[kSlotIridescence], inUv, inUv1).r,
@@ -83,8 +86,14 @@ void main() {
 
     vec2 xy = nt.xy * 2.0 - 1.0;
     vec3 tn = vec3(xy * m.normalScale, sqrt(max(1.0 - dot(xy, xy), 0.0)));
+    vec2 cxy = coatNormalTexel.xy * 2.0 - 1.0;  // the coat's own normal map, from the same frame
+    vec3 ctn = vec3(cxy * m.clearcoatNormalScale, sqrt(max(1.0 - dot(cxy, cxy), 0.0)));
+    vec3 nc = haveFrame ? normalize(t * ctn.x + b * ctn.y + n * ctn.z) : n;
     if (haveFrame) n = normalize(t * tn.x + b * tn.y + n * tn.z);
-    if (!front) n = -n;
+    if (!front) {
+        n = -n;
+        nc = -nc;
+    }
     if ((m.flags & kMaterialUnlit) != 0u) {
         writeTransparent(vec4(baseColor.rgb, baseColor.a));
         return;
@@ -99,6 +108,7 @@ void main() {
     float roughness = clamp(m.roughnessFactor * mr.g, 0.0, 1.0);
     float occlusion = 1.0 + m.occlusionStrength * (ao - 1.0);
     SurfaceLayers layers = withIridescenceTexels(texturedLayers(materialLayers(m), layerTexels), m, iridescenceTexels);
+    if ((m.flags & kMaterialClearcoatNormal) != 0u) layers.clearcoatNormal = nc;
     vec3 radiance = emissive + shadeSurface(f, p.pointShadows, inWorldPosition, n, v, baseColor.rgb, metallic,
                                             roughness, occlusion,
                                             haveFrame ? withAnisotropyFrame(layers, m, t, b) : layers);

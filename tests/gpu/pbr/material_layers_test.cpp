@@ -12,13 +12,16 @@
 //    the tangent frame, shades the anisotropic lobe: its frame differs from that isotropic stand-in;
 //  * KHR_materials_iridescence: the film changes the deferred and the forward frame alike; a film of thickness 0
 //    renders the film-less frame; its textures (through the G-buffer's layer texels in the deferred pass) render
-//    like the factors they encode.
+//    like the factors they encode;
+//  * clearcoatNormalTexture: a tilted coat normal changes the deferred and the forward frame alike (within 25%);
+//    a flat coat normal map (texel 128, 128, 255) renders the map-less frame within 0.1% of its radiance.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 
 #include "render/renderer.hpp"
+#include "render/scene_textures.hpp"
 #include "scene/gltf_loader.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/layer_textures.hpp"
@@ -38,6 +41,11 @@ core::ImageRgba32f renderHdr(vk::Context& ctx, vk::ShaderLibrary& shaders, const
     if (constantEnv) settings.environment = std::filesystem::path();  // constant radiance 0.5
     render::Renderer renderer(ctx, shaders, settings);
     renderer.setScene(scene);
+    if (!scene.textures.empty()) {  // the extension-texture cases: every texture resident before the frame
+        render::SceneTextureStream textures(ctx, renderer, scene);
+        textures.finishSynchronously();
+        return renderer.renderOffscreen(scene::defaultCamera(scene), kSize, kSize).image;
+    }
     return renderer.renderOffscreen(scene::defaultCamera(scene), kSize, kSize).image;
 }
 
@@ -195,18 +203,56 @@ TEST_F(MaterialLayersTest, IridescenceDeferredAndForward) {
         const core::ImageRgba32f b = renderHdr(ctx(), shaders(), bare, false);
         const core::ImageRgba32f z = renderHdr(ctx(), shaders(), zero, false);
         const core::ImageRgba32f t = renderHdr(ctx(), shaders(), iridescentSpheres(blend, true), false);
+        scene::Scene one = film;  // what unread textures (white placeholders) would give: factor 1
+        one.materials[1].iridescence = 1.0f;
+        const core::ImageRgba32f o = renderHdr(ctx(), shaders(), one, false);
         change[blend] = relativeChange(a, b);
         const double zeroChange = relativeChange(z, b), textureChange = relativeChange(t, a);
+        const double oneChange = relativeChange(o, a);
         std::printf("raster %s: the film changes the frame by %.2f%%; thickness 0 vs none %.5f%%; textures vs "
-                    "factors %.5f%% of its radiance\n", path, 100.0 * change[blend], 100.0 * zeroChange,
-                    100.0 * textureChange);
+                    "factors %.5f%% (factor 1 vs 0.8: %.5f%%) of its radiance\n", path, 100.0 * change[blend],
+                    100.0 * zeroChange, 100.0 * textureChange, 100.0 * oneChange);
         EXPECT_GT(change[blend], 0.002) << path;  // three small spheres of the frame (measured 0.37% deferred)
         // The layered path's arithmetic differs from the plain BRDF's by rounding only.
         EXPECT_LT(zeroChange, 1e-4) << path;
         // 8-bit texels of exactly the factors' values (the G-buffer keeps 8 bits, as the textures hold).
         EXPECT_LT(textureChange, 1e-4) << path;
+        EXPECT_LT(textureChange, 0.1 * oneChange) << path;
     }
     EXPECT_NEAR(change[0], change[1], 0.25 * change[0]) << "deferred and forward shade the film alike";
+}
+
+// The clearcoat sphere with vertex tangents around the vertical axis, UVs, and a 1x1 coat normal map of `rgb`.
+scene::Scene coatNormalSpheres(bool blend, std::array<uint8_t, 3> rgb, bool withMap) {
+    namespace lt = layer_textures;
+    scene::Scene s = materialSpheres();
+    brushedTangents(s);
+    lt::sideUvs(s, lt::kCoatMaterial);
+    for (size_t i = 1; i < s.materials.size() && blend; ++i) {  // the spheres; the floor stays opaque, so that
+        s.materials[i].alphaMode = scene::AlphaMode::Blend;      // weighted-blended OIT does not mix it in
+        s.materials[i].baseColorFactor.a = 1.0f;
+    }
+    s.materials[lt::kCoatMaterial].clearcoatRoughness = 0.15f;
+    if (withMap)
+        s.materials[lt::kCoatMaterial].clearcoatNormalTexture = lt::addTexture(s, {{rgb[0], rgb[1], rgb[2], 255}});
+    return s;
+}
+
+TEST_F(MaterialLayersTest, CoatNormalDeferredAndForward) {
+    double change[2];
+    for (int blend = 0; blend < 2; ++blend) {
+        const char* path = blend ? "forward (BLEND)" : "deferred";
+        const core::ImageRgba32f none = renderHdr(ctx(), shaders(), coatNormalSpheres(blend, {128, 128, 255}, false), false);
+        const core::ImageRgba32f flat = renderHdr(ctx(), shaders(), coatNormalSpheres(blend, {128, 128, 255}, true), false);
+        const core::ImageRgba32f tilted = renderHdr(ctx(), shaders(), coatNormalSpheres(blend, {210, 90, 220}, true), false);
+        change[blend] = relativeChange(tilted, none);
+        const double flatChange = relativeChange(flat, none);
+        std::printf("raster %s: tilted coat normal changes the frame by %.3f%%, a flat map by %.4f%%\n", path,
+                    100.0 * change[blend], 100.0 * flatChange);
+        EXPECT_GT(change[blend], 0.002) << path;
+        EXPECT_LT(flatChange, 1e-3) << path;
+    }
+    EXPECT_NEAR(change[0], change[1], 0.25 * change[0]) << "deferred and forward shade the coat normal alike";
 }
 
 }  // namespace

@@ -1,9 +1,9 @@
 // gltf_material_ext_test.cpp: the loader's BSDF material extensions (scene/gltf_material_ext.cpp): the factors of
-// KHR_materials_specular, _clearcoat, _sheen, _anisotropy, _iridescence land in scene::Material; hostile values (out of range,
-// non-finite, wrong types) are clamped or replaced with a warning naming the material; extension textures load as
-// TextureRefs with texCoord and KHR_texture_transform (bad references warn and are dropped; anisotropyTexture is
-// reported, not read yet); ToyCar's clearcoat texture loads without a warning; materials without the extensions
-// keep the neutral defaults; the
+// KHR_materials_specular, _clearcoat, _sheen, _anisotropy, _iridescence land in scene::Material; hostile values
+// (out of range, non-finite, wrong types) are clamped or replaced with a warning naming the material; extension
+// textures load as TextureRefs with texCoord and KHR_texture_transform (bad references warn and are dropped;
+// clearcoatNormalTexture loads with its scale; anisotropyTexture is reported, not read yet); ToyCar's clearcoat
+// texture loads without a warning; materials without the extensions keep the neutral defaults; the
 // authored scenes/material_spheres.gltf loads with its four extension materials and no warnings;
 // KHR_materials_variants: mappings select materials by variant name, bad mappings warn, unknown names throw
 // listing the variants.
@@ -163,7 +163,7 @@ TEST(GltfMaterialExt, ExtensionTexturesAreLoaded) {
         "KHR_materials_clearcoat": {"clearcoatFactor": 1, "clearcoatTexture": {"index": 2},
             "clearcoatRoughnessTexture": {"index": 1, "extensions": {"KHR_texture_transform":
                 {"offset": [0.5, 0.25], "scale": [2, 3], "rotation": 0.5}}},
-            "clearcoatNormalTexture": {"index": 0}},
+            "clearcoatNormalTexture": {"index": 0, "scale": 0.5}},
         "KHR_materials_sheen": {"sheenColorFactor": [1, 1, 1], "sheenColorTexture": {"index": 2},
                                 "sheenRoughnessTexture": {"index": 7}}}}])");
     const Scene s = loadGltf(f.write(dir));
@@ -177,10 +177,13 @@ TEST(GltfMaterialExt, ExtensionTexturesAreLoaded) {
     EXPECT_EQ(m.clearcoatRoughnessTexture->offset, glm::vec2(0.5f, 0.25f));
     EXPECT_EQ(m.clearcoatRoughnessTexture->scale, glm::vec2(2.0f, 3.0f));
     EXPECT_EQ(m.clearcoatRoughnessTexture->rotation, 0.5f);
+    ASSERT_TRUE(m.clearcoatNormalTexture);  // read now: the coat's own normal, no warning
+    EXPECT_EQ(m.clearcoatNormalTexture->texture, 0u);
+    EXPECT_EQ(m.clearcoatNormalScale, 0.5f);
+    EXPECT_FALSE(anyWarningHas(s, "'textured'", "clearcoatNormalTexture"));
     EXPECT_EQ(m.sheenColorTexture->texture, 2u);
     EXPECT_FALSE(m.sheenRoughnessTexture.has_value());  // texture 7 of 3: dropped with a warning
     EXPECT_TRUE(anyWarningHas(s, "'textured'", "sheenRoughnessTexture names texture 7"));
-    EXPECT_TRUE(anyWarningHas(s, "'textured'", "clearcoatNormalTexture is not supported"));
     EXPECT_TRUE(s.features().hasTextures);
 }
 

@@ -128,11 +128,15 @@ PtMaterialHit evaluateMaterial(const PathTraceScene& pts, const PtHitPoint& hit,
         if (glm::dot(c, hit.geometricNormal) < 0.0f) c = -c;
         s.clearcoatNormal = c;
     }
-    // KHR_materials_anisotropy: the direction in the vertex frame (its texture is not read yet: RG = (1, 0.5)).
-    s.anisotropyStrength = std::clamp(pm.anisotropyStrength, 0.0f, 1.0f);
+    // KHR_materials_anisotropy: the direction in the vertex frame; anisotropyTexture RG turns it (no texture:
+    // RG = (1, 0.5), the tangent), B scales the strength.
+    glm::vec4 anisotropyTexel(1.0f, 0.5f, 1.0f, 1.0f);
+    if (m.anisotropyTexture && pm.anisotropyStrength > 0.0f)
+        anisotropyTexel = sampleRef(pts, m.anisotropyTexture, hit, false);
+    s.anisotropyStrength = std::clamp(pm.anisotropyStrength * anisotropyTexel.b, 0.0f, 1.0f);
     s.anisotropyDirection = s.anisotropyStrength > 0.0f
                                 ? gpu::ptAnisotropyDirection(hit.tangent, hit.normal, pm.anisotropyRotation,
-                                                             glm::vec2(1.0f, 0.5f))
+                                                             glm::vec2(anisotropyTexel))
                                 : glm::vec3(0.0f);
 
     if (m.unlit) {

@@ -6,8 +6,8 @@
 // sRGB RGB, clearcoatTexture R, clearcoatRoughnessTexture G, sheenColorTexture sRGB RGB, sheenRoughnessTexture A)
 // become TextureRefs with texCoord and KHR_texture_transform like the core ones; a reference without an index or
 // out of range warns and is dropped (the factor alone is used). clearcoatNormalTexture (with its scale) gives the
-// coat its own shading normal. anisotropyTexture is validated and ignored with a warning (the strength and
-// rotation factors alone are used).
+// coat its own shading normal. anisotropyTexture: RG the direction in tangent space ([0, 1] -> [-1, 1], turned by
+// anisotropyRotation), B scales the strength.
 #include <algorithm>
 #include <cmath>
 
@@ -120,8 +120,7 @@ void loadMaterialExtensions(const Ctx& ctx, const tinygltf::Material& src, const
         mat.anisotropyStrength = rangedNumber(ctx, *ext, "anisotropyStrength", 0.0f, 0.0f, 1.0f, w);
         // Any finite angle is valid (radians); a bound keeps sin/cos accurate in float.
         mat.anisotropyRotation = rangedNumber(ctx, *ext, "anisotropyRotation", 0.0f, -1.0e4f, 1.0e4f, w);
-        if (validTextureInfo(ctx, *ext, "anisotropyTexture", w))
-            ctx.warn(w + ": anisotropyTexture is not supported yet (the strength and rotation factors alone are used)");
+        mat.anisotropyTexture = extTexture(ctx, *ext, "anisotropyTexture", w);
     }
     if (const auto* ext = extension(src.extensions, "KHR_materials_iridescence"); ext && ext->IsObject()) {
         const std::string w = where + " KHR_materials_iridescence";

@@ -43,7 +43,7 @@ SceneFeatures Scene::features() const {
         f.hasLayerTextures = f.hasLayerTextures || m.specularTexture || m.specularColorTexture ||
                              m.clearcoatTexture || m.clearcoatRoughnessTexture || m.sheenColorTexture ||
                              m.sheenRoughnessTexture || m.iridescenceTexture || m.iridescenceThicknessTexture ||
-                             m.clearcoatNormalTexture;
+                             m.clearcoatNormalTexture || m.anisotropyTexture;
         f.hasNormalMaps = f.hasNormalMaps || m.normalTexture.has_value();
         f.hasTransmission = f.hasTransmission || m.transmission > 0.0f || m.transmissionTexture.has_value();
         f.hasVolume = f.hasVolume || m.thickness > 0.0f;

@@ -48,7 +48,8 @@ bool deferredLightingPixel(LightingPush p, GpuFrame f, ivec2 pixel, out vec4 res
         GpuMaterial material = MaterialBuffer(p.materials).data[layered - 1u];
         layers = withIridescenceTexels(layers, material, vec2(specularColorT.a, sheenColorT.a));
         if ((material.flags & kMaterialClearcoatNormal) != 0u)  // the coat's own normal
-            layers.clearcoatNormal = octDecode(unpackSnorm2x16(packed.w));
+            layers.clearcoatNormal = octDecode(unpackCoatNormalOct(packed.w));
+        layers = withAnisotropyStrengthTexel(layers, unpackAnisotropyStrengthTexel(packed.w));
     }
     vec3 radiance = emissive.rgb;
     gShadowPixel = pixel;  // ray-traced shadows read their mask here (include/rt_shadows.glsl)

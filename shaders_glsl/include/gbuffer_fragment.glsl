@@ -25,13 +25,21 @@ layout(location = 4) out float outDepth;    // R32F: the fragment's depth (what 
 // KHR_materials_specular / _clearcoat / _sheen texels of layered materials, for the lighting pass:
 // x = unorm8 (specular A, clearcoat R, clearcoatRoughness G, sheenRoughness A), y / z = sRGB-encoded unorm8
 // specularColor / sheenColor RGB, their alphas KHR_materials_iridescence's texels (factor R, thickness G); w = the
-// coat's normal (clearcoatNormalTexture; the shading normal's interpolated one otherwise), octahedral. Discarded when the scene has no such texture (no attachment).
+// coat's normal (clearcoatNormalTexture; the shading normal's interpolated one otherwise), octahedral in 2 x 12 bits,
+// and anisotropyTexture's B in the top 8 bits (packCoatNormalAnisotropy). Discarded when the scene has no such texture (no attachment).
 layout(location = 5) out uvec4 outLayers;
 #ifdef GBUFFER_IDS
 layout(location = 6) out uvec2 outIds;      // RG32UI: the draw and its triangle (gl_PrimitiveID) of the kept fragment
 #endif
 
 vec4 sampleSlot(GpuTextureSlot slot) { return sampleMaterialSlot(slot, inUv, inUv1); }
+
+// The layer texels' word w: the coat normal's octahedral xy (in [-1, 1]) in 2 x 12 bits, a unorm8 in the top byte
+// (anisotropyTexture's B); deferred_lighting_pixel.glsl unpacks it (material_layers.glsl).
+uint packCoatNormalAnisotropy(vec2 oct, float strength) {
+    uvec2 q = uvec2(round(clamp(oct * 0.5 + 0.5, 0.0, 1.0) * 4095.0));
+    return q.x | (q.y << 12u) | (uint(round(clamp(strength, 0.0, 1.0) * 255.0)) << 24u);
+}
 
 void main() {
     GpuInstance instance = InstanceBuffer(p.instances).data[inDraw];
@@ -51,6 +59,8 @@ void main() {
                           sheenRoughnessT);
     vec4 coatNormalT = vec4(0.5, 0.5, 1.0, 1.0);  // clearcoatNormalTexture (flat without one)
     if ((m.flags & kMaterialClearcoatNormal) != 0u) coatNormalT = sampleSlot(m.slots[kSlotClearcoatNormal]);
+    float anisotropyStrengthT = 1.0;  // anisotropyTexture B (the deferred pass has no tangent for its RG)
+    if ((m.flags & kMaterialAnisotropyTexture) != 0u) anisotropyStrengthT = sampleSlot(m.slots[kSlotAnisotropy]).b;
     vec2 iridescenceT = vec2(1.0);  // KHR_materials_iridescence: R of its texture, G of its thickness texture
     if ((m.flags & kMaterialIridescence) != 0u)
         iridescenceT = vec2(sampleSlot(m.slots[kSlotIridescence]).r, sampleSlot(m.slots[kSlotIridescenceThickness]).g);
@@ -88,7 +98,7 @@ void main() {
     outLayers = uvec4(packUnorm4x8(vec4(specularT, coatT, coatRoughnessT, sheenRoughnessT)),
                       packUnorm4x8(vec4(srgbEncode(clamp(specularColorT, 0.0, 1.0)), iridescenceT.x)),
                       packUnorm4x8(vec4(srgbEncode(clamp(sheenColorT, 0.0, 1.0)), iridescenceT.y)),
-                      packSnorm2x16(octEncode(nc)));
+                      packCoatNormalAnisotropy(octEncode(nc), anisotropyStrengthT));
     outDepth = gl_FragCoord.z;
 #ifdef GBUFFER_IDS
     outIds = uvec2(inDraw, uint(gl_PrimitiveID));

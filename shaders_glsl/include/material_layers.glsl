@@ -62,6 +62,11 @@ SurfaceLayers materialLayers(GpuMaterial m) {
                          film ? max(m.iridescenceThicknessMax, 0.0) : 0.0, vec3(0.0));
 }
 
+// The G-buffer's layer-texel word w (gbuffer_fragment.glsl's packCoatNormalAnisotropy): the coat normal's
+// octahedral xy in 2 x 12 bits, anisotropyTexture's B as unorm8 in the top byte.
+vec2 unpackCoatNormalOct(uint w) { return vec2(uvec2(w & 4095u, (w >> 12u) & 4095u)) / 4095.0 * 2.0 - 1.0; }
+float unpackAnisotropyStrengthTexel(uint w) { return float(w >> 24u) / 255.0; }
+
 // The coat's normal: its own (clearcoatNormalTexture) or the shading normal n.
 vec3 coatNormal(SurfaceLayers s, vec3 n) {
     return dot(s.clearcoatNormal, s.clearcoatNormal) > 0.5 ? s.clearcoatNormal : n;
@@ -77,11 +82,20 @@ SurfaceLayers withIridescenceTexels(SurfaceLayers s, GpuMaterial m, vec2 texel) 
     return s;
 }
 
-// The anisotropy direction from a tangent frame (t, b: glTF's tangent and bitangent), turned by anisotropyRotation.
-SurfaceLayers withAnisotropyFrame(SurfaceLayers s, GpuMaterial m, vec3 t, vec3 b) {
+// anisotropyTexture's B scales the strength (1 without a texture).
+SurfaceLayers withAnisotropyStrengthTexel(SurfaceLayers s, float b) {
+    s.anisotropyStrength = clamp(s.anisotropyStrength * b, 0.0, 1.0);
+    return s;
+}
+
+// The anisotropy direction from a tangent frame (t, b: glTF's tangent and bitangent): anisotropyTexture's RG
+// remapped to [-1, 1] ((1, 0.5) without a texture: the tangent), turned by anisotropyRotation.
+SurfaceLayers withAnisotropyFrame(SurfaceLayers s, GpuMaterial m, vec3 t, vec3 b, vec2 textureRg) {
     if (s.anisotropyStrength > 0.0) {
-        vec3 d = t * cos(m.anisotropyRotation) + b * sin(m.anisotropyRotation);
-        s.anisotropyDirection = dot(d, d) > 1e-12 ? normalize(d) : vec3(0.0);
+        vec2 d = textureRg * 2.0 - 1.0;
+        float c = cos(m.anisotropyRotation), sn = sin(m.anisotropyRotation);
+        vec3 w = t * (c * d.x - sn * d.y) + b * (sn * d.x + c * d.y);
+        s.anisotropyDirection = dot(w, w) > 1e-12 ? normalize(w) : vec3(0.0);
     }
     return s;
 }

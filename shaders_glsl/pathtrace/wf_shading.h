@@ -139,10 +139,15 @@ PtSurface wfEvaluateMaterial(GpuPtSceneDesc sc, WfHitPoint hit, vec3 wo, out boo
         vec3 c = wfMapNormal(hit, wfSampleSlot(m.slots[kSlotClearcoatNormal], hit), m.clearcoatNormalScale);
         s.clearcoatNormal = dot(c, hit.geometricNormal) < 0.0 ? -c : c;
     }
-    // KHR_materials_anisotropy (pathtrace::evaluateMaterial's twin; the texture is not read yet).
-    s.anisotropyStrength = clamp(pm.anisotropyStrength, 0.0, 1.0);
+    // KHR_materials_anisotropy (pathtrace::evaluateMaterial's twin): anisotropyTexture RG turns the direction, B
+    // scales the strength.
+    vec3 anisotropyTexel = vec3(1.0, 0.5, 1.0);
+    if ((m.flags & kMaterialAnisotropyTexture) != 0u && pm.anisotropyStrength > 0.0)
+        anisotropyTexel = wfSampleSlot(m.slots[kSlotAnisotropy], hit).rgb;
+    s.anisotropyStrength = clamp(pm.anisotropyStrength * anisotropyTexel.b, 0.0, 1.0);
     s.anisotropyDirection = s.anisotropyStrength > 0.0
-                                ? ptAnisotropyDirection(hit.tangent, hit.normal, pm.anisotropyRotation, vec2(1.0, 0.5))
+                                ? ptAnisotropyDirection(hit.tangent, hit.normal, pm.anisotropyRotation,
+                                                        anisotropyTexel.rg)
                                 : vec3(0.0);
     unlit = (m.flags & kMaterialUnlit) != 0u;
     if (unlit) {

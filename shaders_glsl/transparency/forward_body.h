@@ -67,6 +67,9 @@ void main() {
     vec4 coatNormalTexel = vec4(0.5, 0.5, 1.0, 1.0);  // clearcoatNormalTexture (flat without one)
     if ((m.flags & kMaterialClearcoatNormal) != 0u)
         coatNormalTexel = sampleMaterialSlot(m.slots[kSlotClearcoatNormal], inUv, inUv1);
+    vec3 anisotropyTexel = vec3(1.0, 0.5, 1.0);  // anisotropyTexture: RG direction, B strength
+    if ((m.flags & kMaterialAnisotropyTexture) != 0u)
+        anisotropyTexel = sampleMaterialSlot(m.slots[kSlotAnisotropy], inUv, inUv1).rgb;
     vec2 iridescenceTexels = vec2(1.0);  // KHR_materials_iridescence: R of its texture, G of its thickness texture
     if ((m.flags & kMaterialIridescence) != 0u)
         iridescenceTexels = vec2(sampleMaterialSlot(m.slots[kSlotIridescence], inUv, inUv1).r,
@@ -109,8 +112,9 @@ void main() {
     float occlusion = 1.0 + m.occlusionStrength * (ao - 1.0);
     SurfaceLayers layers = withIridescenceTexels(texturedLayers(materialLayers(m), layerTexels), m, iridescenceTexels);
     if ((m.flags & kMaterialClearcoatNormal) != 0u) layers.clearcoatNormal = nc;
+    layers = withAnisotropyStrengthTexel(layers, anisotropyTexel.b);
     vec3 radiance = emissive + shadeSurface(f, p.pointShadows, inWorldPosition, n, v, baseColor.rgb, metallic,
                                             roughness, occlusion,
-                                            haveFrame ? withAnisotropyFrame(layers, m, t, b) : layers);
+                                            haveFrame ? withAnisotropyFrame(layers, m, t, b, anisotropyTexel.rg) : layers);
     writeTransparent(vec4(radiance, baseColor.a));
 }

@@ -14,7 +14,11 @@
 //    renders the film-less frame; its textures (through the G-buffer's layer texels in the deferred pass) render
 //    like the factors they encode;
 //  * clearcoatNormalTexture: a tilted coat normal changes the deferred and the forward frame alike (within 25%);
-//    a flat coat normal map (texel 128, 128, 255) renders the map-less frame within 0.1% of its radiance.
+//    a flat coat normal map (texel 128, 128, 255) renders the map-less frame within 0.1% of its radiance;
+//  * anisotropyTexture: a constant texture (RG 255, 128: the tangent; B 204) renders as the factors (strength x 0.8)
+//    in both passes, and in the forward pass (the one with a tangent frame) a texture direction of 90 degrees (RG
+//    128, 255) as anisotropyRotation = pi/2, each within 1e-3 of the radiance, 10x below what the rotation (or, in
+//    the deferred pass, an unread strength texel) changes.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -253,6 +257,58 @@ TEST_F(MaterialLayersTest, CoatNormalDeferredAndForward) {
         EXPECT_LT(flatChange, 1e-3) << path;
     }
     EXPECT_NEAR(change[0], change[1], 0.25 * change[0]) << "deferred and forward shade the coat normal alike";
+}
+
+// Brushed gold and plastic (tangents around the vertical axis, UVs): strength 0.8 and `rotation`, or strength 1 with
+// a 1x1 anisotropy texture (rg, B 204).
+scene::Scene anisotropicSpheres(bool blend, bool textured, std::array<uint8_t, 2> rg, float rotation) {
+    namespace lt = layer_textures;
+    scene::Scene s = materialSpheres();
+    brushedTangents(s);
+    for (size_t i = 1; i < s.materials.size() && blend; ++i) {
+        s.materials[i].alphaMode = scene::AlphaMode::Blend;
+        s.materials[i].baseColorFactor.a = 1.0f;
+    }
+    for (uint32_t i : {1u, 4u}) {
+        lt::sideUvs(s, i);
+        scene::Material& m = s.materials[i];
+        m.roughness = 0.3f;
+        m.anisotropyStrength = 0.8f;
+        m.anisotropyRotation = rotation;
+        if (textured) {
+            m.anisotropyStrength = 1.0f;
+            m.anisotropyTexture = lt::addTexture(s, {{rg[0], rg[1], 204, 255}});
+        }
+    }
+    return s;
+}
+
+TEST_F(MaterialLayersTest, AnisotropyTextureDeferredAndForward) {
+    for (int blend = 0; blend < 2; ++blend) {
+        const char* path = blend ? "forward (BLEND)" : "deferred";
+        const core::ImageRgba32f factors = renderHdr(ctx(), shaders(), anisotropicSpheres(blend, false, {0, 0}, 0.0f), false);
+        const core::ImageRgba32f constant = renderHdr(ctx(), shaders(), anisotropicSpheres(blend, true, {255, 128}, 0.0f), false);
+        const double constantChange = relativeChange(constant, factors);
+        if (!blend) {  // no tangent in the G-buffer: only the strength texel matters (not read: strength 1)
+            scene::Scene one = anisotropicSpheres(blend, false, {0, 0}, 0.0f);
+            for (uint32_t i : {1u, 4u}) one.materials[i].anisotropyStrength = 1.0f;
+            const double oneChange = relativeChange(renderHdr(ctx(), shaders(), one, false), constant);
+            std::printf("raster %s: constant anisotropy texture vs factors %.5f%% (vs strength 1: %.4f%%)\n", path,
+                        100.0 * constantChange, 100.0 * oneChange);
+            EXPECT_LT(constantChange, 1e-3) << path;
+            EXPECT_LT(constantChange, 0.1 * oneChange) << path;
+            continue;
+        }
+        const core::ImageRgba32f rotated = renderHdr(ctx(), shaders(), anisotropicSpheres(blend, false, {0, 0}, 1.5707963f), false);
+        const core::ImageRgba32f turned = renderHdr(ctx(), shaders(), anisotropicSpheres(blend, true, {128, 255}, 0.0f), false);
+        const double turnedChange = relativeChange(turned, rotated), rotationChange = relativeChange(rotated, factors);
+        std::printf("raster %s: constant anisotropy texture vs factors %.5f%%, 90-degree texture vs rotation pi/2 "
+                    "%.5f%% (the rotation changes %.4f%%)\n", path, 100.0 * constantChange, 100.0 * turnedChange,
+                    100.0 * rotationChange);
+        EXPECT_LT(constantChange, 1e-3) << path;
+        EXPECT_LT(turnedChange, 1e-3) << path;
+        EXPECT_GT(rotationChange, 10.0 * std::max(constantChange, turnedChange)) << path;
+    }
 }
 
 }  // namespace

@@ -70,6 +70,14 @@ GpuPtProbeCase randomCase(std::mt19937& gen, uint32_t i) {
     s.diffuseTransmission = i % 7 == 2 ? uni(diffTransGen) : 0.0f;
     s.diffuseTransmissionColor = i % 7 == 2 ? glm::vec3(uni(diffTransGen), uni(diffTransGen), uni(diffTransGen))
                                             : glm::vec3(1.0f);
+    // KHR_materials_iridescence on a share of the cases (own generator, as above); a few with thickness 0.
+    std::mt19937 iridGen(i * 2246822519u + 7u);
+    s.iridescence = i % 7 == 4 ? uni(iridGen) : 0.0f;
+    s.iridescenceIor = 1.0f + 1.5f * uni(iridGen);
+    s.iridescenceThickness = i % 21 == 4 ? 0.0f : 1000.0f * uni(iridGen);
+    // clearcoatNormalTexture: a coat normal of its own on half of the coated cases (own generator).
+    std::mt19937 coatGen(i * 3266489917u + 3u);
+    s.clearcoatNormal = i % 12 == 7 ? glm::normalize(s.shadingNormal + 0.4f * randomUnit(coatGen)) : glm::vec3(0.0f);
     c.wo = randomUnit(gen);
     c.wi = randomUnit(gen);
     c.u = glm::vec3(uni(gen), uni(gen), uni(gen));

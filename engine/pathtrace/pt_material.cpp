@@ -22,6 +22,21 @@ glm::vec4 sampleRef(const PathTraceScene& pts, const std::optional<scene::Textur
     return sampleTexture(pts.textures[ref->texture], uv, srgb);
 }
 
+// Normal mapping in the vertex tangent frame (B = cross(N, T) * w), z rebuilt from the remapped xy; n when the
+// hit has no usable tangent.
+glm::vec3 mapNormal(const PtHitPoint& hit, const glm::vec4& texel, float scale) {
+    const glm::vec3 n = hit.normal;
+    if (hit.tangent.w == 0.0f) return n;
+    glm::vec3 t = glm::vec3(hit.tangent) - n * glm::dot(n, glm::vec3(hit.tangent));
+    const float len2 = glm::dot(t, t);
+    if (!(len2 > 1e-20f)) return n;
+    t /= std::sqrt(len2);
+    const glm::vec3 b = glm::cross(n, t) * hit.tangent.w;
+    const glm::vec2 xy = glm::vec2(texel) * 2.0f - 1.0f;
+    const glm::vec3 tn(xy * scale, std::sqrt(std::max(1.0f - glm::dot(xy, xy), 0.0f)));
+    return safeNormalize(t * tn.x + b * tn.y + n * tn.z, n);
+}
+
 }  // namespace
 
 PtHitPoint hitPoint(const PathTraceScene& pts, uint32_t instance, uint32_t triangle, float u, float v) {
@@ -101,30 +116,37 @@ PtMaterialHit evaluateMaterial(const PathTraceScene& pts, const PtHitPoint& hit,
             m.diffuseTransmissionColor * glm::vec3(sampleRef(pts, m.diffuseTransmissionColorTexture, hit, true));
     }
     s.dispersion = m.unlit ? 0.0f : m.dispersion;
+    // KHR_materials_iridescence: factor x R, thickness = mix(min, max, G) (no texture: G = 1, the maximum).
+    if (m.iridescence > 0.0f) {
+        s.iridescence = std::clamp(m.iridescence * sampleRef(pts, m.iridescenceTexture, hit, false).r, 0.0f, 1.0f);
+        s.iridescenceIor = m.iridescenceIor;
+        const float g = sampleRef(pts, m.iridescenceThicknessTexture, hit, false).g;
+        s.iridescenceThickness = glm::mix(m.iridescenceThicknessMin, m.iridescenceThicknessMax, g);
+    }
 
     // Normal mapping in the vertex tangent frame (B = cross(N, T) * w), z rebuilt from the remapped xy.
     glm::vec3 n = hit.normal;
-    if (m.normalTexture && hit.tangent.w != 0.0f) {
-        const glm::vec4 texel = sampleRef(pts, m.normalTexture, hit, false);
-        glm::vec3 t = glm::vec3(hit.tangent) - n * glm::dot(n, glm::vec3(hit.tangent));
-        const float len2 = glm::dot(t, t);
-        if (len2 > 1e-20f) {
-            t /= std::sqrt(len2);
-            const glm::vec3 b = glm::cross(n, t) * hit.tangent.w;
-            const glm::vec2 xy = glm::vec2(texel) * 2.0f - 1.0f;
-            const glm::vec3 tn(xy * m.normalScale, std::sqrt(std::max(1.0f - glm::dot(xy, xy), 0.0f)));
-            n = safeNormalize(t * tn.x + b * tn.y + n * tn.z, n);
-        }
-    }
+    if (m.normalTexture && hit.tangent.w != 0.0f)
+        n = mapNormal(hit, sampleRef(pts, m.normalTexture, hit, false), m.normalScale);
     // Interpolated normals may point to the other side of the triangle than its winding says: keep the shading
     // normal on the geometric normal's side (the BSDF turns both toward wo).
     if (glm::dot(n, hit.geometricNormal) < 0.0f) n = -n;
     s.shadingNormal = n;
-    // KHR_materials_anisotropy: the direction in the vertex frame (its texture is not read yet: RG = (1, 0.5)).
-    s.anisotropyStrength = std::clamp(pm.anisotropyStrength, 0.0f, 1.0f);
+    // clearcoatNormalTexture: the coat's own normal, mapped from the interpolated normal like the base's (0: none).
+    if (m.clearcoatNormalTexture && s.clearcoat > 0.0f && hit.tangent.w != 0.0f) {
+        glm::vec3 c = mapNormal(hit, sampleRef(pts, m.clearcoatNormalTexture, hit, false), m.clearcoatNormalScale);
+        if (glm::dot(c, hit.geometricNormal) < 0.0f) c = -c;
+        s.clearcoatNormal = c;
+    }
+    // KHR_materials_anisotropy: the direction in the vertex frame; anisotropyTexture RG turns it (no texture:
+    // RG = (1, 0.5), the tangent), B scales the strength.
+    glm::vec4 anisotropyTexel(1.0f, 0.5f, 1.0f, 1.0f);
+    if (m.anisotropyTexture && pm.anisotropyStrength > 0.0f)
+        anisotropyTexel = sampleRef(pts, m.anisotropyTexture, hit, false);
+    s.anisotropyStrength = std::clamp(pm.anisotropyStrength * anisotropyTexel.b, 0.0f, 1.0f);
     s.anisotropyDirection = s.anisotropyStrength > 0.0f
                                 ? gpu::ptAnisotropyDirection(hit.tangent, hit.normal, pm.anisotropyRotation,
-                                                             glm::vec2(1.0f, 0.5f))
+                                                             glm::vec2(anisotropyTexel))
                                 : glm::vec3(0.0f);
 
     if (m.unlit) {
@@ -139,6 +161,7 @@ PtMaterialHit evaluateMaterial(const PathTraceScene& pts, const PtHitPoint& hit,
         s.anisotropyStrength = 0.0f;
         s.diffuseTransmission = 0.0f;
         s.dispersion = 0.0f;
+        s.iridescence = 0.0f;
     }
     return out;
 }

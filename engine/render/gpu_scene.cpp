@@ -78,6 +78,11 @@ gpu::GpuMaterial packMaterial(const scene::Material& m, const TextureBindings& b
     g.slots[gpu::kSlotClearcoatRoughness] = slotFor(m.clearcoatRoughnessTexture, b.white, b);
     g.slots[gpu::kSlotSheenColor] = slotFor(m.sheenColorTexture, b.white, b);
     g.slots[gpu::kSlotSheenRoughness] = slotFor(m.sheenRoughnessTexture, b.white, b);
+    // KHR_materials_iridescence, clearcoat normal and anisotropy textures (the last two read only with their flag).
+    g.slots[gpu::kSlotIridescence] = slotFor(m.iridescenceTexture, b.white, b);
+    g.slots[gpu::kSlotIridescenceThickness] = slotFor(m.iridescenceThicknessTexture, b.white, b);
+    g.slots[gpu::kSlotClearcoatNormal] = slotFor(m.clearcoatNormalTexture, b.flatNormal, b);
+    g.slots[gpu::kSlotAnisotropy] = slotFor(m.anisotropyTexture, b.white, b);
     g.specular = m.specular;
     g.specularColor = m.specularColor;
     g.clearcoat = m.clearcoat;
@@ -97,12 +102,20 @@ gpu::GpuMaterial packMaterial(const scene::Material& m, const TextureBindings& b
     g.dispersion = m.dispersion;
     if (diffuseTransmits) g.flags |= gpu::kMaterialDiffuseTransmission;
     if (!m.unlit && m.dispersion > 0.0f) g.flags |= gpu::kMaterialDispersion;
+    g.iridescence = m.iridescence;
+    g.iridescenceIor = m.iridescenceIor;
+    g.iridescenceThicknessMin = m.iridescenceThicknessMin;
+    g.iridescenceThicknessMax = m.iridescenceThicknessMax;
+    g.clearcoatNormalScale = m.clearcoatNormalScale;
     if (!m.unlit) {
         if (m.specular != 1.0f || m.specularColor != glm::vec3(1.0f) || m.specularTexture || m.specularColorTexture)
             g.flags |= gpu::kMaterialSpecular;
         if (m.clearcoat > 0.0f) g.flags |= gpu::kMaterialClearcoat;
         if (glm::any(glm::greaterThan(m.sheenColor, glm::vec3(0.0f)))) g.flags |= gpu::kMaterialSheen;
         if (m.anisotropyStrength > 0.0f) g.flags |= gpu::kMaterialAnisotropy;
+        if (m.iridescence > 0.0f) g.flags |= gpu::kMaterialIridescence;
+        if (m.clearcoat > 0.0f && m.clearcoatNormalTexture) g.flags |= gpu::kMaterialClearcoatNormal;
+        if (m.anisotropyStrength > 0.0f && m.anisotropyTexture) g.flags |= gpu::kMaterialAnisotropyTexture;
     }
     return g;
 }
@@ -113,7 +126,8 @@ std::array<uint32_t, gpu::kSlotCount> slotTextures(const scene::Material& m) {
         &m.baseColorTexture,   &m.metallicRoughnessTexture,  &m.normalTexture,       &m.occlusionTexture,
         &m.emissiveTexture,    &m.specularTexture,           &m.specularColorTexture, &m.clearcoatTexture,
         &m.clearcoatRoughnessTexture, &m.sheenColorTexture, &m.sheenRoughnessTexture,
-        &m.diffuseTransmissionTexture, &m.diffuseTransmissionColorTexture};
+        &m.diffuseTransmissionTexture, &m.diffuseTransmissionColorTexture, &m.iridescenceTexture,
+        &m.iridescenceThicknessTexture, &m.clearcoatNormalTexture, &m.anisotropyTexture};
     std::array<uint32_t, gpu::kSlotCount> t;
     for (uint32_t s = 0; s < gpu::kSlotCount; ++s) t[s] = *refs[s] ? (*refs[s])->texture : UINT32_MAX;
     if (m.unlit || !(m.diffuseTransmission > 0.0f))  // packMaterial binds white there: nothing to stream

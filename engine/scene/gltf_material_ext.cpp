@@ -1,12 +1,14 @@
 // gltf_material_ext.cpp: the BSDF material extensions of the loader: KHR_materials_specular, _clearcoat, _sheen,
-// _anisotropy, _diffuse_transmission, _dispersion.
+// _anisotropy, _iridescence (iridescenceTexture R, iridescenceThicknessTexture G; factor [0, 1], film IOR [1, 4],
+// thicknesses in nanometres [0, 1e5]), _diffuse_transmission, _dispersion.
 // Untrusted input: every factor is checked for type and finiteness and clamped to the range the specification
 // gives (out-of-range values warn, naming the material). Their textures (specularTexture A, specularColorTexture
 // sRGB RGB, clearcoatTexture R, clearcoatRoughnessTexture G, sheenColorTexture sRGB RGB, sheenRoughnessTexture A)
 // become TextureRefs with texCoord and KHR_texture_transform like the core ones; a reference without an index or
-// out of range warns and is dropped (the factor alone is used). clearcoatNormalTexture is validated and ignored
-// with a warning: the coat shares the base layer's shading normal in every renderer; so is anisotropyTexture (the
-// strength and rotation factors alone are used). KHR_materials_diffuse_transmission: diffuseTransmissionFactor and
+// out of range warns and is dropped (the factor alone is used). clearcoatNormalTexture (with its scale) gives the
+// coat its own shading normal. anisotropyTexture: RG the direction in tangent space ([0, 1] -> [-1, 1], turned by
+// anisotropyRotation), B scales the strength.
+// KHR_materials_diffuse_transmission: diffuseTransmissionFactor and
 // diffuseTransmissionColorFactor clamped to [0, 1]; diffuseTransmissionTexture A, diffuseTransmissionColorTexture
 // sRGB RGB. KHR_materials_dispersion: dispersion (20 / Abbe number) >= 0, capped at 100 (an Abbe number of 0.2,
 // far beyond any real glass) so that hostile values keep the IOR formula finite.
@@ -105,8 +107,10 @@ void loadMaterialExtensions(const Ctx& ctx, const tinygltf::Material& src, const
         mat.clearcoatRoughness = rangedNumber(ctx, *ext, "clearcoatRoughnessFactor", 0.0f, 0.0f, 1.0f, w);
         mat.clearcoatTexture = extTexture(ctx, *ext, "clearcoatTexture", w);
         mat.clearcoatRoughnessTexture = extTexture(ctx, *ext, "clearcoatRoughnessTexture", w);
-        if (validTextureInfo(ctx, *ext, "clearcoatNormalTexture", w))
-            ctx.warn(w + ": clearcoatNormalTexture is not supported (the coat uses the base layer's normal)");
+        mat.clearcoatNormalTexture = extTexture(ctx, *ext, "clearcoatNormalTexture", w);
+        if (mat.clearcoatNormalTexture)  // a normalTextureInfo: its scale multiplies the map's xy
+            mat.clearcoatNormalScale = rangedNumber(ctx, ext->Get("clearcoatNormalTexture"), "scale", 1.0f, -1.0e4f,
+                                                    1.0e4f, w + " clearcoatNormalTexture");
     }
     if (const auto* ext = extension(src.extensions, "KHR_materials_sheen"); ext && ext->IsObject()) {
         const std::string w = where + " KHR_materials_sheen";
@@ -120,8 +124,18 @@ void loadMaterialExtensions(const Ctx& ctx, const tinygltf::Material& src, const
         mat.anisotropyStrength = rangedNumber(ctx, *ext, "anisotropyStrength", 0.0f, 0.0f, 1.0f, w);
         // Any finite angle is valid (radians); a bound keeps sin/cos accurate in float.
         mat.anisotropyRotation = rangedNumber(ctx, *ext, "anisotropyRotation", 0.0f, -1.0e4f, 1.0e4f, w);
-        if (validTextureInfo(ctx, *ext, "anisotropyTexture", w))
-            ctx.warn(w + ": anisotropyTexture is not supported yet (the strength and rotation factors alone are used)");
+        mat.anisotropyTexture = extTexture(ctx, *ext, "anisotropyTexture", w);
+    }
+    if (const auto* ext = extension(src.extensions, "KHR_materials_iridescence"); ext && ext->IsObject()) {
+        const std::string w = where + " KHR_materials_iridescence";
+        mat.iridescence = rangedNumber(ctx, *ext, "iridescenceFactor", 0.0f, 0.0f, 1.0f, w);
+        // The specification asks for an IOR >= 1; above 4 no thin film exists and the BSDF's Fresnel maths is
+        // not meant for it. Thicknesses are nanometres >= 0; 100 um bounds what hostile files can ask for.
+        mat.iridescenceIor = rangedNumber(ctx, *ext, "iridescenceIor", 1.3f, 1.0f, 4.0f, w);
+        mat.iridescenceThicknessMin = rangedNumber(ctx, *ext, "iridescenceThicknessMinimum", 100.0f, 0.0f, 1.0e5f, w);
+        mat.iridescenceThicknessMax = rangedNumber(ctx, *ext, "iridescenceThicknessMaximum", 400.0f, 0.0f, 1.0e5f, w);
+        mat.iridescenceTexture = extTexture(ctx, *ext, "iridescenceTexture", w);
+        mat.iridescenceThicknessTexture = extTexture(ctx, *ext, "iridescenceThicknessTexture", w);
     }
     if (const auto* ext = extension(src.extensions, "KHR_materials_diffuse_transmission"); ext && ext->IsObject()) {
         const std::string w = where + " KHR_materials_diffuse_transmission";

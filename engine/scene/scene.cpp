@@ -38,11 +38,14 @@ SceneFeatures Scene::features() const {
                               m.specularTexture || m.specularColorTexture || m.clearcoatTexture ||
                               m.clearcoatRoughnessTexture || m.sheenColorTexture || m.sheenRoughnessTexture ||
                               (m.diffuseTransmission > 0.0f &&
-                               (m.diffuseTransmissionTexture || m.diffuseTransmissionColorTexture));
+                               (m.diffuseTransmissionTexture || m.diffuseTransmissionColorTexture)) ||
+                              m.iridescenceTexture || m.iridescenceThicknessTexture || m.clearcoatNormalTexture ||
+                              m.anisotropyTexture;
         f.hasTextures = f.hasTextures || textured;
         f.hasLayerTextures = f.hasLayerTextures || m.specularTexture || m.specularColorTexture ||
                              m.clearcoatTexture || m.clearcoatRoughnessTexture || m.sheenColorTexture ||
-                             m.sheenRoughnessTexture ||
+                             m.sheenRoughnessTexture || m.iridescenceTexture || m.iridescenceThicknessTexture ||
+                             m.clearcoatNormalTexture || m.anisotropyTexture ||
                              (m.diffuseTransmission > 0.0f && !m.unlit &&
                               (m.diffuseTransmissionTexture || m.diffuseTransmissionColorTexture));
         f.hasNormalMaps = f.hasNormalMaps || m.normalTexture.has_value();

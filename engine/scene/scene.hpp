@@ -118,6 +118,16 @@ struct Material {
     std::optional<TextureRef> diffuseTransmissionTexture;       // linear, A scales diffuseTransmission
     std::optional<TextureRef> diffuseTransmissionColorTexture;  // sRGB, RGB scales diffuseTransmissionColor
     float dispersion = 0.0f;                     // KHR_materials_dispersion: 20 / Abbe number V_d, >= 0 (0: none)
+    // KHR_materials_iridescence, clearcoat normal and anisotropy textures
+    float iridescence = 0.0f;                 // iridescenceFactor, [0, 1]
+    float iridescenceIor = 1.3f;              // iridescenceIor of the thin film, [1, 4] here
+    float iridescenceThicknessMin = 100.0f;   // iridescenceThicknessMinimum, nanometres, >= 0
+    float iridescenceThicknessMax = 400.0f;   // iridescenceThicknessMaximum, nanometres, >= 0
+    std::optional<TextureRef> iridescenceTexture;           // linear, R scales iridescence
+    std::optional<TextureRef> iridescenceThicknessTexture;  // linear, G: thickness = mix(min, max, G); none: max
+    std::optional<TextureRef> clearcoatNormalTexture;       // tangent space, the coat's own shading normal
+    float clearcoatNormalScale = 1.0f;                      // scales its xy like normalScale
+    std::optional<TextureRef> anisotropyTexture;            // linear, RG direction ([0,1] -> [-1,1]), B strength
 };
 
 // Filtering and wrapping as glTF enums (9728 NEAREST, 9729 LINEAR, ...; 10497 REPEAT, 33071 CLAMP, 33648 MIRROR).

@@ -218,6 +218,10 @@ std::vector<TextureColorSpace> textureColorSpaces(const Scene& scene) {
         use(m.clearcoatRoughnessTexture, TextureColorSpace::Linear);
         use(m.sheenColorTexture, TextureColorSpace::Srgb);
         use(m.sheenRoughnessTexture, TextureColorSpace::Linear);
+        use(m.iridescenceTexture, TextureColorSpace::Linear);
+        use(m.iridescenceThicknessTexture, TextureColorSpace::Linear);
+        use(m.clearcoatNormalTexture, TextureColorSpace::Linear);
+        use(m.anisotropyTexture, TextureColorSpace::Linear);
         if (!m.unlit && m.diffuseTransmission > 0.0f) {  // a factor of 0 never reads them: not decoded
             use(m.diffuseTransmissionTexture, TextureColorSpace::Linear);
             use(m.diffuseTransmissionColorTexture, TextureColorSpace::Srgb);

@@ -11,6 +11,7 @@
 #include "vxgi_ambient.glsl"
 #include "ssr_specular.glsl"
 #include "gbuffer_anisotropy.glsl"
+#include "gbuffer_layer_bits.glsl"
 
 // False for background pixels (depth 1: the sky writes them); else the radiance, alpha 1 (geometry).
 bool deferredLightingPixel(LightingPush p, GpuFrame f, ivec2 pixel, out vec4 result) {
@@ -42,15 +43,22 @@ bool deferredLightingPixel(LightingPush p, GpuFrame f, ivec2 pixel, out vec4 res
     if (layered > 0u && p.layers != kLightingNoLayers) {  // the extension textures' texels (gbuffer_fragment.glsl)
         uvec4 packed = imageLoad(gImagesRgba32ui[p.layers], pixel);
         vec4 scalars = unpackUnorm4x8(packed.x);
-        vec4 specularColor = unpackUnorm4x8(packed.y);  // a: diffuseTransmissionTexture A
-        vec4 sheenColor = unpackUnorm4x8(packed.z);  // a: diffuseTransmissionColorTexture R
-        vec2 diffTransColorGB = unpackUnorm4x8(packed.w >> 16).xy;  // low 16 bits: the anisotropy direction
-        LayerTexels t = LayerTexels(scalars.x, srgbDecode(specularColor.rgb), scalars.y, scalars.z,
-                                    srgbDecode(sheenColor.rgb), scalars.w, specularColor.a,
-                                    srgbDecode(vec3(sheenColor.a, diffTransColorGB)));
+        vec4 specularColorT = unpackUnorm4x8(packed.y), sheenColorT = unpackUnorm4x8(packed.z);
+        GpuMaterial material = MaterialBuffer(p.materials).data[layered - 1u];
+        vec2 alphas = vec2(specularColorT.a, sheenColorT.a);  // gbuffer_layer_bits.glsl says what they hold
+        float diffTransT;
+        vec3 diffTransColorT;
+        unpackDiffuseTransmissionTexels(material.flags, alphas, packed.w, diffTransT, diffTransColorT);
+        LayerTexels t = LayerTexels(scalars.x, srgbDecode(specularColorT.rgb), scalars.y, scalars.z,
+                                    srgbDecode(sheenColorT.rgb), scalars.w, diffTransT, srgbDecode(diffTransColorT));
         layers = texturedLayers(layers, t);
+        layers = withIridescenceTexels(layers, material, alphas);
+        if (layerBitsHoldCoatNormal(material.flags))  // the coat's own normal
+            layers.clearcoatNormal = octDecode(unpackCoatNormalOct(packed.w));
+        layers = withAnisotropyStrengthTexel(layers, unpackAnisotropyStrengthTexel(material.flags, packed.w));
         // KHR_materials_anisotropy: the direction the G-buffer stored (none: the isotropic lobe at the rms alpha).
-        if (layers.anisotropyStrength > 0.0) layers.anisotropyDirection = decodeAnisotropyDirection(packed.w & 0xFFFFu, n);
+        if (layers.anisotropyStrength > 0.0 && layerBitsHoldAnisotropyDirection(material.flags))
+            layers.anisotropyDirection = decodeAnisotropyDirection(packed.w & 0xFFFFu, n);
     }
     vec3 radiance = emissive.rgb;
     gShadowPixel = pixel;  // ray-traced shadows read their mask here (include/rt_shadows.glsl)

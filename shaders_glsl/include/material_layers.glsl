@@ -9,6 +9,10 @@
 // Ambient: the split-sum E_s = f0 A + f90 B with A + B = E(n.v), the GGX directional albedo of the path tracer's
 // tables (shared/pt_albedo_tables.h), times Turquin's multiple-scattering factor 1 + f0 (1 / E - 1), so a white
 // rough metal in a uniform environment reflects it all, as the path tracer's compensation makes it.
+// clearcoatNormalTexture: the coat term (its D, V, cosines, and the n.v of its layer weight) uses the coat's own
+// normal (SurfaceLayers::clearcoatNormal; the deferred G-buffer carries it octahedral in its layer texels).
+// KHR_materials_iridescence: the base's dielectric and metal Fresnel become mix(F, F_film, iridescence) at v.h
+// (shared/pt_iridescence.h, as the path tracer); ambient: f0 becomes the film's at n.v through Schlick's curve.
 // KHR_materials_anisotropy: the base's GGX D and V become the extension's anisotropic ones (shared/pt_anisotropy.h,
 // the path tracer's functions) in the frame of the anisotropy direction, which the forward pass builds from its
 // tangent frame (withAnisotropyFrame) and the deferred pass reads back from the G-buffer (gbuffer_anisotropy.glsl);
@@ -30,6 +34,7 @@
 #include "pt_energy.h"
 #include "pt_sheen.h"
 #include "pt_anisotropy.h"
+#include "pt_iridescence.h"
 
 struct SurfaceLayers {
     uint flags;  // kMaterialSpecular | kMaterialClearcoat | kMaterialSheen
@@ -45,30 +50,63 @@ struct SurfaceLayers {
     // KHR_materials_diffuse_transmission (read when flags has kMaterialDiffuseTransmission)
     float diffuseTransmission;
     vec3 diffuseTransmissionColor;
+    // KHR_materials_iridescence (shared/pt_iridescence.h)
+    float iridescence;           // 0: no film
+    float iridescenceIor;
+    float iridescenceThickness;  // nanometres
+    // KHR_materials_clearcoat's clearcoatNormalTexture
+    vec3 clearcoatNormal;  // world, unit, on the viewer's side; 0: the coat uses the shading normal
 };
 
 SurfaceLayers noLayers() {
-    return SurfaceLayers(0u, 1.0, vec3(1.0), 0.0, 0.0, vec3(0.0), 0.0, 0.0, vec3(0.0), 0.0, vec3(1.0));
+    return SurfaceLayers(0u, 1.0, vec3(1.0), 0.0, 0.0, vec3(0.0), 0.0, 0.0, vec3(0.0), 0.0, vec3(1.0), 0.0, 1.3, 0.0,
+                         vec3(0.0));
 }
 
+// The factors; the iridescence thickness is the maximum (what a material without a thickness texture has).
 SurfaceLayers materialLayers(GpuMaterial m) {
-    return SurfaceLayers(m.flags & (kMaterialLayers | kMaterialAnisotropy | kMaterialDiffuseTransmission),
-                         clamp(m.specular, 0.0, 1.0),
-                         max(m.specularColor, vec3(0.0)), clamp(m.clearcoat, 0.0, 1.0),
+    bool film = (m.flags & kMaterialIridescence) != 0u;
+    return SurfaceLayers(m.flags & (kMaterialLayers | kMaterialAnisotropy | kMaterialDiffuseTransmission |
+                                    kMaterialIridescence),
+                         clamp(m.specular, 0.0, 1.0), max(m.specularColor, vec3(0.0)), clamp(m.clearcoat, 0.0, 1.0),
                          clamp(m.clearcoatRoughness, 0.0, 1.0), clamp(m.sheenColor, vec3(0.0), vec3(1.0)),
                          clamp(m.sheenRoughness, 0.0, 1.0),
                          (m.flags & kMaterialAnisotropy) != 0u ? clamp(m.anisotropyStrength, 0.0, 1.0) : 0.0,
                          vec3(0.0),
                          (m.flags & kMaterialDiffuseTransmission) != 0u ? clamp(m.diffuseTransmission, 0.0, 1.0)
                                                                          : 0.0,
-                         clamp(m.diffuseTransmissionColor, vec3(0.0), vec3(1.0)));
+                         clamp(m.diffuseTransmissionColor, vec3(0.0), vec3(1.0)),
+                         film ? clamp(m.iridescence, 0.0, 1.0) : 0.0, m.iridescenceIor,
+                         film ? max(m.iridescenceThicknessMax, 0.0) : 0.0, vec3(0.0));
 }
 
-// The anisotropy direction from a tangent frame (t, b: glTF's tangent and bitangent), turned by anisotropyRotation.
-SurfaceLayers withAnisotropyFrame(SurfaceLayers s, GpuMaterial m, vec3 t, vec3 b) {
+// The coat's normal: its own (clearcoatNormalTexture) or the shading normal n.
+vec3 coatNormal(SurfaceLayers s, vec3 n) {
+    return dot(s.clearcoatNormal, s.clearcoatNormal) > 0.5 ? s.clearcoatNormal : n;
+}
+
+// KHR_materials_iridescence's textures: texel.x (iridescenceTexture R) scales the factor, texel.y
+// (iridescenceThicknessTexture G) picks the thickness between minimum and maximum (1 without a texture).
+SurfaceLayers withIridescenceTexels(SurfaceLayers s, GpuMaterial m, vec2 texel) {
+    if ((m.flags & kMaterialIridescence) != 0u) {
+        s.iridescence = clamp(s.iridescence * texel.x, 0.0, 1.0);
+        s.iridescenceThickness = max(mix(m.iridescenceThicknessMin, m.iridescenceThicknessMax, texel.y), 0.0);
+    }
+    return s;
+}
+
+// anisotropyTexture's B scales the strength (1 without a texture).
+SurfaceLayers withAnisotropyStrengthTexel(SurfaceLayers s, float b) {
+    s.anisotropyStrength = clamp(s.anisotropyStrength * b, 0.0, 1.0);
+    return s;
+}
+
+// The anisotropy direction from a tangent frame (t, b: glTF's tangent and bitangent): anisotropyTexture's RG
+// remapped to [-1, 1] ((1, 0.5) without a texture: the tangent), turned by anisotropyRotation.
+SurfaceLayers withAnisotropyFrame(SurfaceLayers s, GpuMaterial m, vec3 t, vec3 b, vec2 textureRg) {
     if (s.anisotropyStrength > 0.0) {
-        vec3 d = t * cos(m.anisotropyRotation) + b * sin(m.anisotropyRotation);
-        s.anisotropyDirection = dot(d, d) > 1e-12 ? normalize(d) : vec3(0.0);
+        vec3 w = anisotropyDirection(m, t, b, textureRg);
+        s.anisotropyDirection = dot(w, w) > 1e-12 ? normalize(w) : vec3(0.0);
     }
     return s;
 }
@@ -206,7 +244,13 @@ vec3 layeredBrdfCosine(SurfaceLayers s, vec3 baseColor, float metallic, float pe
     float m5 = pow(1.0 - VdotH, 5.0);
     vec3 f0d = min(vec3(0.04) * s.specularColor, vec3(1.0)) * s.specular;
     vec3 fDielectric = f0d + (vec3(s.specular) - f0d) * m5;
-    vec3 F = mix(fDielectric, baseColor + (1.0 - baseColor) * m5, metallic);
+    vec3 fMetal = baseColor + (1.0 - baseColor) * m5;
+    // KHR_materials_iridescence: the thin film's Fresnel at v.h replaces both (exactly these when there is none).
+    fDielectric = ptIridescentFresnel(fDielectric, VdotH, s.iridescence, s.iridescenceIor, s.iridescenceThickness,
+                                      min(vec3(0.04) * s.specularColor, vec3(1.0)), s.specular);
+    fMetal = ptIridescentFresnel(fMetal, VdotH, s.iridescence, s.iridescenceIor, s.iridescenceThickness, baseColor,
+                                 1.0);
+    vec3 F = mix(fDielectric, fMetal, metallic);
     vec3 diffuse = (1.0 - maxOf(fDielectric)) * baseColor * (1.0 - metallic) * (1.0 - s.diffuseTransmission) / kPi;
     vec3 result = diffuse + F * baseDistributionVisibility(s, alpha, n, v, l, h, NdotL, NdotV, NdotH);
     if ((s.flags & kMaterialSheen) != 0u) {
@@ -216,14 +260,20 @@ vec3 layeredBrdfCosine(SurfaceLayers s, vec3 baseColor, float metallic, float pe
                            NdotL);
         result += s.sheenColor * (ptSheenD(NdotH, sheenAlpha) * vis);
     }
-    if ((s.flags & kMaterialClearcoat) != 0u) {
+    vec3 coat = vec3(0.0);
+    if ((s.flags & kMaterialClearcoat) != 0u) {  // in the coat normal's frame (clearcoatNormalTexture)
+        vec3 nc = coatNormal(s, n);
+        float NdotVc = max(dot(nc, v), 1e-4);
+        float NdotLc = dot(nc, l);
         float coatRoughness = clamp(s.clearcoatRoughness, kMinRoughness, 1.0);
         float coatAlpha = coatRoughness * coatRoughness;
-        result *= 1.0 - s.clearcoat * fresnelSchlick(vec3(0.04), NdotV).x;
-        result += vec3(s.clearcoat * fresnelSchlick(vec3(0.04), VdotH).x * distributionGgx(NdotH, coatAlpha) *
-                       visibilitySmithGgxCorrelated(NdotL, NdotV, coatAlpha));
+        result *= 1.0 - s.clearcoat * fresnelSchlick(vec3(0.04), NdotVc).x;
+        if (NdotLc > 0.0)
+            coat = vec3(s.clearcoat * fresnelSchlick(vec3(0.04), VdotH).x *
+                        distributionGgx(max(dot(nc, h), 0.0), coatAlpha) *
+                        visibilitySmithGgxCorrelated(NdotLc, NdotVc, coatAlpha) * NdotLc);
     }
-    return result * NdotL;
+    return result * NdotL + coat;
 }
 
 // Split-sum scale and bias (f0 A + f90 B) of environmentBrdfApprox, separately.
@@ -241,6 +291,17 @@ vec3 ambientSpecularAlbedo(SurfaceLayers s, vec3 baseColor, float metallic, floa
     float NdotV = max(dot(n, v), 1e-4);
     vec3 f0 = layeredF0(s, baseColor, metallic);
     float f90 = mix(s.specular, 1.0, metallic);
+    if (s.iridescence > 0.0 && s.iridescenceThickness > 0.0) {
+        // KHR_materials_iridescence: the film's Fresnel at n.v turned into the f0 whose Schlick curve (with this
+        // f90) passes through it there, as the Khronos sample viewer's ambient term does.
+        float x = clamp(1.0 - NdotV, 0.0, 1.0);
+        float x5 = min(x * x * x * x * x, 0.9999);
+        vec3 filmD = s.specular * ptThinFilmFresnel(NdotV, s.iridescenceIor, s.iridescenceThickness,
+                                                    min(vec3(0.04) * s.specularColor, vec3(1.0)));
+        vec3 filmM = ptThinFilmFresnel(NdotV, s.iridescenceIor, s.iridescenceThickness, baseColor);
+        vec3 filmF0 = mix((filmD - s.specular * x5) / (1.0 - x5), (filmM - x5) / (1.0 - x5), metallic);
+        f0 = mix(f0, clamp(filmF0, vec3(0.0), vec3(1.0)), s.iridescence);
+    }
     vec2 ab = environmentBrdfAB(anisotropicRoughness(s, roughness), NdotV);
     float e = max(baseLayerAlbedo(s, n, v, roughness), 0.05);
     ab *= e / max(ab.x + ab.y, 1e-4);

@@ -34,9 +34,10 @@ vec3 ambientReflected(SurfaceLayers layers, vec3 n, vec3 v, vec3 baseColor, floa
                   layers.sheenColor * sheenAlbedo * irradiance / kPi;
     }
     if ((layers.flags & kMaterialClearcoat) != 0u) {
+        float NdotVc = max(dot(coatNormal(layers, n), v), 1e-4);  // the coat's own normal (clearcoatNormalTexture)
         float cr = clamp(layers.clearcoatRoughness, kMinRoughness, 1.0);
-        float coat = layers.clearcoat * fresnelSchlick(vec3(0.04), NdotV).x;
-        vec3 coatAlbedo = layers.clearcoat * environmentBrdfApprox(vec3(0.04), cr, NdotV);
+        float coat = layers.clearcoat * fresnelSchlick(vec3(0.04), NdotVc).x;
+        vec3 coatAlbedo = layers.clearcoat * environmentBrdfApprox(vec3(0.04), cr, NdotVc);
         ambient = ambient * (1.0 - coat) + coatRadiance * coatAlbedo;
     }
     return ambient;
@@ -80,7 +81,7 @@ vec3 shadeSurface(GpuFrame f, uint64_t pointShadows, vec3 position, vec3 n, vec3
     }
 
     float cr = clamp(layers.clearcoatRoughness, kMinRoughness, 1.0);
-    vec3 r = reflect(-v, n);
+    vec3 r = reflect(-v, coatNormal(layers, n));  // the coat's reflection
     // KHR_materials_anisotropy: the isotropic split-sum at the rms roughness along the bent reflection.
     float ambientRoughness = anisotropicRoughness(layers, roughness);
     vec3 rBase = anisotropicReflection(layers, n, v, clamp(roughness, kMinRoughness, 1.0));

@@ -13,7 +13,7 @@
 // forward pass of transparent surfaces, transparency/forward_body.h, which traces them per fragment).
 vec3 vxgiAmbientDeltaOf(GpuFrame f, vec3 tracedIrradiance, vec3 tracedSpecular, vec3 n, vec3 v, vec3 baseColor,
                         float metallic, float roughness, float occlusion, SurfaceLayers layers) {
-    vec3 r = reflect(-v, n);
+    vec3 r = reflect(-v, coatNormal(layers, n));  // the coat's reflection, as shadeSurface's (cancels exactly)
     float cr = clamp(layers.clearcoatRoughness, kMinRoughness, 1.0);
     // KHR_materials_anisotropy: the lookup shadeSurface subtracts (rms roughness, bent reflection) cancels exactly.
     float ambientRoughness = anisotropicRoughness(layers, roughness);

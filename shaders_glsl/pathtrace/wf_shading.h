@@ -56,6 +56,21 @@ vec3 wfEmissionAt(GpuMaterial m, WfHitPoint h, vec3 wo) {
     return m.emissiveFactor * wfSampleSlot(m.slots[kSlotEmissive], h).rgb;
 }
 
+// pathtrace::mapNormal: normal mapping in the vertex tangent frame (B = cross(N, T) * w), z rebuilt from the
+// remapped xy; the interpolated normal when the hit has no usable tangent.
+vec3 wfMapNormal(WfHitPoint hit, vec4 texel, float scale) {
+    vec3 n = hit.normal;
+    if (hit.tangent.w == 0.0) return n;
+    vec3 t = hit.tangent.xyz - n * dot(n, hit.tangent.xyz);
+    float len2 = dot(t, t);
+    if (!(len2 > 1e-20)) return n;
+    t /= sqrt(len2);
+    vec3 b = cross(n, t) * hit.tangent.w;
+    vec2 xy = texel.xy * 2.0 - 1.0;
+    vec3 tn = vec3(xy * scale, sqrt(max(1.0 - dot(xy, xy), 0.0)));
+    return wfSafeNormalize(t * tn.x + b * tn.y + n * tn.z, n);
+}
+
 // pathtrace::evaluateMaterial (passThrough/blendAlpha are the trace stages' business).
 PtSurface wfEvaluateMaterial(GpuPtSceneDesc sc, WfHitPoint hit, vec3 wo, out bool unlit) {
     GpuMaterial m = WfMaterialRef(sc.materials).m[hit.material];
@@ -112,27 +127,37 @@ PtSurface wfEvaluateMaterial(GpuPtSceneDesc sc, WfHitPoint hit, vec3 wo, out boo
             m.diffuseTransmissionColor * wfSampleSlot(m.slots[kSlotDiffuseTransmissionColor], hit).rgb;
     }
     s.dispersion = (m.flags & kMaterialDispersion) != 0u ? m.dispersion : 0.0;
+    // KHR_materials_iridescence: factor x R, thickness = mix(min, max, G) (white placeholder: the maximum).
+    s.iridescence = 0.0;
+    s.iridescenceIor = 1.3;
+    s.iridescenceThickness = 0.0;
+    s.clearcoatNormal = vec3(0.0);
+    if ((m.flags & kMaterialIridescence) != 0u) {
+        s.iridescence = clamp(m.iridescence * wfSampleSlot(m.slots[kSlotIridescence], hit).r, 0.0, 1.0);
+        s.iridescenceIor = m.iridescenceIor;
+        s.iridescenceThickness = mix(m.iridescenceThicknessMin, m.iridescenceThicknessMax,
+                                     wfSampleSlot(m.slots[kSlotIridescenceThickness], hit).g);
+    }
     // Normal mapping in the vertex tangent frame (B = cross(N, T) * w), z rebuilt from the remapped xy. A slot
     // without a normal texture samples the flat placeholder (xy = 0), which leaves n unchanged.
     vec3 n = hit.normal;
-    if (hit.tangent.w != 0.0) {
-        vec4 texel = wfSampleSlot(m.slots[kSlotNormal], hit);
-        vec3 t = hit.tangent.xyz - n * dot(n, hit.tangent.xyz);
-        float len2 = dot(t, t);
-        if (len2 > 1e-20) {
-            t /= sqrt(len2);
-            vec3 b = cross(n, t) * hit.tangent.w;
-            vec2 xy = texel.xy * 2.0 - 1.0;
-            vec3 tn = vec3(xy * m.normalScale, sqrt(max(1.0 - dot(xy, xy), 0.0)));
-            n = wfSafeNormalize(t * tn.x + b * tn.y + n * tn.z, n);
-        }
-    }
+    if (hit.tangent.w != 0.0) n = wfMapNormal(hit, wfSampleSlot(m.slots[kSlotNormal], hit), m.normalScale);
     if (dot(n, hit.geometricNormal) < 0.0) n = -n;
     s.shadingNormal = n;
-    // KHR_materials_anisotropy (pathtrace::evaluateMaterial's twin; the texture is not read yet).
-    s.anisotropyStrength = clamp(pm.anisotropyStrength, 0.0, 1.0);
+    // clearcoatNormalTexture (pathtrace::evaluateMaterial's twin; 0: the coat uses the shading normal).
+    if ((m.flags & kMaterialClearcoatNormal) != 0u && s.clearcoat > 0.0 && hit.tangent.w != 0.0) {
+        vec3 c = wfMapNormal(hit, wfSampleSlot(m.slots[kSlotClearcoatNormal], hit), m.clearcoatNormalScale);
+        s.clearcoatNormal = dot(c, hit.geometricNormal) < 0.0 ? -c : c;
+    }
+    // KHR_materials_anisotropy (pathtrace::evaluateMaterial's twin): anisotropyTexture RG turns the direction, B
+    // scales the strength.
+    vec3 anisotropyTexel = vec3(1.0, 0.5, 1.0);
+    if ((m.flags & kMaterialAnisotropyTexture) != 0u && pm.anisotropyStrength > 0.0)
+        anisotropyTexel = wfSampleSlot(m.slots[kSlotAnisotropy], hit).rgb;
+    s.anisotropyStrength = clamp(pm.anisotropyStrength * anisotropyTexel.b, 0.0, 1.0);
     s.anisotropyDirection = s.anisotropyStrength > 0.0
-                                ? ptAnisotropyDirection(hit.tangent, hit.normal, pm.anisotropyRotation, vec2(1.0, 0.5))
+                                ? ptAnisotropyDirection(hit.tangent, hit.normal, pm.anisotropyRotation,
+                                                        anisotropyTexel.rg)
                                 : vec3(0.0);
     unlit = (m.flags & kMaterialUnlit) != 0u;
     if (unlit) {
@@ -146,6 +171,7 @@ PtSurface wfEvaluateMaterial(GpuPtSceneDesc sc, WfHitPoint hit, vec3 wo, out boo
         s.anisotropyStrength = 0.0;
         s.diffuseTransmission = 0.0;
         s.dispersion = 0.0;
+        s.iridescence = 0.0;
     }
     return s;
 }

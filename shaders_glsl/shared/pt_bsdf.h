@@ -11,7 +11,8 @@
 //                the material has a volume (thickness > 0), else the reflection lobe mirrored through the surface
 //   multiscatter GGX energy compensation (pt_energy.h), sampled by its own tabulated density
 //   sheen        KHR_materials_sheen (pt_sheen.h), cosine-sampled
-//   clearcoat    KHR_materials_clearcoat, GGX visible normals of the coat roughness
+//   clearcoat    KHR_materials_clearcoat, GGX visible normals of the coat roughness (around the coat's own normal
+//                with a clearcoatNormalTexture)
 // KHR_materials_anisotropy makes the specular and transmission lobes' GGX anisotropic (the ptBase* hooks of
 // pt_bsdf_frame.h, pt_anisotropy.h).
 // The base lobes carry the layer weight of clearcoat and sheen. GGX alpha below kPtDeltaAlpha makes the specular
@@ -47,10 +48,12 @@ IDK_INLINE vec3 ptEvalLocal(PtBsdfFrame f, vec3 wi, float wiSide, IDK_OUT(float)
             value += f.sheenColor * (f.coatLayer * ptSheenCos(wo, wi, f.sheenAlpha));
             pdf += f.pSheen * wi.z * kPtInvPi;
         }
-        if (f.pCoat > 0.0f && !f.coatDelta) {
-            float d = ptGgxD(h.z, f.coatAlpha);
-            value += vec3(f.clearcoat * ptCoatFresnel(cosOH) * d * ptGgxG2(wo.z, wi.z, f.coatAlpha) / (4.0f * wo.z));
-            pdf += f.pCoat * ptGgxG1(wo.z, f.coatAlpha) * d / (4.0f * wo.z);
+        float coatI = ptCoatCos(f, wi);
+        if (f.pCoat > 0.0f && !f.coatDelta && coatI > 0.0f) {  // the coat in its own normal's frame
+            float coatO = f.coatCosO;
+            float d = ptGgxD(ptCoatCos(f, h), f.coatAlpha);
+            value += vec3(f.clearcoat * ptCoatFresnel(cosOH) * d * ptGgxG2(coatO, coatI, f.coatAlpha) / (4.0f * coatO));
+            pdf += f.pCoat * ptGgxG1(coatO, f.coatAlpha) * d / (4.0f * coatO);
         }
     } else if (wi.z < 0.0f && wiSide < 0.0f) {
         if (f.pDiffTrans > 0.0f) {  // KHR_materials_diffuse_transmission
@@ -134,10 +137,18 @@ IDK_INLINE uint ptSampleBsdf(PtSurface s, vec3 wo, vec3 u, IDK_OUT(vec3) wi, IDK
     if (u.x < c0) {
         chosen = kPtLobeClearcoat;
         if (f.coatDelta) {
-            l = vec3(-o.x, -o.y, o.z);
+            l = f.coatTilted ? f.coatN * (2.0f * dot(o, f.coatN)) - o : vec3(-o.x, -o.y, o.z);
             isDelta = true;
             deltaPdf = f.pCoat;
-            deltaWeight = vec3(f.clearcoat * ptCoatFresnel(o.z) / f.pCoat);
+            deltaWeight = vec3(f.clearcoat * ptCoatFresnel(f.coatCosO) / f.pCoat);
+        } else if (f.coatTilted) {  // visible normals around the coat's normal
+            vec3 ct;
+            vec3 cb;
+            ptBasis(f.coatN, ct, cb);
+            vec3 oc = ptToLocal(o, ct, cb, f.coatN);
+            oc.z = f.coatCosO;  // dot(o, coatN), floored as the evaluation's cosine
+            vec3 h = ptToWorld(ptSampleGgxVndf(oc, f.coatAlpha, u.y, u.z), ct, cb, f.coatN);
+            l = h * (2.0f * dot(o, h)) - o;
         } else {
             vec3 h = ptSampleGgxVndf(o, f.coatAlpha, u.y, u.z);
             l = h * (2.0f * dot(o, h)) - o;

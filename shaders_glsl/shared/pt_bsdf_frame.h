@@ -3,7 +3,9 @@
 // the energy compensation, and the lobe selection probabilities that pt_bsdf.h evaluates and samples with.
 // The layering, outermost first (glTF's extension specifications, their reference formulas):
 //   clearcoat  KHR_materials_clearcoat: GGX lobe of IOR 1.5 (Schlick f0 0.04), weight clearcoat * Fc(v.h); the
-//              layers below are scaled by 1 - clearcoat * Fc(n.v) (Fc at the view, as the Khronos sample viewer)
+//              layers below are scaled by 1 - clearcoat * Fc(n.v) (Fc at the view, as the Khronos sample viewer).
+//              With a clearcoatNormalTexture the lobe's D, G and cosines (and that n.v) use the coat's own normal
+//              (ptCoatNormalSetup); its value is f_coat times the cosine to the coat normal.
 //   sheen      KHR_materials_sheen: sheenColor * Charlie D * V (pt_sheen.h); the layers below are scaled by
 //              1 - max(sheenColor) * E_sheen(n.v) (albedo scaling with the tabulated sheen albedo)
 //   base       metal: GGX, Schlick F with f0 = baseColor. dielectric: GGX with KHR_materials_specular's
@@ -11,6 +13,9 @@
 //              Fresnel curve of the IOR remapped to [0, 1] (w = (F_exact - f0) / (1 - f0)), so without the
 //              extension F is the exact dielectric Fresnel; beneath it Lambert diffuse / transmission weighted
 //              1 - specular * max(F). Multiple scattering: pt_energy.h.
+//              KHR_materials_iridescence: both Fresnel terms become mix(F, F_film, iridescence), F_film the thin
+//              film over the base's f0 (pt_iridescence.h; dielectric: f0' with KHR_materials_specular's weight,
+//              metal: baseColor); the multiple-scattering lobe keeps the film-less average Fresnel (approximation).
 //              KHR_materials_anisotropy: the GGX of the reflection and transmission lobes becomes anisotropic
 //              (pt_anisotropy.h) in a frame whose tangent is the anisotropy direction; the energy compensation
 //              reads the anisotropic albedo table at the view's and the light's azimuth in that frame (pt_energy.h;
@@ -30,6 +35,7 @@
 #include "pt_sheen.h"
 #include "pt_anisotropy.h"
 #include "pt_diffuse_transmission.h"
+#include "pt_iridescence.h"
 
 IDK_GPU_BEGIN
 
@@ -80,15 +86,53 @@ struct PtBsdfFrame {
     // KHR_materials_anisotropy
     float anisoRoughness;  // the material's perceptual roughness and anisotropy strength: the anisotropic table's
     float anisoStrength;   // coordinates (pt_energy.h)
+    // KHR_materials_iridescence
+    float iridescence;           // 0: no film (also when the thickness is 0)
+    float iridescenceIor;
+    float iridescenceThickness;  // nanometres
+    // KHR_materials_clearcoat's clearcoatNormalTexture: the coat lobe's own normal
+    bool coatTilted;    // the coat has its own normal: coatN (else the coat uses n, coatN = (0, 0, 1))
+    vec3 coatN;         // local (in t, b, n), unit, dot(wo, coatN) >= kPtMinCos
+    float coatCosO;     // dot(wo, coatN) (wo.z when not tilted)
 };
 
 IDK_INLINE float ptCoatFresnel(float c) { return ptFresnelSchlick(vec3(0.04f), c).x; }
+
+// The cosine of a local direction with the coat's normal.
+IDK_INLINE float ptCoatCos(PtBsdfFrame f, vec3 w) { return f.coatTilted ? dot(w, f.coatN) : w.z; }
+
+// clearcoatNormalTexture: the coat's normal (world, on the geometric normal's side like the shading normal) turned to
+// wo's side and into the local frame; bent toward wo like the base normal when it faces away. Without one (zero
+// vector, unusable, or below the geometric surface) the coat keeps the base frame's normal, bit for bit.
+IDK_INLINE void ptCoatNormalSetup(PtSurface s, vec3 wo, bool outside, IDK_INOUT(PtBsdfFrame) f) {
+    f.coatTilted = false;
+    f.coatN = vec3(0.0f, 0.0f, 1.0f);
+    f.coatCosO = f.wo.z;
+    vec3 c = s.clearcoatNormal;
+    if (!(f.clearcoat > 0.0f) || !ptFinite3(c) || !(dot(c, c) > 0.25f)) return;
+    c = normalize(c);
+    if (!outside) c = -c;
+    if (dot(c, f.ng) <= 0.0f) return;
+    float cosO = dot(wo, c);
+    if (cosO < kPtMinCos) {
+        vec3 bent = c + wo * (2.0f * kPtMinCos - cosO);
+        if (!(dot(bent, bent) > 1.0e-12f)) return;
+        c = normalize(bent);
+    }
+    vec3 local = ptToLocal(c, f.t, f.b, f.n);
+    if (!(dot(local, local) > 0.25f)) return;
+    f.coatN = normalize(local);
+    f.coatTilted = true;
+    f.coatCosO = max(dot(f.wo, f.coatN), kPtMinCos);
+}
 
 // Dielectric reflectance at v.h cosine c (KHR_materials_specular over the exact Fresnel curve).
 IDK_INLINE vec3 ptDielectricFresnel(PtBsdfFrame f, float c) {
     float exact = ptFresnelDielectric(c, f.etaFresnel);
     float w = f.f0Ior < 1.0e-6f ? exact : clamp((exact - f.f0Ior) / (1.0f - f.f0Ior), 0.0f, 1.0f);
-    return f.specular * (f.specularF0 + (vec3(1.0f) - f.specularF0) * w);
+    vec3 plain = f.specular * (f.specularF0 + (vec3(1.0f) - f.specularF0) * w);
+    return ptIridescentFresnel(plain, c, f.iridescence, f.iridescenceIor, f.iridescenceThickness, f.specularF0,
+                               f.specular);
 }
 
 // What passes beneath the dielectric reflection (into diffuse or transmission).
@@ -98,7 +142,9 @@ IDK_INLINE float ptDielectricPass(PtBsdfFrame f, float c) {
 
 // The reflection lobe's Fresnel (energy compensation of refraction included), before the layer weight.
 IDK_INLINE vec3 ptSpecularFresnel(PtBsdfFrame f, float c) {
-    return mix(ptDielectricFresnel(f, c) * f.dielScale, ptFresnelSchlick(f.baseColor, c), f.metallic);
+    vec3 metal = ptIridescentFresnel(ptFresnelSchlick(f.baseColor, c), c, f.iridescence, f.iridescenceIor,
+                                     f.iridescenceThickness, f.baseColor, 1.0f);
+    return mix(ptDielectricFresnel(f, c) * f.dielScale, metal, f.metallic);
 }
 
 // ---------------------------------------------------------------------------------------------------- GGX hooks
@@ -218,6 +264,11 @@ IDK_INLINE bool ptBsdfSetup(PtSurface s, vec3 wo, IDK_OUT(PtBsdfFrame) f) {
     f.sheenColor = vec3(ptSaturate(s.sheenColor.x), ptSaturate(s.sheenColor.y), ptSaturate(s.sheenColor.z));
     f.sheenRoughness = ptSaturate(s.sheenRoughness);
     f.sheenAlpha = ptSheenAlpha(f.sheenRoughness);
+    // KHR_materials_iridescence (pt_iridescence.h): the film's Fresnel replaces the dielectric and metal ones,
+    // weighted by the factor; seen from air on whichever side wo is (inside a refracting volume an approximation).
+    f.iridescenceThickness = ptFinite(s.iridescenceThickness) ? max(s.iridescenceThickness, 0.0f) : 0.0f;
+    f.iridescence = f.iridescenceThickness > 0.0f ? ptSaturate(s.iridescence) : 0.0f;
+    f.iridescenceIor = ptFinite(s.iridescenceIor) ? clamp(s.iridescenceIor, 1.0f, 4.0f) : 1.3f;
     f.pSpec = 0.0f;
     f.pDiff = 0.0f;
     f.pTrans = 0.0f;
@@ -239,6 +290,7 @@ IDK_INLINE bool ptBsdfSetup(PtSurface s, vec3 wo, IDK_OUT(PtBsdfFrame) f) {
     bool outside;
     if (!ptBsdfOrient(s, wo, f, outside)) return false;
     ptAnisotropySetup(s, wo, f);
+    ptCoatNormalSetup(s, wo, outside, f);
     if (f.thick) {
         f.eta = outside ? ior : 1.0f / ior;
         f.etaFresnel = f.eta;
@@ -274,7 +326,7 @@ IDK_INLINE bool ptBsdfSetup(PtSurface s, vec3 wo, IDK_OUT(PtBsdfFrame) f) {
         f.msColor = fms * ((1.0f - eMetal) / (kPtPi * max(1.0f - eAvg, 1.0e-4f)));
         msAlbedo = ptAverage(fms) * (1.0f - eMetal);
     }
-    float coatF = f.clearcoat * ptCoatFresnel(mu);
+    float coatF = f.clearcoat * ptCoatFresnel(f.coatCosO);
     f.coatLayer = 1.0f - coatF;
     float sheenMax = ptMaxComponent(f.sheenColor);
     float sheenAlbedo = sheenMax > 0.0f ? ptAlbedoSheen(mu, f.sheenRoughness) : 0.0f;

@@ -23,7 +23,7 @@ struct GpuPtProbeCase {
     uint envTexel;
     float envProbability;
 };
-IDK_GPU_SIZE(GpuPtProbeCase, 164 + 36 + 12 + 80 + 12 + 8 + 12 + 8 + 8);
+IDK_GPU_SIZE(GpuPtProbeCase, 188 + 36 + 12 + 80 + 12 + 8 + 12 + 8 + 8);
 
 struct GpuPtProbeResult {
     vec3 evalValue;

@@ -130,8 +130,13 @@ struct PtSurface {
     float diffuseTransmission;      // [0, 1], texture applied: the share of the diffuse lobe that transmits
     vec3 diffuseTransmissionColor;  // linear, texture applied: the tint of the transmitted diffuse light
     float dispersion;               // 20 / V_d (pt_dispersion.h); 0: the IOR is the same for every wavelength
+    // KHR_materials_iridescence, clearcoat normal and anisotropy textures
+    float iridescence;           // iridescenceFactor, texture applied; 0: no thin film (pt_iridescence.h)
+    float iridescenceIor;        // the film's IOR
+    float iridescenceThickness;  // nanometres, texture applied; 0: no thin film
+    vec3 clearcoatNormal;        // world, unit, the coat's own normal map applied; 0: the shading normal
 };
-IDK_GPU_SIZE(PtSurface, 164);  // also a buffer element (conformance probe)
+IDK_GPU_SIZE(PtSurface, 188);  // also a buffer element (conformance probe)
 
 // Outcome of sampling the BSDF.
 IDK_CONST(uint, kPtLobeNone, 0);          // no valid direction (absorbed)

@@ -64,7 +64,12 @@ IDK_CONST(uint, kSlotSheenRoughness, 10);     // linear: A scales sheenRoughness
 // KHR_materials_diffuse_transmission textures (white placeholders leave the factors unchanged).
 IDK_CONST(uint, kSlotDiffuseTransmission, 11);       // linear: A scales diffuseTransmission
 IDK_CONST(uint, kSlotDiffuseTransmissionColor, 12);  // sRGB: RGB scales diffuseTransmissionColor
-IDK_CONST(uint, kSlotCount, 13);
+// KHR_materials_iridescence, clearcoat normal and anisotropy textures (read only when the flag below says so).
+IDK_CONST(uint, kSlotIridescence, 13);           // linear: R scales iridescence
+IDK_CONST(uint, kSlotIridescenceThickness, 14);  // linear: G, thickness = mix(min, max, G)
+IDK_CONST(uint, kSlotClearcoatNormal, 15);       // linear: the coat's tangent-space normal, xy remapped to [-1, 1]
+IDK_CONST(uint, kSlotAnisotropy, 16);            // linear: RG direction remapped to [-1, 1], B scales strength
+IDK_CONST(uint, kSlotCount, 17);
 
 IDK_CONST(uint, kAlphaOpaque, 0);
 IDK_CONST(uint, kAlphaMask, 1);
@@ -82,6 +87,10 @@ IDK_CONST(uint, kMaterialDiffuseTransmission, 32u);  // diffuseTransmissionFacto
 IDK_CONST(uint, kMaterialDispersion, 64u);           // dispersion > 0
 // KHR_materials_anisotropy
 IDK_CONST(uint, kMaterialAnisotropy, 128u);  // KHR_materials_anisotropy with anisotropyStrength > 0
+// KHR_materials_iridescence, clearcoat normal and anisotropy textures
+IDK_CONST(uint, kMaterialIridescence, 256u);         // KHR_materials_iridescence with iridescenceFactor > 0
+IDK_CONST(uint, kMaterialClearcoatNormal, 512u);     // clearcoat with a clearcoatNormalTexture (kSlotClearcoatNormal)
+IDK_CONST(uint, kMaterialAnisotropyTexture, 1024u);  // anisotropy with an anisotropyTexture (kSlotAnisotropy)
 
 // glTF metallic-roughness material (core + KHR_materials_emissive_strength, KHR_texture_transform, and the
 // factors and textures of KHR_materials_specular, _clearcoat, _sheen).
@@ -110,8 +119,14 @@ struct GpuMaterial {
     float diffuseTransmission;      // diffuseTransmissionFactor (read when kMaterialDiffuseTransmission)
     vec3 diffuseTransmissionColor;  // diffuseTransmissionColorFactor, linear
     float dispersion;               // 20 / V_d (read when kMaterialDispersion)
+    // KHR_materials_iridescence, clearcoat normal and anisotropy textures
+    float iridescence;              // iridescenceFactor (read when kMaterialIridescence)
+    float iridescenceIor;
+    float iridescenceThicknessMin;  // nanometres
+    float iridescenceThicknessMax;  // nanometres (the thickness without a thickness texture)
+    float clearcoatNormalScale;     // read when kMaterialClearcoatNormal
 };
-IDK_GPU_SIZE(GpuMaterial, 592);
+IDK_GPU_SIZE(GpuMaterial, 756);
 
 IDK_CONST(uint, kLightDirectional, 0);
 IDK_CONST(uint, kLightPoint, 1);

@@ -83,6 +83,16 @@ void main() {
     if ((m.flags & kMaterialDiffuseTransmission) != 0u)  // KHR_materials_diffuse_transmission textures
         sampleDiffuseTransmissionTexels(m, inUv, inUv1, layerTexels.diffuseTransmission,
                                         layerTexels.diffuseTransmissionColor);
+    vec4 coatNormalTexel = vec4(0.5, 0.5, 1.0, 1.0);  // clearcoatNormalTexture (flat without one)
+    if ((m.flags & kMaterialClearcoatNormal) != 0u)
+        coatNormalTexel = sampleMaterialSlot(m.slots[kSlotClearcoatNormal], inUv, inUv1);
+    vec3 anisotropyTexel = vec3(1.0, 0.5, 1.0);  // anisotropyTexture: RG direction, B strength
+    if ((m.flags & kMaterialAnisotropyTexture) != 0u)
+        anisotropyTexel = sampleMaterialSlot(m.slots[kSlotAnisotropy], inUv, inUv1).rgb;
+    vec2 iridescenceTexels = vec2(1.0);  // KHR_materials_iridescence: R of its texture, G of its thickness texture
+    if ((m.flags & kMaterialIridescence) != 0u)
+        iridescenceTexels = vec2(sampleMaterialSlot(m.slots[kSlotIridescence], inUv, inUv1).r,
+                                 sampleMaterialSlot(m.slots[kSlotIridescenceThickness], inUv, inUv1).g);
     vec3 n = normalize(inNormal);
     vec3 t, b;
     bool haveFrame = materialTangentFrame(n, inTangent, inWorldPosition, inUv, t, b);
@@ -98,8 +108,14 @@ void main() {
 
     vec2 xy = nt.xy * 2.0 - 1.0;
     vec3 tn = vec3(xy * m.normalScale, sqrt(max(1.0 - dot(xy, xy), 0.0)));
+    vec2 cxy = coatNormalTexel.xy * 2.0 - 1.0;  // the coat's own normal map, from the same frame
+    vec3 ctn = vec3(cxy * m.clearcoatNormalScale, sqrt(max(1.0 - dot(cxy, cxy), 0.0)));
+    vec3 nc = haveFrame ? normalize(t * ctn.x + b * ctn.y + n * ctn.z) : n;
     if (haveFrame) n = normalize(t * tn.x + b * tn.y + n * tn.z);
-    if (!front) n = -n;
+    if (!front) {
+        n = -n;
+        nc = -nc;
+    }
     if ((m.flags & kMaterialUnlit) != 0u) {
         writeTransparent(vec4(baseColor.rgb, baseColor.a));
         return;
@@ -113,8 +129,10 @@ void main() {
     float metallic = clamp(m.metallicFactor * mr.b, 0.0, 1.0);
     float roughness = clamp(m.roughnessFactor * mr.g, 0.0, 1.0);
     float occlusion = 1.0 + m.occlusionStrength * (ao - 1.0);
-    SurfaceLayers layers = haveFrame ? withAnisotropyFrame(texturedLayers(materialLayers(m), layerTexels), m, t, b)
-                                     : texturedLayers(materialLayers(m), layerTexels);
+    SurfaceLayers layers = withIridescenceTexels(texturedLayers(materialLayers(m), layerTexels), m, iridescenceTexels);
+    if ((m.flags & kMaterialClearcoatNormal) != 0u) layers.clearcoatNormal = nc;
+    layers = withAnisotropyStrengthTexel(layers, anisotropyTexel.b);
+    if (haveFrame) layers = withAnisotropyFrame(layers, m, t, b, anisotropyTexel.rg);
     vec3 radiance = emissive + shadeSurface(f, p.pointShadows, inWorldPosition, n, v, baseColor.rgb, metallic,
                                             roughness, occlusion, layers);
 #ifdef IDK_FORWARD_VXGI

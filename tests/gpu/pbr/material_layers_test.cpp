@@ -11,6 +11,15 @@
 //    (tangent frame) shade the same anisotropic lobe: the change an anisotropic gold makes to the frame, against
 //    the isotropic stand-in at the rms roughness, agrees per pixel on both paths; a scene without anisotropic
 //    materials (or extension textures) allocates no layers target.
+//  * KHR_materials_iridescence: the film changes the deferred and the forward frame alike; a film of thickness 0
+//    renders the film-less frame; its textures (through the G-buffer's layer texels in the deferred pass) render
+//    like the factors they encode;
+//  * clearcoatNormalTexture: a tilted coat normal changes the deferred and the forward frame alike (within 25%);
+//    a flat coat normal map (texel 128, 128, 255) renders the map-less frame within 0.1% of its radiance;
+//  * anisotropyTexture: a constant texture (RG 255, 128: the tangent; B 204) renders as the factors (strength x 0.8)
+//    in both passes, and in the forward pass (the one with a tangent frame) a texture direction of 90 degrees (RG
+//    128, 255) as anisotropyRotation = pi/2, each within 1e-3 of the radiance, 10x below what the rotation (or, in
+//    the deferred pass, an unread strength texel) changes.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -18,9 +27,11 @@
 #include <vector>
 
 #include "render/renderer.hpp"
+#include "render/scene_textures.hpp"
 #include "scene/gltf_loader.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/quad_scene.hpp"
+#include "support/layer_textures.hpp"
 
 namespace idk::test {
 namespace {
@@ -37,6 +48,11 @@ core::ImageRgba32f renderHdr(vk::Context& ctx, vk::ShaderLibrary& shaders, const
     if (constantEnv) settings.environment = std::filesystem::path();  // constant radiance 0.5
     render::Renderer renderer(ctx, shaders, settings);
     renderer.setScene(scene);
+    if (!scene.textures.empty()) {  // the extension-texture cases: every texture resident before the frame
+        render::SceneTextureStream textures(ctx, renderer, scene);
+        textures.finishSynchronously();
+        return renderer.renderOffscreen(scene::defaultCamera(scene), kSize, kSize).image;
+    }
     return renderer.renderOffscreen(scene::defaultCamera(scene), kSize, kSize).image;
 }
 
@@ -189,6 +205,151 @@ TEST_F(MaterialLayersTest, LayersTargetOnlyForAnisotropicScenes) {
         renderer.setScene(s);
         const render::FrameResult frame = renderer.renderOffscreen(scene::defaultCamera(s), 32, 32);
         EXPECT_EQ(frame.graphText.find("gbuffer layers") != std::string::npos, strength > 0.0f) << strength;
+    }
+}
+
+// Iridescent films on three spheres (factors), optionally as textures: the plastic's factor 0.8 from a constant
+// R 204 texture, the gold's thickness (150 .. 600 nm) from a constant G 255 texture (so the maximum either way).
+scene::Scene iridescentSpheres(bool blend, bool textured) {
+    namespace lt = layer_textures;
+    scene::Scene s = materialSpheres();
+    for (size_t i = 1; i < s.materials.size() && blend; ++i) {  // the spheres; the floor stays opaque, so that
+        s.materials[i].alphaMode = scene::AlphaMode::Blend;      // weighted-blended OIT does not mix it in
+        s.materials[i].baseColorFactor.a = 1.0f;
+    }
+    scene::Material& plastic = s.materials[1];
+    plastic.iridescence = textured ? 1.0f : 204.0f / 255.0f;
+    plastic.iridescenceThicknessMax = 380.0f;
+    scene::Material& gold = s.materials[4];
+    gold.iridescence = 1.0f;
+    gold.iridescenceIor = 1.8f;
+    gold.iridescenceThicknessMin = 150.0f;
+    gold.iridescenceThicknessMax = 600.0f;
+    s.materials[2].iridescence = 0.7f;
+    s.materials[2].iridescenceThicknessMax = 250.0f;
+    if (textured) {
+        lt::sideUvs(s, 1);
+        lt::sideUvs(s, 4);
+        s.materials[1].iridescenceTexture = lt::addTexture(s, {{204, lt::kDecoy, lt::kDecoy, lt::kDecoy}});
+        s.materials[4].iridescenceThicknessTexture = lt::addTexture(s, {{lt::kDecoy, 255, lt::kDecoy, lt::kDecoy}});
+    }
+    return s;
+}
+
+TEST_F(MaterialLayersTest, IridescenceDeferredAndForward) {
+    double change[2];
+    for (int blend = 0; blend < 2; ++blend) {
+        const char* path = blend ? "forward (BLEND)" : "deferred";
+        const scene::Scene film = iridescentSpheres(blend, false);
+        scene::Scene bare = film;
+        for (scene::Material& m : bare.materials) m.iridescence = 0.0f;
+        scene::Scene zero = film;
+        for (scene::Material& m : zero.materials) m.iridescenceThicknessMin = m.iridescenceThicknessMax = 0.0f;
+        const core::ImageRgba32f a = renderHdr(ctx(), shaders(), film, false);
+        const core::ImageRgba32f b = renderHdr(ctx(), shaders(), bare, false);
+        const core::ImageRgba32f z = renderHdr(ctx(), shaders(), zero, false);
+        const core::ImageRgba32f t = renderHdr(ctx(), shaders(), iridescentSpheres(blend, true), false);
+        scene::Scene one = film;  // what unread textures (white placeholders) would give: factor 1
+        one.materials[1].iridescence = 1.0f;
+        const core::ImageRgba32f o = renderHdr(ctx(), shaders(), one, false);
+        change[blend] = relativeChange(a, b);
+        const double zeroChange = relativeChange(z, b), textureChange = relativeChange(t, a);
+        const double oneChange = relativeChange(o, a);
+        std::printf("raster %s: the film changes the frame by %.2f%%; thickness 0 vs none %.5f%%; textures vs "
+                    "factors %.5f%% (factor 1 vs 0.8: %.5f%%) of its radiance\n", path, 100.0 * change[blend],
+                    100.0 * zeroChange, 100.0 * textureChange, 100.0 * oneChange);
+        EXPECT_GT(change[blend], 0.002) << path;  // three small spheres of the frame (measured 0.37% deferred)
+        // The layered path's arithmetic differs from the plain BRDF's by rounding only.
+        EXPECT_LT(zeroChange, 1e-4) << path;
+        // 8-bit texels of exactly the factors' values (the G-buffer keeps 8 bits, as the textures hold).
+        EXPECT_LT(textureChange, 1e-4) << path;
+        EXPECT_LT(textureChange, 0.1 * oneChange) << path;
+    }
+    EXPECT_NEAR(change[0], change[1], 0.25 * change[0]) << "deferred and forward shade the film alike";
+}
+
+// The clearcoat sphere with vertex tangents around the vertical axis, UVs, and a 1x1 coat normal map of `rgb`.
+scene::Scene coatNormalSpheres(bool blend, std::array<uint8_t, 3> rgb, bool withMap) {
+    namespace lt = layer_textures;
+    scene::Scene s = materialSpheres();
+    brushedTangents(s);
+    lt::sideUvs(s, lt::kCoatMaterial);
+    for (size_t i = 1; i < s.materials.size() && blend; ++i) {  // the spheres; the floor stays opaque, so that
+        s.materials[i].alphaMode = scene::AlphaMode::Blend;      // weighted-blended OIT does not mix it in
+        s.materials[i].baseColorFactor.a = 1.0f;
+    }
+    s.materials[lt::kCoatMaterial].clearcoatRoughness = 0.15f;
+    if (withMap)
+        s.materials[lt::kCoatMaterial].clearcoatNormalTexture = lt::addTexture(s, {{rgb[0], rgb[1], rgb[2], 255}});
+    return s;
+}
+
+TEST_F(MaterialLayersTest, CoatNormalDeferredAndForward) {
+    double change[2];
+    for (int blend = 0; blend < 2; ++blend) {
+        const char* path = blend ? "forward (BLEND)" : "deferred";
+        const core::ImageRgba32f none = renderHdr(ctx(), shaders(), coatNormalSpheres(blend, {128, 128, 255}, false), false);
+        const core::ImageRgba32f flat = renderHdr(ctx(), shaders(), coatNormalSpheres(blend, {128, 128, 255}, true), false);
+        const core::ImageRgba32f tilted = renderHdr(ctx(), shaders(), coatNormalSpheres(blend, {210, 90, 220}, true), false);
+        change[blend] = relativeChange(tilted, none);
+        const double flatChange = relativeChange(flat, none);
+        std::printf("raster %s: tilted coat normal changes the frame by %.3f%%, a flat map by %.4f%%\n", path,
+                    100.0 * change[blend], 100.0 * flatChange);
+        EXPECT_GT(change[blend], 0.002) << path;
+        EXPECT_LT(flatChange, 1e-3) << path;
+    }
+    EXPECT_NEAR(change[0], change[1], 0.25 * change[0]) << "deferred and forward shade the coat normal alike";
+}
+
+// Brushed gold and plastic (tangents around the vertical axis, UVs): strength 0.8 and `rotation`, or strength 1 with
+// a 1x1 anisotropy texture (rg, B 204).
+scene::Scene anisotropicSpheres(bool blend, bool textured, std::array<uint8_t, 2> rg, float rotation) {
+    namespace lt = layer_textures;
+    scene::Scene s = materialSpheres();
+    brushedTangents(s);
+    for (size_t i = 1; i < s.materials.size() && blend; ++i) {
+        s.materials[i].alphaMode = scene::AlphaMode::Blend;
+        s.materials[i].baseColorFactor.a = 1.0f;
+    }
+    for (uint32_t i : {1u, 4u}) {
+        lt::sideUvs(s, i);
+        scene::Material& m = s.materials[i];
+        m.roughness = 0.3f;
+        m.anisotropyStrength = 0.8f;
+        m.anisotropyRotation = rotation;
+        if (textured) {
+            m.anisotropyStrength = 1.0f;
+            m.anisotropyTexture = lt::addTexture(s, {{rg[0], rg[1], 204, 255}});
+        }
+    }
+    return s;
+}
+
+TEST_F(MaterialLayersTest, AnisotropyTextureDeferredAndForward) {
+    for (int blend = 0; blend < 2; ++blend) {
+        const char* path = blend ? "forward (BLEND)" : "deferred";
+        const core::ImageRgba32f factors = renderHdr(ctx(), shaders(), anisotropicSpheres(blend, false, {0, 0}, 0.0f), false);
+        const core::ImageRgba32f constant = renderHdr(ctx(), shaders(), anisotropicSpheres(blend, true, {255, 128}, 0.0f), false);
+        const double constantChange = relativeChange(constant, factors);
+        if (!blend) {  // no tangent in the G-buffer: only the strength texel matters (not read: strength 1)
+            scene::Scene one = anisotropicSpheres(blend, false, {0, 0}, 0.0f);
+            for (uint32_t i : {1u, 4u}) one.materials[i].anisotropyStrength = 1.0f;
+            const double oneChange = relativeChange(renderHdr(ctx(), shaders(), one, false), constant);
+            std::printf("raster %s: constant anisotropy texture vs factors %.5f%% (vs strength 1: %.4f%%)\n", path,
+                        100.0 * constantChange, 100.0 * oneChange);
+            EXPECT_LT(constantChange, 1e-3) << path;
+            EXPECT_LT(constantChange, 0.1 * oneChange) << path;
+            continue;
+        }
+        const core::ImageRgba32f rotated = renderHdr(ctx(), shaders(), anisotropicSpheres(blend, false, {0, 0}, 1.5707963f), false);
+        const core::ImageRgba32f turned = renderHdr(ctx(), shaders(), anisotropicSpheres(blend, true, {128, 255}, 0.0f), false);
+        const double turnedChange = relativeChange(turned, rotated), rotationChange = relativeChange(rotated, factors);
+        std::printf("raster %s: constant anisotropy texture vs factors %.5f%%, 90-degree texture vs rotation pi/2 "
+                    "%.5f%% (the rotation changes %.4f%%)\n", path, 100.0 * constantChange, 100.0 * turnedChange,
+                    100.0 * rotationChange);
+        EXPECT_LT(constantChange, 1e-3) << path;
+        EXPECT_LT(turnedChange, 1e-3) << path;
+        EXPECT_GT(rotationChange, 10.0 * std::max(constantChange, turnedChange)) << path;
     }
 }
 

@@ -1,10 +1,10 @@
 // gltf_material_ext_test.cpp: the loader's BSDF material extensions (scene/gltf_material_ext.cpp): the factors of
-// KHR_materials_specular, _clearcoat, _sheen, _anisotropy, _diffuse_transmission land in scene::Material; hostile
-// values (out of range, non-finite, wrong types) are clamped or replaced with a warning naming the material (a
-// diffuse-transmission factor of 0 leaves its textures undecoded); extension textures load as
-// TextureRefs with texCoord and KHR_texture_transform (bad references warn and are dropped; anisotropyTexture is
-// reported, not read yet); ToyCar's clearcoat texture loads without a warning; materials without the extensions
-// keep the neutral defaults; the
+// KHR_materials_specular, _clearcoat, _sheen, _anisotropy, _iridescence, _diffuse_transmission land in
+// scene::Material; hostile values (out of range, non-finite, wrong types) are clamped or replaced with a warning
+// naming the material (a diffuse-transmission factor of 0 leaves its textures undecoded); extension textures load
+// as TextureRefs with texCoord and KHR_texture_transform (bad references warn and are dropped;
+// clearcoatNormalTexture loads with its scale, anisotropyTexture loads); ToyCar's clearcoat
+// texture loads without a warning; materials without the extensions keep the neutral defaults; the
 // authored scenes/material_spheres.gltf loads with its four extension materials and no warnings;
 // KHR_materials_variants: mappings select materials by variant name, bad mappings warn, unknown names throw
 // listing the variants.
@@ -101,7 +101,9 @@ TEST(GltfMaterialExt, AnisotropyIsLoadedAndChecked) {
     EXPECT_EQ(s.materials[2].anisotropyStrength, 0.0f);
     EXPECT_TRUE(anyWarningHas(s, "'hostile'", "anisotropyStrength"));
     EXPECT_TRUE(anyWarningHas(s, "'hostile'", "anisotropyRotation"));
-    EXPECT_TRUE(anyWarningHas(s, "anisotropyTexture", "not supported"));
+    EXPECT_FALSE(anyWarningHas(s, "anisotropyTexture", "not supported"));
+    ASSERT_TRUE(s.materials[1].anisotropyTexture);  // read now
+    EXPECT_EQ(s.materials[1].anisotropyTexture->texture, 0u);
     EXPECT_FALSE(anyWarningHas(s, "'brushed'", "anisotropy"));
 }
 
@@ -171,6 +173,53 @@ TEST(GltfMaterialExt, DispersionIsLoadedAndChecked) {
     EXPECT_TRUE(anyWarningHas(s, "'huge'", "dispersion 1000000000"));
     EXPECT_TRUE(anyWarningHas(s, "'word'", "dispersion is not a number"));
     EXPECT_FALSE(anyWarningHas(s, "'flint'", "dispersion"));
+TEST(GltfMaterialExt, IridescenceIsLoadedAndChecked) {
+    TempDir dir;
+    auto f = triangle();
+    f.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    f.doc["textures"] = json::parse(R"([{}, {}])");
+    f.doc["materials"] = json::parse(R"([{"name": "film", "extensions": {"KHR_materials_iridescence": {
+            "iridescenceFactor": 0.75, "iridescenceIor": 1.6, "iridescenceThicknessMinimum": 120,
+            "iridescenceThicknessMaximum": 480, "iridescenceTexture": {"index": 0},
+            "iridescenceThicknessTexture": {"index": 1, "texCoord": 1}}}},
+        {"name": "defaults", "extensions": {"KHR_materials_iridescence": {"iridescenceFactor": 1}}},
+        {"name": "hostile", "extensions": {"KHR_materials_iridescence": {"iridescenceFactor": 3,
+            "iridescenceIor": 0.5, "iridescenceThicknessMinimum": -10, "iridescenceThicknessMaximum": 1e9,
+            "iridescenceTexture": {"index": 9}}}},
+        {"name": "odd", "extensions": {"KHR_materials_iridescence": {"iridescenceFactor": "shiny",
+            "iridescenceIor": 9}}},
+        {"name": "plain"}])");
+    const Scene s = loadGltf(f.write(dir));
+    const Material& m = s.materials[0];
+    EXPECT_EQ(m.iridescence, 0.75f);
+    EXPECT_EQ(m.iridescenceIor, 1.6f);
+    EXPECT_EQ(m.iridescenceThicknessMin, 120.0f);
+    EXPECT_EQ(m.iridescenceThicknessMax, 480.0f);
+    ASSERT_TRUE(m.iridescenceTexture && m.iridescenceThicknessTexture);
+    EXPECT_EQ(m.iridescenceTexture->texture, 0u);
+    EXPECT_EQ(m.iridescenceThicknessTexture->texture, 1u);
+    EXPECT_EQ(m.iridescenceThicknessTexture->texCoord, 1u);
+    EXPECT_FALSE(anyWarningHas(s, "'film'", "iridescence"));
+    const Material& d = s.materials[1];  // the specification's defaults
+    EXPECT_EQ(d.iridescence, 1.0f);
+    EXPECT_EQ(d.iridescenceIor, 1.3f);
+    EXPECT_EQ(d.iridescenceThicknessMin, 100.0f);
+    EXPECT_EQ(d.iridescenceThicknessMax, 400.0f);
+    const Material& h = s.materials[2];
+    EXPECT_EQ(h.iridescence, 1.0f);  // clamped
+    EXPECT_EQ(h.iridescenceIor, 1.0f);
+    EXPECT_EQ(h.iridescenceThicknessMin, 0.0f);
+    EXPECT_EQ(h.iridescenceThicknessMax, 1.0e5f);
+    EXPECT_FALSE(h.iridescenceTexture);
+    for (const char* key : {"iridescenceFactor", "iridescenceIor", "iridescenceThicknessMinimum",
+                            "iridescenceThicknessMaximum", "iridescenceTexture"})
+        EXPECT_TRUE(anyWarningHas(s, "'hostile'", key)) << key;
+    EXPECT_EQ(s.materials[3].iridescence, 0.0f);  // not a number: the default
+    EXPECT_EQ(s.materials[3].iridescenceIor, 4.0f);
+    EXPECT_TRUE(anyWarningHas(s, "'odd'", "iridescenceFactor"));
+    EXPECT_TRUE(anyWarningHas(s, "'odd'", "iridescenceIor"));
+    EXPECT_EQ(s.materials[4].iridescence, 0.0f);
+    EXPECT_FALSE(s.materials[4].iridescenceTexture);
 }
 
 TEST(GltfMaterialExt, ExtensionTexturesAreLoaded) {
@@ -184,7 +233,7 @@ TEST(GltfMaterialExt, ExtensionTexturesAreLoaded) {
         "KHR_materials_clearcoat": {"clearcoatFactor": 1, "clearcoatTexture": {"index": 2},
             "clearcoatRoughnessTexture": {"index": 1, "extensions": {"KHR_texture_transform":
                 {"offset": [0.5, 0.25], "scale": [2, 3], "rotation": 0.5}}},
-            "clearcoatNormalTexture": {"index": 0}},
+            "clearcoatNormalTexture": {"index": 0, "scale": 0.5}},
         "KHR_materials_sheen": {"sheenColorFactor": [1, 1, 1], "sheenColorTexture": {"index": 2},
                                 "sheenRoughnessTexture": {"index": 7}}}}])");
     const Scene s = loadGltf(f.write(dir));
@@ -198,10 +247,13 @@ TEST(GltfMaterialExt, ExtensionTexturesAreLoaded) {
     EXPECT_EQ(m.clearcoatRoughnessTexture->offset, glm::vec2(0.5f, 0.25f));
     EXPECT_EQ(m.clearcoatRoughnessTexture->scale, glm::vec2(2.0f, 3.0f));
     EXPECT_EQ(m.clearcoatRoughnessTexture->rotation, 0.5f);
+    ASSERT_TRUE(m.clearcoatNormalTexture);  // read now: the coat's own normal, no warning
+    EXPECT_EQ(m.clearcoatNormalTexture->texture, 0u);
+    EXPECT_EQ(m.clearcoatNormalScale, 0.5f);
+    EXPECT_FALSE(anyWarningHas(s, "'textured'", "clearcoatNormalTexture"));
     EXPECT_EQ(m.sheenColorTexture->texture, 2u);
     EXPECT_FALSE(m.sheenRoughnessTexture.has_value());  // texture 7 of 3: dropped with a warning
     EXPECT_TRUE(anyWarningHas(s, "'textured'", "sheenRoughnessTexture names texture 7"));
-    EXPECT_TRUE(anyWarningHas(s, "'textured'", "clearcoatNormalTexture is not supported"));
     EXPECT_TRUE(s.features().hasTextures);
 }
 

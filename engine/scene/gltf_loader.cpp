@@ -21,13 +21,14 @@ LoadError::LoadError(const std::filesystem::path& file, const std::string& cause
     : std::runtime_error(file.string() + ": " + cause), file_(file), cause_(cause) {}
 
 bool isSupportedExtension(const std::string& name) {
-    static const std::array<const char*, 18> kSupported = {
+    static const std::array<const char*, 19> kSupported = {
         "KHR_mesh_quantization",           "KHR_draco_mesh_compression", "EXT_meshopt_compression",
         "EXT_mesh_gpu_instancing",         "KHR_lights_punctual",        "KHR_texture_transform",
         "KHR_materials_emissive_strength", "KHR_materials_unlit",        "KHR_materials_transmission",
         "KHR_materials_ior",               "KHR_materials_volume",       "KHR_materials_specular",
         "KHR_materials_clearcoat",         "KHR_materials_sheen",        "KHR_materials_variants",
-        "KHR_materials_anisotropy",        "KHR_materials_diffuse_transmission", "KHR_materials_dispersion"};
+        "KHR_materials_anisotropy",        "KHR_materials_diffuse_transmission", "KHR_materials_dispersion",
+        "KHR_materials_iridescence"};
     return std::any_of(kSupported.begin(), kSupported.end(), [&](const char* s) { return name == s; });
 }
 

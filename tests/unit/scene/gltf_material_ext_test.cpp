@@ -177,6 +177,9 @@ TEST(GltfMaterialExt, IridescenceIsLoadedAndChecked) {
     TempDir dir;
     auto f = triangle();
     f.doc["meshes"][0]["primitives"][0]["material"] = 0;
+    // A file that requires the extension loads (the loader lists it as supported).
+    f.doc["extensionsUsed"] = json::parse(R"(["KHR_materials_iridescence"])");
+    f.doc["extensionsRequired"] = json::parse(R"(["KHR_materials_iridescence"])");
     f.doc["textures"] = json::parse(R"([{}, {}])");
     f.doc["materials"] = json::parse(R"([{"name": "film", "extensions": {"KHR_materials_iridescence": {
             "iridescenceFactor": 0.75, "iridescenceIor": 1.6, "iridescenceThicknessMinimum": 120,

@@ -19,6 +19,8 @@ std::vector<float> albedoTableData() {
     put(kPtAlbedoDielectric, kPtAlbedoDielectricOffset);
     put(kPtAlbedoSheen, kPtAlbedoSheenOffset);
     put(kPtAlbedoMsBinTable, kPtAlbedoMsBinTableOffset);
+    put(kPtAlbedoSpecular, kPtAlbedoSpecularOffset);
+    put(kPtAlbedoSpecularAvg, kPtAlbedoSpecularAvgOffset);
     return out;
 }
 

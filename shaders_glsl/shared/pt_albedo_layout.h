@@ -8,6 +8,9 @@
 //   sheen       E(mu, r): albedo of the KHR_materials_sheen Charlie lobe with sheen colour 1
 //   msBins      [r][k]: probability of cos theta bin k (kPtAlbedoMsBins equal bins of [0, 1]) under the density
 //               ~ (1 - E(mu, r)) mu of the multiple-scattering lobe (pt_energy.h samples it)
+//   specular    E(mu, r, ior): albedo of GGX reflection alone with the exact dielectric Fresnel, light from outside
+//               (eta = ior); the opaque dielectric's diffuse weight is built on it (pt_bsdf_frame.h)
+//   specularAvg Eavg(r, ior) of the specular table, like metalAvg
 // Nodes: mu_i = max(i / (N - 1), kPtAlbedoMinMu); roughness r_j = j / (N - 1) (perceptual, alpha = r^2);
 // IOR axis x_k = 0.6 k / (N - 1) with x = (ior - 1) / (ior + 1) (ior 1 .. 4, the BSDF's clamp).
 #ifndef IDK_PT_ALBEDO_LAYOUT_H
@@ -21,6 +24,8 @@ IDK_CONST(uint, kPtAlbedoRough, 32u);  // metal and sheen tables: roughness node
 IDK_CONST(uint, kPtAlbedoDielMu, 32u);  // dielectric table: cos theta, roughness and IOR nodes
 IDK_CONST(uint, kPtAlbedoDielRough, 16u);
 IDK_CONST(uint, kPtAlbedoDielIor, 16u);
+IDK_CONST(uint, kPtAlbedoSpecRough, 32u);  // specular table: roughness and IOR nodes (cos theta: kPtAlbedoDielMu)
+IDK_CONST(uint, kPtAlbedoSpecIor, 16u);
 IDK_CONST(uint, kPtAlbedoMsBins, 31u);  // = kPtAlbedoMu - 1: one bin per cell of the metal table
 IDK_CONST(float, kPtAlbedoMinMu, 1.0e-3f);
 IDK_CONST(float, kPtAlbedoMaxIorX, 0.6f);  // x = (ior - 1) / (ior + 1) at ior 4

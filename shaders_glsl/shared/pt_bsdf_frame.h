@@ -9,8 +9,20 @@
 //   base       metal: GGX, Schlick F with f0 = baseColor. dielectric: GGX with KHR_materials_specular's
 //              F = specular * (f0' + (1 - f0') w(v.h)), f0' = min(f0(ior) specularColor, 1), where w is the exact
 //              Fresnel curve of the IOR remapped to [0, 1] (w = (F_exact - f0) / (1 - f0)), so without the
-//              extension F is the exact dielectric Fresnel; beneath it Lambert diffuse / transmission weighted
-//              1 - specular * max(F). Multiple scattering: pt_energy.h.
+//              extension F is the exact dielectric Fresnel; beneath it the specular transmission weighted
+//              1 - specular * max(F(v.h)), and the Lambert diffuse (and diffuse transmission) by albedo scaling
+//              (Kelemen & Szirmay-Kalos 2001, Kulla & Conty 2017), reciprocal and energy conserving:
+//                (1 - Es(mu_o)) (1 - Es(mu_i)) / (1 - Es_avg)
+//              with Es the directional albedo of the dielectric's reflection lobe, its multiple scattering
+//              included, so that a white "plastic" reflects exactly 1 (a per-half-vector 1 - F would not remove
+//              the energy the rough lobe sends elsewhere: albedo 1.25 at roughness 0.2, grazing view). Es is
+//              linear in F, so KHR_materials_specular's F = specular (f0' + (1 - f0') w) gives it exactly from
+//              the F = 1 table and the exact-Fresnel reflection table (pt_energy.h): Es = specular (f0' E_metal +
+//              (1 - f0') (E_refl - f0 E_metal) / (1 - f0)) + Fms (1 - E_metal); a coloured specularColor takes
+//              its strongest channel (Es grows with f0' at every angle, so that channel is the same for all
+//              mu: the weight stays reciprocal, and the weaker channels reflect a little less than 1). Light
+//              inside a volume (eta < 1) reads the table at 1 / eta, an approximation (the table holds
+//              reflection from outside). Multiple scattering: pt_energy.h.
 //              KHR_materials_anisotropy: the GGX of the reflection and transmission lobes becomes anisotropic
 //              (pt_anisotropy.h) in a frame whose tangent is the anisotropy direction; the energy compensation
 //              reads the isotropic tables at the root-mean-square alpha sqrt((alpha_t^2 + alpha_b^2) / 2), the
@@ -74,6 +86,13 @@ struct PtBsdfFrame {
     float diffTrans;       // diffuseTransmission factor, sanitised (0: the lobe is off)
     vec3 diffTransColor;   // diffuseTransmissionColor, sanitised
     float pDiffTrans;      // selection probability of the lobe (with the six above, sum 1)
+    // The albedo-scaled diffuse weight (see the header): Es(mu) = specEF0 E_metal(mu) + specEK (E_refl(mu) -
+    // f0Ior E_metal(mu)) + specEMs (1 - E_metal(mu)), the table read at specIor
+    float specEF0;
+    float specEK;
+    float specEMs;
+    float specIor;
+    float diffScale;       // (1 - Es(mu_o)) / (1 - Es_avg)
 };
 
 IDK_INLINE float ptCoatFresnel(float c) { return ptFresnelSchlick(vec3(0.04f), c).x; }
@@ -93,6 +112,18 @@ IDK_INLINE float ptDielectricPass(PtBsdfFrame f, float c) {
 // The reflection lobe's Fresnel (energy compensation of refraction included), before the layer weight.
 IDK_INLINE vec3 ptSpecularFresnel(PtBsdfFrame f, float c) {
     return mix(ptDielectricFresnel(f, c) * f.dielScale, ptFresnelSchlick(f.baseColor, c), f.metallic);
+}
+
+// Es(mu): the directional albedo of the dielectric reflection lobe (multiple scattering included).
+IDK_INLINE float ptDielectricSpecAlbedo(PtBsdfFrame f, float mu) {
+    float em = ptAlbedoMetal(mu, f.roughness);
+    float er = ptAlbedoSpecular(mu, f.roughness, f.specIor);
+    return f.specEF0 * em + f.specEK * (er - f.f0Ior * em) + f.specEMs * (1.0f - em);
+}
+
+// The Lambert lobes' weight for a light direction of cosine mu (reflected or transmitted): diffScale (1 - Es(mu)).
+IDK_INLINE float ptDiffuseWeight(PtBsdfFrame f, float mu) {
+    return f.diffScale * max(1.0f - ptDielectricSpecAlbedo(f, mu), 0.0f);
 }
 
 // ---------------------------------------------------------------------------------------------------- GGX hooks
@@ -215,6 +246,11 @@ IDK_INLINE bool ptBsdfSetup(PtSurface s, vec3 wo, IDK_OUT(PtBsdfFrame) f) {
     f.dielScale = 1.0f;
     f.transScale = 1.0f;
     f.msColor = vec3(0.0f);
+    f.specEF0 = 0.0f;
+    f.specEK = 0.0f;
+    f.specEMs = 0.0f;
+    f.specIor = 1.0f;
+    f.diffScale = 1.0f;
     f.layer = 1.0f;
     f.coatLayer = 1.0f;
     float ior = ptFinite(s.ior) ? clamp(s.ior, 1.0f, 4.0f) : 1.5f;
@@ -239,26 +275,36 @@ IDK_INLINE bool ptBsdfSetup(PtSurface s, vec3 wo, IDK_OUT(PtBsdfFrame) f) {
     f.specularF0 = min(vec3(f.f0Ior) * specularColor, vec3(1.0f));
     float mu = f.wo.z;
     float msAlbedo = 0.0f;
+    // The dielectric's average Fresnel: the exact curve's average remapped like ptDielectricFresnel.
+    float favgExact = ptFresnelDielectricAverage(f.etaFresnel);
+    float wAvg = f.f0Ior < 1.0e-6f ? favgExact : clamp((favgExact - f.f0Ior) / (1.0f - f.f0Ior), 0.0f, 1.0f);
+    vec3 favgDielectric = f.specular * (f.specularF0 + (vec3(1.0f) - f.specularF0) * wAvg);
+    float eAvg = ptAlbedoMetalAvg(f.roughness);
 
     // Energy compensation (pt_energy.h). Refraction: both single-scattering lobes of the transmitted part
     // scaled by 1 / E_dielectric (thin-walled: reflection + mirrored reflection = the F = 1 GGX albedo).
     if (!f.delta) {
         float eMetal = ptAlbedoMetal(mu, f.roughness);
-        float eAvg = ptAlbedoMetalAvg(f.roughness);
         if (f.transmission > 0.0f && !f.transDelta) {
             float e = f.thick ? ptAlbedoDielectric(mu, f.roughness, ior, !outside) : eMetal;
             f.transScale = 1.0f / max(e, 0.05f);
             f.dielScale = 1.0f + f.transmission * (f.transScale - 1.0f);
         }
-        // The dielectric's average Fresnel: the exact curve's average remapped like ptDielectricFresnel.
-        float favgExact = ptFresnelDielectricAverage(f.etaFresnel);
-        float wAvg = f.f0Ior < 1.0e-6f ? favgExact : clamp((favgExact - f.f0Ior) / (1.0f - f.f0Ior), 0.0f, 1.0f);
-        vec3 favgDielectric = f.specular * (f.specularF0 + (vec3(1.0f) - f.specularF0) * wAvg);
         vec3 fms = f.metallic * ptMultiScatterColor(ptSchlickAverage(f.baseColor), eAvg) +
                    ((1.0f - f.metallic) * (1.0f - f.transmission)) * ptMultiScatterColor(favgDielectric, eAvg);
         f.msColor = fms * ((1.0f - eMetal) / (kPtPi * max(1.0f - eAvg, 1.0e-4f)));
         msAlbedo = ptAverage(fms) * (1.0f - eMetal);
     }
+    // The diffuse weight's albedo scaling (header): the reflection lobe's albedo as a function of F is linear.
+    float f0Max = ptMaxComponent(f.specularF0);
+    f.specEF0 = f.specular * f0Max;
+    f.specEK = f.specular * (1.0f - f0Max) / max(1.0f - f.f0Ior, 1.0e-4f);
+    f.specEMs = f.delta ? 0.0f : ptMaxComponent(ptMultiScatterColor(favgDielectric, eAvg));
+    f.specIor = max(f.etaFresnel, 1.0f / f.etaFresnel);
+    float specAvg = f.specEF0 * eAvg + f.specEK * (ptAlbedoSpecularAvg(f.roughness, f.specIor) - f.f0Ior * eAvg) +
+                    f.specEMs * (1.0f - eAvg);
+    float diffOut = max(1.0f - ptDielectricSpecAlbedo(f, mu), 0.0f);  // the diffuse albedo (white base)
+    f.diffScale = diffOut / max(1.0f - specAvg, 1.0e-4f);
     float coatF = f.clearcoat * ptCoatFresnel(mu);
     f.coatLayer = 1.0f - coatF;
     float sheenMax = ptMaxComponent(f.sheenColor);
@@ -273,10 +319,10 @@ IDK_INLINE bool ptBsdfSetup(PtSurface s, vec3 wo, IDK_OUT(PtBsdfFrame) f) {
     float base = dielectric * max(ptDielectricPass(f, mu), 0.05f) * ptAverage(f.baseColor);
     float pSpec = ptAverage(ptSpecularFresnel(f, mu));
     if (f.metallic > 0.0f || (f.etaFresnel != 1.0f && f.specular > 0.0f)) pSpec = max(pSpec, 1.0e-3f);
-    float pDiff = base * (1.0f - f.transmission);
+    float diffuseBase = dielectric * max(diffOut, 0.05f) * (1.0f - f.transmission);
+    float pDiff = diffuseBase * ptAverage(f.baseColor);
     float pDiffTrans = 0.0f;
     if (f.diffTrans > 0.0f) {  // split the diffuse base; its transmitted half is weighted by its own colour
-        float diffuseBase = dielectric * max(ptDielectricPass(f, mu), 0.05f) * (1.0f - f.transmission);
         pDiffTrans = diffuseBase * f.diffTrans * max(ptAverage(f.diffTransColor), 1.0e-3f);
         pDiff *= 1.0f - f.diffTrans;
     }

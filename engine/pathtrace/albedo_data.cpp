@@ -21,6 +21,8 @@ std::vector<float> albedoTableData() {
     put(kPtAlbedoMsBinTable, kPtAlbedoMsBinTableOffset);
     put(kPtAlbedoAnisoMetal, kPtAlbedoAnisoMetalOffset);
     put(kPtAlbedoAnisoAvg, kPtAlbedoAnisoAvgOffset);
+    put(kPtAlbedoSpecular, kPtAlbedoSpecularOffset);
+    put(kPtAlbedoSpecularAvg, kPtAlbedoSpecularAvgOffset);
     return out;
 }
 

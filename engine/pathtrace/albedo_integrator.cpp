@@ -145,6 +145,24 @@ double ggxDielectricAlbedo(float mu, float roughness, float eta, int strata) {
     return sum / (double(strata) * double(strata));
 }
 
+double ggxDielectricReflectionAlbedo(float mu, float roughness, float eta, int strata) {
+    const glm::vec3 o = outgoing(mu);
+    const float alpha = alphaOf(roughness);
+    const double g1 = ptGgxG1(o.z, alpha);
+    double sum = 0.0;
+    for (int a = 0; a < strata; ++a) {
+        double weight;
+        const float u1 = tailWarp(a, strata, weight);
+        for (int b = 0; b < strata; ++b) {
+            const glm::vec3 h = ptSampleGgxVndf(o, alpha, u1, (float(b) + 0.5f) / float(strata));
+            const float cosOH = glm::dot(o, h);
+            const glm::vec3 r = h * (2.0f * cosOH) - o;
+            if (r.z > 0.0f) sum += weight * ptFresnelDielectric(cosOH, eta) * ptGgxG2(o.z, r.z, alpha) / g1;
+        }
+    }
+    return sum / (double(strata) * double(strata));
+}
+
 double sheenAlbedo(float mu, float roughness, int strata) {
     const glm::vec3 o = outgoing(mu);
     const float alpha = ptSheenAlpha(roughness);
@@ -212,6 +230,17 @@ AlbedoTables computeAlbedoTables(int strata) {
             }
         }
     }
+    for (uint32_t k = 0; k < kPtAlbedoSpecIor; ++k) {
+        const float ior = ptAlbedoNodeIor(k, kPtAlbedoSpecIor);
+        for (uint32_t j = 0; j < kPtAlbedoSpecRough; ++j) {
+            const float r = ptAlbedoNodeRough(j, kPtAlbedoSpecRough);
+            const size_t row = t.specular.size();
+            for (uint32_t i = 0; i < kPtAlbedoDielMu; ++i)
+                t.specular.push_back(
+                    float(ggxDielectricReflectionAlbedo(ptAlbedoNodeMu(i, kPtAlbedoDielMu), r, ior, strata)));
+            t.specularAvg.push_back(cosineWeightedMean(&t.specular[row], kPtAlbedoDielMu));
+        }
+    }
     return t;
 }
 
@@ -230,6 +259,8 @@ std::string albedoTablesHeader(const AlbedoTables& tables) {
     writeArray(out, "kPtAlbedoMsBinTable", tables.msBins, offset);
     writeArray(out, "kPtAlbedoAnisoMetal", tables.anisoMetal, offset);
     writeArray(out, "kPtAlbedoAnisoAvg", tables.anisoAvg, offset);
+    writeArray(out, "kPtAlbedoSpecular", tables.specular, offset);
+    writeArray(out, "kPtAlbedoSpecularAvg", tables.specularAvg, offset);
     out << "IDK_CONST(uint, kPtAlbedoTableFloats, " << offset << "u);  // all tables, packed in this order\n\n";
     out << "IDK_GPU_END\n\n#endif\n";
     return out.str();

@@ -20,6 +20,9 @@ double ggxAnisoReflectionAlbedo(float mu, float q, float roughness, float streng
 // leaving at mu on the side where the far medium has relative IOR eta (eta = ior outside, 1 / ior inside).
 double ggxDielectricAlbedo(float mu, float roughness, float eta, int strata);
 
+// Reflection alone of that interface (light from outside, eta >= 1): the GGX lobe with the exact Fresnel term.
+double ggxDielectricReflectionAlbedo(float mu, float roughness, float eta, int strata);
+
 // Albedo of the Charlie sheen lobe (colour 1) at mu and sheen roughness r, midpoint rule over the hemisphere.
 double sheenAlbedo(float mu, float roughness, int strata);
 
@@ -31,6 +34,8 @@ struct AlbedoTables {
     std::vector<float> msBins;      // [r][bin]
     std::vector<float> anisoMetal;  // [s][r][q][mu], kPtAlbedoAnisoStrength x Rough x Az x Mu
     std::vector<float> anisoAvg;    // [s][r]
+    std::vector<float> specular;    // [ior][r][mu], kPtAlbedoSpecIor x kPtAlbedoSpecRough x kPtAlbedoDielMu
+    std::vector<float> specularAvg; // [ior][r]
 };
 
 // Every table at its nodes (pt_albedo_layout.h). strata: the quadrature of each entry (the committed tables use

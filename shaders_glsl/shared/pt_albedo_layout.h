@@ -19,6 +19,9 @@
 //               1.0% down to mu 0.05; 16 or 24 roughness or strength nodes gain < 0.1%. Indexed by (r, s), the
 //               glTF parameters, the table spans exactly the reachable alphas (alpha_t >= alpha_b)
 //   anisoAvg    [s][r]: Eavg = (1 / pi) integral E cos over the hemisphere, of the interpolant the lookup reads
+//   specular    E(mu, r, ior): albedo of GGX reflection alone with the exact dielectric Fresnel, light from outside
+//               (eta = ior); the opaque dielectric's diffuse weight is built on it (pt_bsdf_frame.h)
+//   specularAvg Eavg(r, ior) of the specular table, like metalAvg
 // Nodes: mu_i = max(i / (N - 1), kPtAlbedoMinMu); roughness r_j = j / (N - 1) (perceptual, alpha = r^2), and
 // likewise |cos phi| and strength;
 // IOR axis x_k = 0.6 k / (N - 1) with x = (ior - 1) / (ior + 1) (ior 1 .. 4, the BSDF's clamp).
@@ -33,6 +36,8 @@ IDK_CONST(uint, kPtAlbedoRough, 32u);  // metal and sheen tables: roughness node
 IDK_CONST(uint, kPtAlbedoDielMu, 32u);  // dielectric table: cos theta, roughness and IOR nodes
 IDK_CONST(uint, kPtAlbedoDielRough, 16u);
 IDK_CONST(uint, kPtAlbedoDielIor, 16u);
+IDK_CONST(uint, kPtAlbedoSpecRough, 32u);  // specular table: roughness and IOR nodes (cos theta: kPtAlbedoDielMu)
+IDK_CONST(uint, kPtAlbedoSpecIor, 16u);
 IDK_CONST(uint, kPtAlbedoMsBins, 31u);  // = kPtAlbedoMu - 1: one bin per cell of the metal table
 IDK_CONST(uint, kPtAlbedoAnisoMu, 32u);  // anisotropic metal table: cos theta, |cos phi|, roughness, strength
 IDK_CONST(uint, kPtAlbedoAnisoAz, 8u);

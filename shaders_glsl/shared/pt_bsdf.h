@@ -3,10 +3,10 @@
 // (one-sample MIS: a non-delta sample returns the pdf summed over all lobes, so ptSampleBsdf's pdf equals
 // ptEvalBsdf's for the same direction):
 //   specular     GGX reflection, F = mix(dielectric F (KHR_materials_specular), Schlick(baseColor), metallic)
-//   diffuse      Lambert, (1 - metallic) (1 - transmission) (1 - diffuseTransmission) (1 - max F_dielectric)
-//                baseColor / pi
+//   diffuse      Lambert, (1 - metallic) (1 - transmission) (1 - diffuseTransmission) baseColor / pi times the
+//                albedo-scaled weight (1 - Es(mu_o)) (1 - Es(mu_i)) / (1 - Es_avg) of pt_bsdf_frame.h
 //   diffuse transmission  KHR_materials_diffuse_transmission (pt_diffuse_transmission.h): Lambert on the far side,
-//                (1 - metallic) (1 - transmission) diffuseTransmission (1 - max F_dielectric) color / pi
+//                (1 - metallic) (1 - transmission) diffuseTransmission color / pi, the same weight at |mu_i|
 //   transmission (1 - metallic) transmission (1 - max F_dielectric) baseColor: rough refraction (Walter 2007) when
 //                the material has a volume (thickness > 0), else the reflection lobe mirrored through the surface
 //   multiscatter GGX energy compensation (pt_energy.h), sampled by its own tabulated density
@@ -32,9 +32,10 @@ IDK_INLINE vec3 ptEvalLocal(PtBsdfFrame f, vec3 wi, float wiSide, IDK_OUT(float)
     if (wi.z > 0.0f && wiSide > 0.0f) {
         vec3 h = normalize(wo + wi);
         float cosOH = max(dot(wo, h), 0.0f);
-        float pass = ptDielectricPass(f, cosOH);
-        vec3 base = f.baseColor * ((1.0f - f.metallic) * (1.0f - f.transmission) * (1.0f - f.diffTrans) * pass *
-                                   kPtInvPi * wi.z);
+        vec3 base = vec3(0.0f);
+        if (f.pDiff > 0.0f)
+            base = f.baseColor * ((1.0f - f.metallic) * (1.0f - f.transmission) * (1.0f - f.diffTrans) *
+                                  ptDiffuseWeight(f, wi.z) * kPtInvPi * wi.z);
         pdf += f.pDiff * wi.z * kPtInvPi;
         if (!f.delta) {
             float d = ptBaseD(f, h);
@@ -57,8 +58,7 @@ IDK_INLINE vec3 ptEvalLocal(PtBsdfFrame f, vec3 wi, float wiSide, IDK_OUT(float)
         }
     } else if (wi.z < 0.0f && wiSide < 0.0f) {
         if (f.pDiffTrans > 0.0f) {  // KHR_materials_diffuse_transmission
-            vec3 h = normalize(wo + ptDiffTransMirror(wi));
-            float pass = ptDielectricPass(f, max(dot(wo, h), 0.0f));
+            float pass = ptDiffuseWeight(f, -wi.z);
             float weight = (1.0f - f.metallic) * (1.0f - f.transmission) * f.diffTrans * f.layer;
             value += ptDiffTransValue(f.diffTransColor, weight, pass, wi);
             pdf += f.pDiffTrans * ptDiffTransPdf(wi);

@@ -11,11 +11,24 @@
 //   base       metal: GGX, Schlick F with f0 = baseColor. dielectric: GGX with KHR_materials_specular's
 //              F = specular * (f0' + (1 - f0') w(v.h)), f0' = min(f0(ior) specularColor, 1), where w is the exact
 //              Fresnel curve of the IOR remapped to [0, 1] (w = (F_exact - f0) / (1 - f0)), so without the
-//              extension F is the exact dielectric Fresnel; beneath it Lambert diffuse / transmission weighted
-//              1 - specular * max(F). Multiple scattering: pt_energy.h.
+//              extension F is the exact dielectric Fresnel; beneath it the specular transmission weighted
+//              1 - specular * max(F(v.h)), and the Lambert diffuse (and diffuse transmission) by albedo scaling
+//              (Kelemen & Szirmay-Kalos 2001, Kulla & Conty 2017), reciprocal and energy conserving:
+//                (1 - Es(mu_o)) (1 - Es(mu_i)) / (1 - Es_avg)
+//              with Es the directional albedo of the dielectric's reflection lobe, its multiple scattering
+//              included, so that a white "plastic" reflects exactly 1 (a per-half-vector 1 - F would not remove
+//              the energy the rough lobe sends elsewhere: albedo 1.25 at roughness 0.2, grazing view). Es is
+//              linear in F, so KHR_materials_specular's F = specular (f0' + (1 - f0') w) gives it exactly from
+//              the F = 1 table and the exact-Fresnel reflection table (pt_energy.h): Es = specular (f0' E_metal +
+//              (1 - f0') (E_refl - f0 E_metal) / (1 - f0)) + Fms (1 - E_metal); a coloured specularColor takes
+//              its strongest channel (Es grows with f0' at every angle, so that channel is the same for all
+//              mu: the weight stays reciprocal, and the weaker channels reflect a little less than 1). Light
+//              inside a volume (eta < 1) reads the table at 1 / eta, an approximation (the table holds
+//              reflection from outside). Multiple scattering: pt_energy.h.
 //              KHR_materials_iridescence: both Fresnel terms become mix(F, F_film, iridescence), F_film the thin
 //              film over the base's f0 (pt_iridescence.h; dielectric: f0' with KHR_materials_specular's weight,
 //              metal: baseColor); the multiple-scattering lobe keeps the film-less average Fresnel (approximation).
+//              The albedo-scaled diffuse weight reads the film-less Es (approximation).
 //              KHR_materials_anisotropy: the GGX of the reflection and transmission lobes becomes anisotropic
 //              (pt_anisotropy.h) in a frame whose tangent is the anisotropy direction; the energy compensation
 //              reads the anisotropic albedo table at the view's and the light's azimuth in that frame (pt_energy.h;
@@ -94,6 +107,13 @@ struct PtBsdfFrame {
     bool coatTilted;    // the coat has its own normal: coatN (else the coat uses n, coatN = (0, 0, 1))
     vec3 coatN;         // local (in t, b, n), unit, dot(wo, coatN) >= kPtMinCos
     float coatCosO;     // dot(wo, coatN) (wo.z when not tilted)
+    // The albedo-scaled diffuse weight (see the header): Es(mu) = specEF0 E_metal(mu) + specEK (E_refl(mu) -
+    // f0Ior E_metal(mu)) + specEMs (1 - E_metal(mu)), the table read at specIor
+    float specEF0;
+    float specEK;
+    float specEMs;
+    float specIor;
+    float diffScale;       // (1 - Es(mu_o)) / (1 - Es_avg)
 };
 
 IDK_INLINE float ptCoatFresnel(float c) { return ptFresnelSchlick(vec3(0.04f), c).x; }
@@ -145,6 +165,18 @@ IDK_INLINE vec3 ptSpecularFresnel(PtBsdfFrame f, float c) {
     vec3 metal = ptIridescentFresnel(ptFresnelSchlick(f.baseColor, c), c, f.iridescence, f.iridescenceIor,
                                      f.iridescenceThickness, f.baseColor, 1.0f);
     return mix(ptDielectricFresnel(f, c) * f.dielScale, metal, f.metallic);
+}
+
+// Es(mu): the directional albedo of the dielectric reflection lobe (multiple scattering included).
+IDK_INLINE float ptDielectricSpecAlbedo(PtBsdfFrame f, float mu) {
+    float em = ptAlbedoMetal(mu, f.roughness);
+    float er = ptAlbedoSpecular(mu, f.roughness, f.specIor);
+    return f.specEF0 * em + f.specEK * (er - f.f0Ior * em) + f.specEMs * (1.0f - em);
+}
+
+// The Lambert lobes' weight for a light direction of cosine mu (reflected or transmitted): diffScale (1 - Es(mu)).
+IDK_INLINE float ptDiffuseWeight(PtBsdfFrame f, float mu) {
+    return f.diffScale * max(1.0f - ptDielectricSpecAlbedo(f, mu), 0.0f);
 }
 
 // ---------------------------------------------------------------------------------------------------- GGX hooks
@@ -281,6 +313,11 @@ IDK_INLINE bool ptBsdfSetup(PtSurface s, vec3 wo, IDK_OUT(PtBsdfFrame) f) {
     f.dielScale = 1.0f;
     f.transScale = 1.0f;
     f.msColor = vec3(0.0f);
+    f.specEF0 = 0.0f;
+    f.specEK = 0.0f;
+    f.specEMs = 0.0f;
+    f.specIor = 1.0f;
+    f.diffScale = 1.0f;
     f.layer = 1.0f;
     f.coatLayer = 1.0f;
     float ior = ptFinite(s.ior) ? clamp(s.ior, 1.0f, 4.0f) : 1.5f;
@@ -306,26 +343,37 @@ IDK_INLINE bool ptBsdfSetup(PtSurface s, vec3 wo, IDK_OUT(PtBsdfFrame) f) {
     f.specularF0 = min(vec3(f.f0Ior) * specularColor, vec3(1.0f));
     float mu = f.wo.z;
     float msAlbedo = 0.0f;
+    // The dielectric's average Fresnel: the exact curve's average remapped like ptDielectricFresnel.
+    float favgExact = ptFresnelDielectricAverage(f.etaFresnel);
+    float wAvg = f.f0Ior < 1.0e-6f ? favgExact : clamp((favgExact - f.f0Ior) / (1.0f - f.f0Ior), 0.0f, 1.0f);
+    vec3 favgDielectric = f.specular * (f.specularF0 + (vec3(1.0f) - f.specularF0) * wAvg);
+    float eAvg = ptAlbedoMetalAvg(f.roughness);  // isotropic: the diffuse weight's Es reads isotropic tables
 
     // Energy compensation (pt_energy.h). Refraction: both single-scattering lobes of the transmitted part
     // scaled by 1 / E_dielectric (thin-walled: reflection + mirrored reflection = the F = 1 GGX albedo).
     if (!f.delta) {
         float eMetal = ptBaseAlbedo(f, f.wo);
-        float eAvg = f.aniso ? ptAlbedoAnisoAvg(f.anisoRoughness, f.anisoStrength) : ptAlbedoMetalAvg(f.roughness);
+        float eLobeAvg = f.aniso ? ptAlbedoAnisoAvg(f.anisoRoughness, f.anisoStrength) : eAvg;
         if (f.transmission > 0.0f && !f.transDelta) {
             float e = f.thick ? ptAlbedoDielectric(mu, f.roughness, ior, !outside) : eMetal;
             f.transScale = 1.0f / max(e, 0.05f);
             f.dielScale = 1.0f + f.transmission * (f.transScale - 1.0f);
         }
-        // The dielectric's average Fresnel: the exact curve's average remapped like ptDielectricFresnel.
-        float favgExact = ptFresnelDielectricAverage(f.etaFresnel);
-        float wAvg = f.f0Ior < 1.0e-6f ? favgExact : clamp((favgExact - f.f0Ior) / (1.0f - f.f0Ior), 0.0f, 1.0f);
-        vec3 favgDielectric = f.specular * (f.specularF0 + (vec3(1.0f) - f.specularF0) * wAvg);
-        vec3 fms = f.metallic * ptMultiScatterColor(ptSchlickAverage(f.baseColor), eAvg) +
-                   ((1.0f - f.metallic) * (1.0f - f.transmission)) * ptMultiScatterColor(favgDielectric, eAvg);
-        f.msColor = fms * ((1.0f - eMetal) / (kPtPi * max(1.0f - eAvg, 1.0e-4f)));
+        vec3 fms = f.metallic * ptMultiScatterColor(ptSchlickAverage(f.baseColor), eLobeAvg) +
+                   ((1.0f - f.metallic) * (1.0f - f.transmission)) * ptMultiScatterColor(favgDielectric, eLobeAvg);
+        f.msColor = fms * ((1.0f - eMetal) / (kPtPi * max(1.0f - eLobeAvg, 1.0e-4f)));
         msAlbedo = ptAverage(fms) * (1.0f - eMetal);
     }
+    // The diffuse weight's albedo scaling (header): the reflection lobe's albedo as a function of F is linear.
+    float f0Max = ptMaxComponent(f.specularF0);
+    f.specEF0 = f.specular * f0Max;
+    f.specEK = f.specular * (1.0f - f0Max) / max(1.0f - f.f0Ior, 1.0e-4f);
+    f.specEMs = f.delta ? 0.0f : ptMaxComponent(ptMultiScatterColor(favgDielectric, eAvg));
+    f.specIor = max(f.etaFresnel, 1.0f / f.etaFresnel);
+    float specAvg = f.specEF0 * eAvg + f.specEK * (ptAlbedoSpecularAvg(f.roughness, f.specIor) - f.f0Ior * eAvg) +
+                    f.specEMs * (1.0f - eAvg);
+    float diffOut = max(1.0f - ptDielectricSpecAlbedo(f, mu), 0.0f);  // the diffuse albedo (white base)
+    f.diffScale = diffOut / max(1.0f - specAvg, 1.0e-4f);
     float coatF = f.clearcoat * ptCoatFresnel(f.coatCosO);
     f.coatLayer = 1.0f - coatF;
     float sheenMax = ptMaxComponent(f.sheenColor);
@@ -340,10 +388,10 @@ IDK_INLINE bool ptBsdfSetup(PtSurface s, vec3 wo, IDK_OUT(PtBsdfFrame) f) {
     float base = dielectric * max(ptDielectricPass(f, mu), 0.05f) * ptAverage(f.baseColor);
     float pSpec = ptAverage(ptSpecularFresnel(f, mu));
     if (f.metallic > 0.0f || (f.etaFresnel != 1.0f && f.specular > 0.0f)) pSpec = max(pSpec, 1.0e-3f);
-    float pDiff = base * (1.0f - f.transmission);
+    float diffuseBase = dielectric * max(diffOut, 0.05f) * (1.0f - f.transmission);
+    float pDiff = diffuseBase * ptAverage(f.baseColor);
     float pDiffTrans = 0.0f;
     if (f.diffTrans > 0.0f) {  // split the diffuse base; its transmitted half is weighted by its own colour
-        float diffuseBase = dielectric * max(ptDielectricPass(f, mu), 0.05f) * (1.0f - f.transmission);
         pDiffTrans = diffuseBase * f.diffTrans * max(ptAverage(f.diffTransColor), 1.0e-3f);
         pDiff *= 1.0f - f.diffTrans;
     }

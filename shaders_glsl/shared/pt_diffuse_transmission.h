@@ -3,13 +3,13 @@
 //   mix(diffuse_brdf(baseColor), diffuse_btdf(diffuseTransmissionColor), diffuseTransmission)
 // beneath the same Fresnel layer (fresnel_mix with the specular BRDF), where diffuse_btdf is Lambert's 1/pi on the
 // hemisphere opposite wo. So the diffuse reflection keeps 1 - diffuseTransmission of its weight and the transmitted
-// lobe is diffuseTransmission * diffuseTransmissionColor / pi * |cos(wi)| times what passes the Fresnel layer.
-// The Fresnel term of the transmitted lobe is taken at the half vector of wo and wi mirrored through the surface
-// (as the thin-walled specular transmission does), so a white transmitting surface passes exactly the energy its
-// Lambert reflection would: reflected + transmitted albedo is the factor-0 material's albedo (the white furnace of
-// tests/unit/pathtrace/diffuse_transmission_test.cpp). The lobe is cosine-sampled on the far hemisphere; pt_bsdf.h
-// calls these hooks and adds the lobe to its one-sample MIS. Thick (volume) materials: the transmitted direction
-// enters the volume like the specular transmission, and both tracers start the medium for it.
+// lobe is diffuseTransmission * diffuseTransmissionColor / pi * |cos(wi)| times what passes the Fresnel layer:
+// the Lambert lobes' albedo-scaled weight (1 - Es(mu_o)) (1 - Es(|mu_i|)) / (1 - Es_avg) of pt_bsdf_frame.h, so
+// a white transmitting surface passes exactly the energy its Lambert reflection would: reflected + transmitted
+// albedo is the factor-0 material's albedo (the white furnace of tests/unit/pathtrace/diffuse_transmission_test.cpp).
+// The lobe is cosine-sampled on the far hemisphere; pt_bsdf.h calls these hooks and adds the lobe to its one-sample
+// MIS. Thick (volume) materials: the transmitted direction enters the volume like the specular transmission, and
+// both tracers start the medium for it.
 #ifndef IDK_PT_DIFFUSE_TRANSMISSION_H
 #define IDK_PT_DIFFUSE_TRANSMISSION_H
 #include "pt_common.h"
@@ -25,7 +25,7 @@ IDK_INLINE vec3 ptDiffTransColor(PtSurface s) {
 
 // The transmitted lobe's f * |cos| for a local wi below the surface (wi.z < 0). weight: (1 - metallic)
 // (1 - transmission) diffuseTransmission times the layer weight of clearcoat and sheen; pass: what the dielectric
-// Fresnel lets through at the mirrored half vector.
+// layer lets through (the albedo-scaled weight at |cos wi|).
 IDK_INLINE vec3 ptDiffTransValue(vec3 color, float weight, float pass, vec3 wi) {
     return color * (weight * pass * kPtInvPi * (-wi.z));
 }
@@ -33,7 +33,7 @@ IDK_INLINE vec3 ptDiffTransValue(vec3 color, float weight, float pass, vec3 wi) 
 // The cosine density of the lobe on the far hemisphere.
 IDK_INLINE float ptDiffTransPdf(vec3 wi) { return max(-wi.z, 0.0f) * kPtInvPi; }
 
-// The mirrored direction whose half vector with wo gives the Fresnel term.
+// wi mirrored through the surface (the lobe is sampled as a cosine lobe above, then mirrored).
 IDK_INLINE vec3 ptDiffTransMirror(vec3 wi) { return vec3(wi.x, wi.y, -wi.z); }
 
 IDK_GPU_END

@@ -134,6 +134,41 @@ IDK_INLINE float ptAlbedoAnisoAvg(float roughness, float strength) {
                mix(IDK_ALBEDO(kPtAlbedoAnisoAvg, b), IDK_ALBEDO(kPtAlbedoAnisoAvg, b + 1u), fr), fs);
 }
 
+IDK_INLINE float ptAlbedoSpecularAt(uint k, uint j, uint i) {
+    return IDK_ALBEDO(kPtAlbedoSpecular, (k * kPtAlbedoSpecRough + j) * kPtAlbedoDielMu + i);
+}
+
+// Albedo of the GGX reflection lobe alone with the exact dielectric Fresnel of `ior` (>= 1; light from outside),
+// single scattering.
+IDK_INLINE float ptAlbedoSpecular(float mu, float roughness, float ior) {
+    float fx;
+    float fy;
+    float fz;
+    uint i = ptAlbedoCell(mu, kPtAlbedoDielMu, fx);
+    uint j = ptAlbedoCell(roughness, kPtAlbedoSpecRough, fy);
+    uint k = ptAlbedoCell(ptAlbedoIorCoord(ior), kPtAlbedoSpecIor, fz);
+    float e[2];
+    for (uint dk = 0u; dk < 2u; ++dk) {
+        float a = mix(ptAlbedoSpecularAt(k + dk, j, i), ptAlbedoSpecularAt(k + dk, j, i + 1u), fx);
+        float b = mix(ptAlbedoSpecularAt(k + dk, j + 1u, i), ptAlbedoSpecularAt(k + dk, j + 1u, i + 1u), fx);
+        e[dk] = mix(a, b, fy);
+    }
+    return mix(e[0], e[1], fz);
+}
+
+// Its cosine-weighted average, of the interpolated rows (so that it is exactly the average of ptAlbedoSpecular).
+IDK_INLINE float ptAlbedoSpecularAvg(float roughness, float ior) {
+    float fy;
+    float fz;
+    uint j = ptAlbedoCell(roughness, kPtAlbedoSpecRough, fy);
+    uint k = ptAlbedoCell(ptAlbedoIorCoord(ior), kPtAlbedoSpecIor, fz);
+    uint r0 = k * kPtAlbedoSpecRough + j;
+    uint r1 = r0 + kPtAlbedoSpecRough;
+    float a = mix(IDK_ALBEDO(kPtAlbedoSpecularAvg, r0), IDK_ALBEDO(kPtAlbedoSpecularAvg, r0 + 1u), fy);
+    float b = mix(IDK_ALBEDO(kPtAlbedoSpecularAvg, r1), IDK_ALBEDO(kPtAlbedoSpecularAvg, r1 + 1u), fy);
+    return mix(a, b, fz);
+}
+
 // The multiple-scattering lobe's sampling density, ~ (1 - E(mu)) mu like the lobe itself (a cosine density
 // would give weights up to ~(1 - E(0)) / (1 - Eavg): hundreds on smooth metals at grazing light): a mixture of the
 // two roughness rows around `roughness`, each piecewise over kPtAlbedoMsBins bins of mu with density ~ mu inside

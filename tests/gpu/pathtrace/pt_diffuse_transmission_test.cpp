@@ -3,7 +3,8 @@
 // behind it, under a dim constant environment. At the same seed the GPU draws the CPU's samples: at least 90% of
 // the pixels agree to 1e-3 relative and the means within 1%. The CPU reference itself against the formula: with
 // the environment off, the leaf's centre seen from the front is the light's irradiance from behind times
-// diffuseTransmission * color * (1 - F) / pi (one NEE event, deterministic); without the extension the front is
+// diffuseTransmission * color * W / pi (one NEE event, deterministic; W the Lambert lobes' albedo-scaled weight
+// at normal view and light, support/plastic_weight.hpp); without the extension the front is
 // black. A factor of 0 renders exactly (bit for bit) as the material without the extension, on the GPU. Textures
 // (1x1, decoys in the unread channels): the CPU reference renders the textured leaf exactly as the factors the
 // texels hold, and the GPU agrees with it as above.
@@ -18,6 +19,7 @@
 #include "pathtrace/pt_scene.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/layer_textures.hpp"
+#include "support/plastic_weight.hpp"
 
 namespace idk::test {
 namespace {
@@ -135,12 +137,6 @@ TEST_F(PtDiffuseTransmissionTest, TexturesGiveTheirFactorsOnGpuAndCpu) {
     EXPECT_NEAR(meanRadiance(gpu), meanRadiance(cpuTextured), 0.01 * meanRadiance(cpuTextured));
 }
 
-double fresnelExact(double c, double eta) {
-    const double cosT = std::sqrt(1.0 - (1.0 - c * c) / (eta * eta));
-    const double rs = (c - eta * cosT) / (c + eta * cosT), rp = (eta * c - cosT) / (eta * c + cosT);
-    return 0.5 * (rs * rs + rp * rp);
-}
-
 TEST_F(PtDiffuseTransmissionTest, CpuReferenceMatchesTheFormulaAtTheLeafCentre) {
     const pathtrace::PathTraceScene pts = pathtrace::buildPathTraceScene(leafScene(0.7f), nullptr, 1.0f,
                                                                          glm::vec3(0.0f));
@@ -148,13 +144,13 @@ TEST_F(PtDiffuseTransmissionTest, CpuReferenceMatchesTheFormulaAtTheLeafCentre) 
     s.spp = 4;
     const core::ImageRgba32f img = pathtrace::renderReference(pts, frontCamera(), kSize, kSize, s);
     // Four centre pixels (the image centre is their shared corner), averaged: the leaf point (0, 0, 0) seen head on
-    // (wo = +z), the light straight behind at distance |kLightZ| (wi = -z): the mirrored half vector is +z.
+    // (wo = +z), the light straight behind at distance |kLightZ| (wi = -z).
     double got[3] = {0.0, 0.0, 0.0};
     for (uint32_t y = kSize / 2 - 1; y <= kSize / 2; ++y)
         for (uint32_t x = kSize / 2 - 1; x <= kSize / 2; ++x)
             for (int c = 0; c < 3; ++c) got[c] += 0.25 * img.pixels[4 * (size_t(y) * kSize + x) + c];
     const double irradiance = kIntensity / (kLightZ * kLightZ);
-    const double pass = 1.0 - fresnelExact(1.0, 1.5);
+    const double pass = plasticDiffuseWeight({0.5f, 1.5}, 1.0, 1.0);
     const double color[3] = {0.9, 0.6, 0.2};
     for (int c = 0; c < 3; ++c) {
         const double expected = irradiance * 0.7 * color[c] * pass / 3.14159265358979;

@@ -1,15 +1,17 @@
 // diffuse_transmission_test.cpp: KHR_materials_diffuse_transmission in the shared BSDF
 // (shared/pt_diffuse_transmission.h through pt_bsdf.h) against values computed here by hand, in double, from the
-// extension specification's formula: the transmitted lobe diffuseTransmission (1 - metallic) (1 - max F)
-// color / pi |cos| at chosen angles, the reflected Lambert reduced by 1 - diffuseTransmission; sampling the lobe
-// agrees with evaluation (pdf and weight); the white furnace (factor 1, white colour): reflected + transmitted
-// albedo equals the factor-0 material's albedo within 1%, and the transmitted part alone equals a hemisphere
-// quadrature of (1 - F) cos / pi written here; a factor of 0 ignores the colour bit for bit.
+// extension specification's formula: the transmitted lobe diffuseTransmission (1 - metallic) W color / pi |cos|
+// at chosen angles (W: the Lambert lobes' albedo-scaled weight, support/plastic_weight.hpp), the reflected Lambert
+// reduced by 1 - diffuseTransmission; sampling the lobe agrees with evaluation (pdf and weight); the white
+// furnace (factor 1, white colour): reflected + transmitted albedo equals the factor-0 material's albedo within
+// 1%, and the transmitted part alone equals a quadrature of W cos / pi written here; a factor of 0 ignores the
+// colour bit for bit.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
+#include "support/plastic_weight.hpp"
 #include "shared/pt_sampling.h"
 
 namespace idk::test {
@@ -41,12 +43,6 @@ dvec3 dir(double cosTheta, double phi) {  // cosTheta < 0: below the surface
     return dvec3(s * std::cos(phi), s * std::sin(phi), cosTheta);
 }
 
-double fresnelExact(double c, double eta) {  // unpolarised, from outside
-    const double cosT = std::sqrt(1.0 - (1.0 - c * c) / (eta * eta));
-    const double rs = (c - eta * cosT) / (c + eta * cosT), rp = (eta * c - cosT) / (eta * c + cosT);
-    return 0.5 * (rs * rs + rp * rp);
-}
-
 void expectNear(glm::vec3 got, dvec3 expected, const char* what) {
     for (int c = 0; c < 3; ++c)
         EXPECT_NEAR(got[c], expected[c], 2e-4 * std::max(1.0, std::abs(expected[c]))) << what << " channel " << c;
@@ -60,10 +56,9 @@ TEST(PtDiffuseTransmission, TransmittedLobeByHand) {
         const dvec3 wo = dir(0.8, 0.0), wi = dir(cosI, 2.5);
         float pdf;
         const glm::vec3 got = ptEvalBsdf(s, glm::vec3(wo), glm::vec3(wi), pdf);
-        // Below the surface only the diffuse transmission lives (no specular transmission): its Fresnel at the
-        // half vector of wo and wi mirrored through the surface; without KHR_materials_specular F is exact.
-        const dvec3 h = glm::normalize(wo + dvec3(wi.x, wi.y, -wi.z));
-        const double pass = 1.0 - fresnelExact(glm::dot(wo, h), 1.5);
+        // Below the surface only the diffuse transmission lives (no specular transmission), with the Lambert
+        // lobes' albedo-scaled weight at |cos wi|.
+        const double pass = plasticDiffuseWeight({0.5f, 1.5}, wo.z, -wi.z);
         const dvec3 expected = dvec3(0.9, 0.5, 0.2) * (0.75 * 0.6 * pass / kPi * -wi.z);
         expectNear(got, expected, "transmitted");
         EXPECT_GT(pdf, 0.0f);
@@ -75,8 +70,7 @@ TEST(PtDiffuseTransmission, TransmittedLobeByHand) {
     PtSurface none = s;
     none.diffuseTransmission = 0.0f;
     const glm::vec3 without = ptEvalBsdf(none, glm::vec3(wo), glm::vec3(wi), pdf);
-    const dvec3 h = glm::normalize(wo + wi);
-    const double pass = 1.0 - fresnelExact(glm::dot(wo, h), 1.5);
+    const double pass = plasticDiffuseWeight({0.5f, 1.5}, wo.z, wi.z);
     expectNear(without - with, dvec3(0.5, 0.4, 0.3) * (0.75 * 0.6 * pass / kPi * wi.z), "reflected Lambert share");
     // Nothing goes through a factor-0 surface.
     expectNear(ptEvalBsdf(none, glm::vec3(wo), glm::vec3(dir(-0.6, 2.5)), pdf), dvec3(0.0), "factor 0 below");
@@ -155,20 +149,16 @@ void albedo(const PtSurface& s, float mu, int n, double& reflected, double& tran
 }
 
 // The transmitted albedo of a white factor-1 surface written from the formula: the integral of
-// (1 - F(wo . h)) |cos| / pi over the lower hemisphere, h the half vector of wo and the mirrored wi.
-double transmittedByQuadrature(float mu) {
-    const dvec3 wo(std::sqrt(1.0 - double(mu) * mu), 0.0, mu);
-    const int nz = 400, nphi = 256;
+// W(mu, |cos wi|) |cos wi| / pi over the lower hemisphere (W: plastic_weight.hpp; azimuth-free, so a midpoint
+// rule in cos theta).
+double transmittedByQuadrature(float mu, float roughness) {
+    const int nz = 2000;
     double sum = 0.0;
     for (int a = 0; a < nz; ++a) {
-        const double z = (a + 0.5) / nz;  // |cos| of the mirrored direction
-        for (int b = 0; b < nphi; ++b) {
-            const dvec3 m = dir(z, 2.0 * kPi * (b + 0.5) / nphi);
-            const dvec3 h = glm::normalize(wo + m);
-            sum += (1.0 - fresnelExact(glm::dot(wo, h), 1.5)) * z / kPi;
-        }
+        const double z = (a + 0.5) / nz;
+        sum += plasticDiffuseWeight({roughness, 1.5}, mu, z) * z / kPi;
     }
-    return sum * 2.0 * kPi / (double(nz) * nphi);
+    return sum * 2.0 * kPi / double(nz);
 }
 
 TEST(PtDiffuseTransmission, WhiteFurnace) {
@@ -180,7 +170,7 @@ TEST(PtDiffuseTransmission, WhiteFurnace) {
             white.diffuseTransmission = 1.0f;
             double r1, t1;
             albedo(white, mu, 200000, r1, t1);
-            const double hand = transmittedByQuadrature(mu);
+            const double hand = transmittedByQuadrature(mu, roughness);
             std::printf("roughness %.1f mu %.1f: factor 0 albedo %.4f; factor 1 reflected %.4f + transmitted %.4f"
                         " = %.4f (transmitted by quadrature %.4f)\n",
                         roughness, mu, r0 + t0, r1, t1, r1 + t1, hand);

@@ -70,6 +70,18 @@ TEST(PtAlbedoTables, CommittedTablesMatchTheIntegrator) {
         ++checked;
     }
     EXPECT_GE(checked, 2000);
+    const uint32_t specCount = kPtAlbedoSpecIor * kPtAlbedoSpecRough * kPtAlbedoDielMu;
+    for (uint32_t k = 0; k < specCount; k += 37) {
+        const uint32_t i = k % kPtAlbedoDielMu, j = (k / kPtAlbedoDielMu) % kPtAlbedoSpecRough;
+        const uint32_t n = k / (kPtAlbedoDielMu * kPtAlbedoSpecRough);
+        EXPECT_EQ(kPtAlbedoSpecular[k],
+                  float(pathtrace::ggxDielectricReflectionAlbedo(ptAlbedoNodeMu(i, kPtAlbedoDielMu),
+                                                                 ptAlbedoNodeRough(j, kPtAlbedoSpecRough),
+                                                                 ptAlbedoNodeIor(n, kPtAlbedoSpecIor), strata)))
+            << k;
+        ++checked;
+    }
+    EXPECT_GE(checked, 2400);
 }
 
 // E(mu, r) by brute force: midpoint rule over (cos theta_i, phi) of D G2 / (4 cos_o), in double.

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <random>
 
+#include "support/plastic_weight.hpp"
 #include "shared/pt_sampling.h"
 
 namespace idk::test {
@@ -72,8 +73,9 @@ TEST(PtMaterialExt, SpecularByHand) {
     const dvec3 F = 0.6 * (f0s + (1.0 - f0s) * w);
     const double G2 = 1.0 / (1.0 + smithLambda(wo.z, alpha) + smithLambda(wi.z, alpha));
     const dvec3 spec = F * ggxD(h.z, alpha) * G2 / (4.0 * wo.z);
-    const double pass = 1.0 - std::max({F.x, F.y, F.z});
-    const dvec3 diffuse = dvec3(0.5, 0.4, 0.3) * pass / kPi * wi.z;
+    // The Lambert base beneath, albedo-scaled by the reflection lobe's albedo (its strongest channel: blue).
+    const double weight = plasticDiffuseWeight({0.5f, 1.5, 0.6, std::min(f0 * 3.0, 1.0)}, wo.z, wi.z);
+    const dvec3 diffuse = dvec3(0.5, 0.4, 0.3) * weight / kPi * wi.z;
     // Multiple scattering (Kulla-Conty) with the tabulated E (checked against the integrator in energy_test).
     const double eo = ptAlbedoMetal(float(wo.z), 0.5f), ei = ptAlbedoMetal(float(wi.z), 0.5f);
     const double eavg = ptAlbedoMetalAvg(0.5f);

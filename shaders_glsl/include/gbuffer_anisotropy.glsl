@@ -37,4 +37,13 @@ vec3 decodeAnisotropyDirection(uint word, vec3 n) {
     return t * cos(angle) + b * sin(angle);
 }
 
+// The direction itself (unnormalised) from a tangent frame (t, b: glTF's tangent and bitangent): anisotropyTexture's
+// RG remapped to [-1, 1] ((1, 0.5) without a texture: the tangent), turned by anisotropyRotation. The forward
+// pass (material_layers.glsl's withAnisotropyFrame) and the G-buffer (gbuffer_fragment.glsl) share it.
+vec3 anisotropyDirection(float rotation, vec3 t, vec3 b, vec2 textureRg) {
+    vec2 d = textureRg * 2.0 - 1.0;
+    float c = cos(rotation), sn = sin(rotation);
+    return t * (c * d.x - sn * d.y) + b * (sn * d.x + c * d.y);
+}
+
 #endif

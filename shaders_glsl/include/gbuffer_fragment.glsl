@@ -92,7 +92,7 @@ void main() {
     outNormal = packSnorm2x16(octEncode(n));
     uint anisotropyWord = 0u;  // the direction the forward pass builds (withAnisotropyFrame), else none
     if ((m.flags & kMaterialAnisotropy) != 0u && haveFrame)
-        anisotropyWord = encodeAnisotropyDirection(anisotropyDirection(m, t, b, anisotropyT.rg),
+        anisotropyWord = encodeAnisotropyDirection(anisotropyDirection(m.anisotropyRotation, t, b, anisotropyT.rg),
                                                    octDecode(unpackSnorm2x16(outNormal)));
     outMaterial = vec4(clamp(m.metallicFactor * mr.b, 0.0, 1.0), clamp(m.roughnessFactor * mr.g, 0.0, 1.0),
                        1.0 + m.occlusionStrength * (ao - 1.0), (m.flags & kMaterialUnlit) != 0u ? 0.0 : 1.0);

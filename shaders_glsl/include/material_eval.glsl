@@ -60,13 +60,4 @@ bool materialTangentFrame(vec3 n, vec4 tangent, vec3 worldPosition, vec2 uv, out
     return true;
 }
 
-// The KHR_materials_anisotropy direction (unnormalised) in a tangent frame (t, b: glTF's tangent and bitangent):
-// anisotropyTexture's RG remapped to [-1, 1] ((1, 0.5) without a texture: the tangent), turned by
-// anisotropyRotation. The forward pass (material_layers.glsl) and the G-buffer (gbuffer_fragment.glsl) share it.
-vec3 anisotropyDirection(GpuMaterial m, vec3 t, vec3 b, vec2 textureRg) {
-    vec2 d = textureRg * 2.0 - 1.0;
-    float c = cos(m.anisotropyRotation), sn = sin(m.anisotropyRotation);
-    return t * (c * d.x - sn * d.y) + b * (sn * d.x + c * d.y);
-}
-
 #endif

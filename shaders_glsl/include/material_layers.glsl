@@ -35,6 +35,7 @@
 #include "pt_sheen.h"
 #include "pt_anisotropy.h"
 #include "pt_iridescence.h"
+#include "gbuffer_anisotropy.glsl"
 
 struct SurfaceLayers {
     uint flags;  // kMaterialSpecular | kMaterialClearcoat | kMaterialSheen
@@ -105,7 +106,7 @@ SurfaceLayers withAnisotropyStrengthTexel(SurfaceLayers s, float b) {
 // remapped to [-1, 1] ((1, 0.5) without a texture: the tangent), turned by anisotropyRotation.
 SurfaceLayers withAnisotropyFrame(SurfaceLayers s, GpuMaterial m, vec3 t, vec3 b, vec2 textureRg) {
     if (s.anisotropyStrength > 0.0) {
-        vec3 w = anisotropyDirection(m, t, b, textureRg);
+        vec3 w = anisotropyDirection(m.anisotropyRotation, t, b, textureRg);
         s.anisotropyDirection = dot(w, w) > 1e-12 ? normalize(w) : vec3(0.0);
     }
     return s;

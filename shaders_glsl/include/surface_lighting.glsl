@@ -50,8 +50,8 @@ vec3 ambientTransmitted(SurfaceLayers layers, vec3 n, vec3 v, vec3 baseColor, fl
                         vec3 irradianceBehind) {
     if ((layers.flags & kMaterialDiffuseTransmission) == 0u) return vec3(0.0);
     float NdotV = max(dot(n, v), 1e-4);
-    vec3 specularAlbedo = ambientSpecularAlbedo(layers, baseColor, metallic, clamp(roughness, kMinRoughness, 1.0),
-                                                NdotV);
+    vec3 specularAlbedo = ambientSpecularAlbedo(layers, baseColor, metallic, clamp(roughness, kMinRoughness, 1.0), n,
+                                                v);
     vec3 t = (1.0 - clamp(specularAlbedo, 0.0, 1.0)) * layers.diffuseTransmissionColor *
              (layers.diffuseTransmission * (1.0 - metallic) / kPi) * irradianceBehind;
     if ((layers.flags & kMaterialSheen) != 0u)

@@ -26,7 +26,8 @@ layout(location = 4) out float outDepth;    // R32F: the fragment's depth (what 
 // x = unorm8 (specular A, clearcoat R, clearcoatRoughness G, sheenRoughness A), y / z = sRGB-encoded unorm8
 // specularColor / sheenColor RGB, their alphas KHR_materials_iridescence's texels (factor R, thickness G); w = the
 // coat's normal (clearcoatNormalTexture; the shading normal's interpolated one otherwise), octahedral in 2 x 12 bits,
-// and anisotropyTexture's B in the top 8 bits (packCoatNormalAnisotropy). Discarded when the scene has no such texture (no attachment).
+// and anisotropyTexture's B in the top 8 bits (packCoatNormalAnisotropy). Discarded when the scene has no such
+// texture (no attachment).
 layout(location = 5) out uvec4 outLayers;
 #ifdef GBUFFER_IDS
 layout(location = 6) out uvec2 outIds;      // RG32UI: the draw and its triangle (gl_PrimitiveID) of the kept fragment

@@ -113,8 +113,8 @@ void main() {
     SurfaceLayers layers = withIridescenceTexels(texturedLayers(materialLayers(m), layerTexels), m, iridescenceTexels);
     if ((m.flags & kMaterialClearcoatNormal) != 0u) layers.clearcoatNormal = nc;
     layers = withAnisotropyStrengthTexel(layers, anisotropyTexel.b);
+    if (haveFrame) layers = withAnisotropyFrame(layers, m, t, b, anisotropyTexel.rg);
     vec3 radiance = emissive + shadeSurface(f, p.pointShadows, inWorldPosition, n, v, baseColor.rgb, metallic,
-                                            roughness, occlusion,
-                                            haveFrame ? withAnisotropyFrame(layers, m, t, b, anisotropyTexel.rg) : layers);
+                                            roughness, occlusion, layers);
     writeTransparent(vec4(radiance, baseColor.a));
 }

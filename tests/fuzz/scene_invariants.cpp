@@ -32,7 +32,8 @@ std::string materialProblem(const scene::Scene& s, const scene::Material& m) {
     for (const auto* ref : {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture, &m.occlusionTexture,
                             &m.emissiveTexture, &m.transmissionTexture, &m.thicknessTexture, &m.specularTexture,
                             &m.specularColorTexture, &m.clearcoatTexture, &m.clearcoatRoughnessTexture,
-                            &m.sheenColorTexture, &m.sheenRoughnessTexture})
+                            &m.sheenColorTexture, &m.sheenRoughnessTexture, &m.iridescenceTexture,
+                            &m.iridescenceThicknessTexture, &m.clearcoatNormalTexture, &m.anisotropyTexture})
         if (*ref && (*ref)->texture >= s.textures.size()) return "material texture index out of range";
     return {};
 }

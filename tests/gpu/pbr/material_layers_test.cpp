@@ -288,9 +288,10 @@ TEST_F(MaterialLayersTest, CoatNormalDeferredAndForward) {
     double change[2];
     for (int blend = 0; blend < 2; ++blend) {
         const char* path = blend ? "forward (BLEND)" : "deferred";
-        const core::ImageRgba32f none = renderHdr(ctx(), shaders(), coatNormalSpheres(blend, {128, 128, 255}, false), false);
-        const core::ImageRgba32f flat = renderHdr(ctx(), shaders(), coatNormalSpheres(blend, {128, 128, 255}, true), false);
-        const core::ImageRgba32f tilted = renderHdr(ctx(), shaders(), coatNormalSpheres(blend, {210, 90, 220}, true), false);
+        auto render = [&](const scene::Scene& s) { return renderHdr(ctx(), shaders(), s, false); };
+        const core::ImageRgba32f none = render(coatNormalSpheres(blend, {128, 128, 255}, false));
+        const core::ImageRgba32f flat = render(coatNormalSpheres(blend, {128, 128, 255}, true));
+        const core::ImageRgba32f tilted = render(coatNormalSpheres(blend, {210, 90, 220}, true));
         change[blend] = relativeChange(tilted, none);
         const double flatChange = relativeChange(flat, none);
         std::printf("raster %s: tilted coat normal changes the frame by %.3f%%, a flat map by %.4f%%\n", path,
@@ -328,21 +329,22 @@ scene::Scene anisotropicSpheres(bool blend, bool textured, std::array<uint8_t, 2
 TEST_F(MaterialLayersTest, AnisotropyTextureDeferredAndForward) {
     for (int blend = 0; blend < 2; ++blend) {
         const char* path = blend ? "forward (BLEND)" : "deferred";
-        const core::ImageRgba32f factors = renderHdr(ctx(), shaders(), anisotropicSpheres(blend, false, {0, 0}, 0.0f), false);
-        const core::ImageRgba32f constant = renderHdr(ctx(), shaders(), anisotropicSpheres(blend, true, {255, 128}, 0.0f), false);
+        auto render = [&](const scene::Scene& s) { return renderHdr(ctx(), shaders(), s, false); };
+        const core::ImageRgba32f factors = render(anisotropicSpheres(blend, false, {0, 0}, 0.0f));
+        const core::ImageRgba32f constant = render(anisotropicSpheres(blend, true, {255, 128}, 0.0f));
         const double constantChange = relativeChange(constant, factors);
         if (!blend) {  // no tangent in the G-buffer: only the strength texel matters (not read: strength 1)
             scene::Scene one = anisotropicSpheres(blend, false, {0, 0}, 0.0f);
             for (uint32_t i : {1u, 4u}) one.materials[i].anisotropyStrength = 1.0f;
-            const double oneChange = relativeChange(renderHdr(ctx(), shaders(), one, false), constant);
+            const double oneChange = relativeChange(render(one), constant);
             std::printf("raster %s: constant anisotropy texture vs factors %.5f%% (vs strength 1: %.4f%%)\n", path,
                         100.0 * constantChange, 100.0 * oneChange);
             EXPECT_LT(constantChange, 1e-3) << path;
             EXPECT_LT(constantChange, 0.1 * oneChange) << path;
             continue;
         }
-        const core::ImageRgba32f rotated = renderHdr(ctx(), shaders(), anisotropicSpheres(blend, false, {0, 0}, 1.5707963f), false);
-        const core::ImageRgba32f turned = renderHdr(ctx(), shaders(), anisotropicSpheres(blend, true, {128, 255}, 0.0f), false);
+        const core::ImageRgba32f rotated = render(anisotropicSpheres(blend, false, {0, 0}, 1.5707963f));
+        const core::ImageRgba32f turned = render(anisotropicSpheres(blend, true, {128, 255}, 0.0f));
         const double turnedChange = relativeChange(turned, rotated), rotationChange = relativeChange(rotated, factors);
         std::printf("raster %s: constant anisotropy texture vs factors %.5f%%, 90-degree texture vs rotation pi/2 "
                     "%.5f%% (the rotation changes %.4f%%)\n", path, 100.0 * constantChange, 100.0 * turnedChange,

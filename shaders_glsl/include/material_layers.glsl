@@ -1,11 +1,16 @@
 // material_layers.glsl: the rasterizer's side of the BSDF material extensions (KHR_materials_specular,
 // _clearcoat, _sheen; the path tracers' side is shared/pt_bsdf_frame.h, whose lobe formulas these follow with the
-// raster's Schlick Fresnel of f0 0.04), and the split-sum energy compensation. Direct light per punctual light:
+// base dielectric's IOR fixed at 1.5), and the split-sum energy compensation. Direct light per punctual light:
 //   coat   clearcoat * Fc(v.h) * D V (coat roughness) + (1 - clearcoat * Fc(n.v)) * [ sheen + base ]
 //   sheen  sheenColor * Charlie D * V (shared/pt_sheen.h) + (1 - max(sheenColor) E_sheen(n.v)) * base
-//   base   specular: F = f0 + (f90 - f0)(1 - v.h)^5 with f0 = mix(min(0.04 specularColor, 1) specular,
-//          baseColor, metallic), f90 = mix(specular, 1, metallic); diffuse weighted 1 - max(F_dielectric)
-// A material without extension flags takes pbr.glsl's brdfCosine unchanged (tests/support/pbr_oracle.cpp).
+//   base   specular: F = mix(specular (f0' + (1 - f0') w(v.h)), Schlick(baseColor), metallic) with
+//          f0' = min(0.04 specularColor, 1) and w the exact Fresnel curve of IOR 1.5 remapped to [0, 1] (the path
+//          tracers' KHR_materials_specular form); diffuse weighted by the path tracers' albedo
+//          scaling W = (1 - Es(n.v)) (1 - Es(n.l)) / (1 - Es_avg) (dielectricDiffuseWeight, shared/pt_energy.h),
+//          Es the directional albedo of that reflection lobe from the path tracer's tables (its multiple
+//          scattering included, which the raster's single-scattering lobe lacks: a white plastic reflects 1 within
+//          0.23%, tests/unit/pbr/raster_plastic_test.cpp)
+// A material without extension flags takes pbr.glsl's brdfCosine (tests/support/pbr_oracle.cpp).
 // Ambient: the split-sum E_s = f0 A + f90 B with A + B = E(n.v), the GGX directional albedo of the path tracer's
 // tables (shared/pt_albedo_tables.h), times Turquin's multiple-scattering factor 1 + f0 (1 / E - 1), so a white
 // rough metal in a uniform environment reflects it all, as the path tracer's compensation makes it.
@@ -208,10 +213,12 @@ vec3 layeredF0(SurfaceLayers s, vec3 baseColor, float metallic) {
 
 float maxOf(vec3 c) { return max(c.r, max(c.g, c.b)); }
 
-// The dielectric Fresnel of the base layer (the raster's Schlick with KHR_materials_specular) at v.h.
+// The dielectric Fresnel of the base layer at v.h: KHR_materials_specular over the exact curve of IOR 1.5
+// (shared/pt_bsdf_frame.h ptDielectricFresnel with the IOR fixed).
 vec3 dielectricFresnel(SurfaceLayers s, float VdotH) {
-    vec3 f0d = min(vec3(0.04) * s.specularColor, vec3(1.0)) * s.specular;
-    return f0d + (vec3(s.specular) - f0d) * pow(1.0 - VdotH, 5.0);
+    vec3 f0 = min(vec3(0.04) * s.specularColor, vec3(1.0));
+    float w = clamp((ptFresnelDielectric(VdotH, 1.5) - 0.04) / (1.0 - 0.04), 0.0, 1.0);
+    return s.specular * (f0 + (1.0 - f0) * w);
 }
 
 // KHR_materials_diffuse_transmission: f * |n.l| for a light behind the surface (n.l <= 0), beneath the clearcoat
@@ -230,29 +237,47 @@ vec3 diffuseTransmissionCosine(SurfaceLayers s, float metallic, vec3 n, vec3 v, 
     return result * -NdotL;
 }
 
+// W(n.v, n.l): the albedo-scaled weight of the base's Lambert lobe (shared/pt_energy.h), the path tracers' for the
+// raster's dielectric (IOR 1.5, f0 0.04, KHR_materials_specular's specular and strongest f0'); perceptual roughness
+// already clamped. Reciprocal, and a white base reflects exactly 1 - Es(n.v). Per light here; on a real GPU the
+// n.v and average terms (and their eight table reads) would be hoisted out of the light loop.
+float dielectricDiffuseWeight(SurfaceLayers s, float roughness, float NdotV, float NdotL) {
+    const float kIor = 1.5;
+    const float kF0 = 0.04;
+    vec3 f0 = min(vec3(kF0) * s.specularColor, vec3(1.0));
+    float wAvg = clamp((ptFresnelDielectricAverage(kIor) - kF0) / (1.0 - kF0), 0.0, 1.0);
+    float eAvg = ptAlbedoMetalAvg(roughness);
+    vec3 c = ptDielectricAlbedoCoeffs(s.specular, f0, kF0, s.specular * (f0 + (1.0 - f0) * wAvg), eAvg, false);
+    float esAvg = ptDielectricAlbedoOf(c, kF0, eAvg, ptAlbedoSpecularAvg(roughness, kIor));
+    float esV = ptDielectricAlbedoOf(c, kF0, ptAlbedoMetal(NdotV, roughness), ptAlbedoSpecular(NdotV, roughness, kIor));
+    float esL = ptDielectricAlbedoOf(c, kF0, ptAlbedoMetal(NdotL, roughness), ptAlbedoSpecular(NdotL, roughness, kIor));
+    return max(1.0 - esV, 0.0) * max(1.0 - esL, 0.0) / max(1.0 - esAvg, 1e-4);
+}
+
 // f(l, v) * NdotL with the material's extension layers.
 vec3 layeredBrdfCosine(SurfaceLayers s, vec3 baseColor, float metallic, float perceptualRoughness, vec3 n, vec3 v,
                        vec3 l) {
-    if (s.flags == 0u) return brdfCosine(baseColor, metallic, perceptualRoughness, n, v, l);
     float NdotL = dot(n, l);
     if (NdotL <= 0.0) return diffuseTransmissionCosine(s, metallic, n, v, l);
     float NdotV = max(dot(n, v), 1e-4);
+    float roughness = clamp(perceptualRoughness, kMinRoughness, 1.0);
+    // Without extension flags the dielectric is the plain one (specular 1, colour 1) whatever the factors hold.
+    float wDiffuse = metallic < 1.0 ? dielectricDiffuseWeight(s.flags == 0u ? noLayers() : s, roughness, NdotV, NdotL)
+                                    : 0.0;
+    if (s.flags == 0u) return brdfCosine(baseColor, metallic, perceptualRoughness, wDiffuse, n, v, l);
     vec3 h = normalize(l + v);
     float NdotH = max(dot(n, h), 0.0);
     float VdotH = max(dot(v, h), 0.0);
-    float roughness = clamp(perceptualRoughness, kMinRoughness, 1.0);
     float alpha = roughness * roughness;
-    float m5 = pow(1.0 - VdotH, 5.0);
-    vec3 f0d = min(vec3(0.04) * s.specularColor, vec3(1.0)) * s.specular;
-    vec3 fDielectric = f0d + (vec3(s.specular) - f0d) * m5;
-    vec3 fMetal = baseColor + (1.0 - baseColor) * m5;
+    vec3 fDielectric = dielectricFresnel(s, VdotH);
+    vec3 fMetal = fresnelSchlick(baseColor, VdotH);
     // KHR_materials_iridescence: the thin film's Fresnel at v.h replaces both (exactly these when there is none).
     fDielectric = ptIridescentFresnel(fDielectric, VdotH, s.iridescence, s.iridescenceIor, s.iridescenceThickness,
                                       min(vec3(0.04) * s.specularColor, vec3(1.0)), s.specular);
     fMetal = ptIridescentFresnel(fMetal, VdotH, s.iridescence, s.iridescenceIor, s.iridescenceThickness, baseColor,
                                  1.0);
     vec3 F = mix(fDielectric, fMetal, metallic);
-    vec3 diffuse = (1.0 - maxOf(fDielectric)) * baseColor * (1.0 - metallic) * (1.0 - s.diffuseTransmission) / kPi;
+    vec3 diffuse = wDiffuse * baseColor * (1.0 - metallic) * (1.0 - s.diffuseTransmission) / kPi;
     vec3 result = diffuse + F * baseDistributionVisibility(s, alpha, n, v, l, h, NdotL, NdotV, NdotH);
     if ((s.flags & kMaterialSheen) != 0u) {
         float sheenAlpha = ptSheenAlpha(s.sheenRoughness);

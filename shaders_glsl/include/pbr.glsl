@@ -1,11 +1,18 @@
 // pbr.glsl: the glTF 2.0 metallic-roughness BRDF (glTF spec, Appendix B): Trowbridge-Reitz/GGX D, Smith
-// height-correlated visibility V, Schlick F with f0 = mix(0.04, baseColor, metallic), Lambert diffuse
-// c_diff / pi with c_diff = baseColor * (1 - metallic), weighted (1 - F). KHR_lights_punctual attenuation.
+// height-correlated visibility V, F = mix(F_dielectric, Schlick(baseColor), metallic) as the spec mixes its
+// dielectric and metal BRDFs, with F_dielectric the exact Fresnel of IOR 1.5 (f0 0.04; the path tracers' curve,
+// shared/pt_microfacet.h, where the spec's sample code takes Schlick's: the albedo-scaled diffuse weight below is
+// built from the path tracers' tables of that lobe, and a Schlick lobe beside it left a white plastic 3.7% off
+// its albedo of 1 at grazing view), Lambert diffuse
+// c_diff / pi with c_diff = baseColor * (1 - metallic), weighted by the caller's diffuseWeight (the albedo-scaled
+// W(n.v, n.l) of material_layers.glsl, as the path tracers weight their Lambert lobe; a per-half-vector 1 - F
+// reflected up to 1.27 of the light for a white plastic at grazing view). KHR_lights_punctual attenuation.
 // Ports IDKEngine's include/Pbr.glsl without its bugs (no 1/pi, f0 = 0 for dielectrics; reference section 5).
 // tests/support/pbr_oracle.cpp is the C++ twin the GPU output is checked against; keep them in step.
 #ifndef IDK_PBR_GLSL
 #define IDK_PBR_GLSL
 #include "scene_types.h"
+#include "pt_microfacet.h"
 
 const float kPi = 3.14159265358979;
 const float kMinRoughness = 0.045;  // perceptual; keeps D finite for roughness 0 (as Filament's MIN_ROUGHNESS)
@@ -31,10 +38,9 @@ vec3 fresnelSchlick(vec3 f0, float VdotH) {
     return f0 + (1.0 - f0) * (m2 * m2 * m);
 }
 
-vec3 specularF0(vec3 baseColor, float metallic) { return mix(vec3(0.04), baseColor, metallic); }
-
 // f(l, v) * NdotL for unit n, v, l (zero when the light is below the surface).
-vec3 brdfCosine(vec3 baseColor, float metallic, float perceptualRoughness, vec3 n, vec3 v, vec3 l) {
+vec3 brdfCosine(vec3 baseColor, float metallic, float perceptualRoughness, float diffuseWeight, vec3 n, vec3 v,
+                vec3 l) {
     float NdotL = dot(n, l);
     if (NdotL <= 0.0) return vec3(0.0);
     float NdotV = max(dot(n, v), 1e-4);
@@ -43,8 +49,8 @@ vec3 brdfCosine(vec3 baseColor, float metallic, float perceptualRoughness, vec3 
     float VdotH = max(dot(v, h), 0.0);
     float roughness = clamp(perceptualRoughness, kMinRoughness, 1.0);
     float alpha = roughness * roughness;
-    vec3 F = fresnelSchlick(specularF0(baseColor, metallic), VdotH);
-    vec3 diffuse = (1.0 - F) * baseColor * (1.0 - metallic) / kPi;
+    vec3 F = mix(vec3(ptFresnelDielectric(VdotH, 1.5)), fresnelSchlick(baseColor, VdotH), metallic);
+    vec3 diffuse = diffuseWeight * baseColor * (1.0 - metallic) / kPi;
     vec3 specular = F * distributionGgx(NdotH, alpha) * visibilitySmithGgxCorrelated(NdotL, NdotV, alpha);
     return (diffuse + specular) * NdotL;
 }

@@ -171,7 +171,7 @@ IDK_INLINE vec3 ptSpecularFresnel(PtBsdfFrame f, float c) {
 IDK_INLINE float ptDielectricSpecAlbedo(PtBsdfFrame f, float mu) {
     float em = ptAlbedoMetal(mu, f.roughness);
     float er = ptAlbedoSpecular(mu, f.roughness, f.specIor);
-    return f.specEF0 * em + f.specEK * (er - f.f0Ior * em) + f.specEMs * (1.0f - em);
+    return ptDielectricAlbedoOf(vec3(f.specEF0, f.specEK, f.specEMs), f.f0Ior, em, er);
 }
 
 // The Lambert lobes' weight for a light direction of cosine mu (reflected or transmitted): diffScale (1 - Es(mu)).
@@ -365,13 +365,12 @@ IDK_INLINE bool ptBsdfSetup(PtSurface s, vec3 wo, IDK_OUT(PtBsdfFrame) f) {
         msAlbedo = ptAverage(fms) * (1.0f - eMetal);
     }
     // The diffuse weight's albedo scaling (header): the reflection lobe's albedo as a function of F is linear.
-    float f0Max = ptMaxComponent(f.specularF0);
-    f.specEF0 = f.specular * f0Max;
-    f.specEK = f.specular * (1.0f - f0Max) / max(1.0f - f.f0Ior, 1.0e-4f);
-    f.specEMs = f.delta ? 0.0f : ptMaxComponent(ptMultiScatterColor(favgDielectric, eAvg));
+    vec3 specE = ptDielectricAlbedoCoeffs(f.specular, f.specularF0, f.f0Ior, favgDielectric, eAvg, f.delta);
+    f.specEF0 = specE.x;
+    f.specEK = specE.y;
+    f.specEMs = specE.z;
     f.specIor = max(f.etaFresnel, 1.0f / f.etaFresnel);
-    float specAvg = f.specEF0 * eAvg + f.specEK * (ptAlbedoSpecularAvg(f.roughness, f.specIor) - f.f0Ior * eAvg) +
-                    f.specEMs * (1.0f - eAvg);
+    float specAvg = ptDielectricAlbedoOf(specE, f.f0Ior, eAvg, ptAlbedoSpecularAvg(f.roughness, f.specIor));
     float diffOut = max(1.0f - ptDielectricSpecAlbedo(f, mu), 0.0f);  // the diffuse albedo (white base)
     f.diffScale = diffOut / max(1.0f - specAvg, 1.0e-4f);
     float coatF = f.clearcoat * ptCoatFresnel(f.coatCosO);

@@ -221,6 +221,23 @@ IDK_INLINE float ptFresnelDielectricAverage(float eta) {
     return (e - 1.0f) / (4.08567f + 1.00071f * e);
 }
 
+// The albedo-scaled Lambert weight beneath a dielectric reflection lobe (shared/pt_bsdf_frame.h's header; the
+// path tracers and the raster's direct light, include/material_layers.glsl, share these two): the lobe's albedo
+// Es(mu) is linear in its Fresnel F = specular (f0' + (1 - f0') w(v.h)), w the exact curve of the IOR remapped to
+// [0, 1]: Es = eF0 E_metal + eK (E_refl - f0Ior E_metal) + eMs (1 - E_metal) with the coefficients below (f0' its
+// strongest channel, eMs the Kulla-Conty multiple scattering of the average Fresnel favg; none for a delta lobe).
+IDK_INLINE vec3 ptDielectricAlbedoCoeffs(float specular, vec3 specularF0, float f0Ior, vec3 favg, float eAvg,
+                                         bool delta) {
+    float f0Max = ptMaxComponent(specularF0);
+    return vec3(specular * f0Max, specular * (1.0f - f0Max) / max(1.0f - f0Ior, 1.0e-4f),
+                delta ? 0.0f : ptMaxComponent(ptMultiScatterColor(favg, eAvg)));
+}
+
+// Es from the coefficients and the table values E_metal (em) and E_refl (er) at one mu (or their averages).
+IDK_INLINE float ptDielectricAlbedoOf(vec3 c, float f0Ior, float em, float er) {
+    return c.x * em + c.y * (er - f0Ior * em) + c.z * (1.0f - em);
+}
+
 // Average (cosine-weighted hemispherical) Schlick reflectance: f0 + (1 - f0) / 21.
 IDK_INLINE vec3 ptSchlickAverage(vec3 f0) { return f0 + (vec3(1.0f) - f0) * (1.0f / 21.0f); }
 

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "support/plastic_weight.hpp"
+
 namespace idk::test {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
@@ -27,10 +29,15 @@ glm::dvec3 brdfCosine(const glm::dvec3& baseColor, double metallic, double perce
     // V: Smith joint (height-correlated) GGX, = G / (4 |N.L| |N.V|)
     double V =
         0.5 / (NdotL * std::sqrt(NdotV * NdotV * (1.0 - a2) + a2) + NdotV * std::sqrt(NdotL * NdotL * (1.0 - a2) + a2));
-    // F: Schlick with f0 = mix(0.04, baseColor, metallic)
-    glm::dvec3 f0 = glm::mix(glm::dvec3(0.04), baseColor, metallic);
-    glm::dvec3 F = f0 + (1.0 - f0) * std::pow(1.0 - VdotH, 5.0);
-    glm::dvec3 diffuse = (1.0 - F) * baseColor * (1.0 - metallic) / kPi;
+    // F: the dielectric's exact unpolarised Fresnel of IOR 1.5 mixed with the metal's Schlick (f0 = baseColor)
+    double sinT2 = (1.0 - VdotH * VdotH) / (1.5 * 1.5), cosT = std::sqrt(1.0 - sinT2);
+    double rs = (VdotH - 1.5 * cosT) / (VdotH + 1.5 * cosT), rp = (1.5 * VdotH - cosT) / (1.5 * VdotH + cosT);
+    glm::dvec3 F = glm::mix(glm::dvec3(0.5 * (rs * rs + rp * rp)),
+                            baseColor + (1.0 - baseColor) * std::pow(1.0 - VdotH, 5.0), metallic);
+    // Diffuse: the albedo-scaled weight of the path tracers' plastic (IOR 1.5: f0 0.04), written out by hand in
+    // plastic_weight.hpp from the committed albedo tables; none for a full metal (the GLSL skips the lookups).
+    double w = metallic < 1.0 ? plasticDiffuseWeight(PlasticSpec{float(r), 1.5}, NdotV, NdotL) : 0.0;
+    glm::dvec3 diffuse = w * baseColor * (1.0 - metallic) / kPi;
     return (diffuse + F * D * V) * NdotL;
 }
 

@@ -8,7 +8,8 @@
 
 namespace idk::test {
 
-// f(l, v) * max(N.l, 0) for unit n, v, l (pbr.glsl brdfCosine).
+// f(l, v) * max(N.l, 0) for unit n, v, l (material_layers.glsl layeredBrdfCosine without extensions: pbr.glsl
+// brdfCosine with the albedo-scaled diffuse weight of dielectricDiffuseWeight).
 glm::dvec3 brdfCosine(const glm::dvec3& baseColor, double metallic, double perceptualRoughness, const glm::dvec3& n,
                       const glm::dvec3& v, const glm::dvec3& l);
 

@@ -302,6 +302,15 @@ void RenderGraph::planBarriers() {
             Transition t = applyUse(states[r], Use{node.kind, node.finalUse->access, node.finalUse->stages, false});
             if (t.barrier) {
                 t.barrier->resource = r;
+                // SYNC (validation): a final layout transition waits on the frame's shaders as one between passes
+                // does (above): the layer charges each draw and dispatch after the image's last declared use with a
+                // storage write of it (e.g. the OIT composite after the cone tracer's last read of the VXGI grid,
+                // whose SHADER_READ_ONLY -> GENERAL transition then reported WRITE_AFTER_WRITE). On a GPU the
+                // frame's last transitions wait for its last shaders, which end-of-frame work nearly does anyway.
+                if (node.kind == ResourceKind::Image && t.barrier->oldLayout != t.barrier->newLayout) {
+                    t.barrier->srcStages |= shaderStagesSoFar;
+                    t.barrier->srcAccess |= shaderWritesSoFar;
+                }
                 c.finalBarriers.push_back(*t.barrier);
             }
             states[r] = t.after;

@@ -162,8 +162,10 @@ TEST(GraphFrames, ImportedSwapchainGetsItsFinalTransition) {
     EXPECT_EQ(before[0].newLayout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
     const auto final = graph.finalBarriers();
     ASSERT_EQ(final.size(), 1u);
-    EXPECT_EQ(final[0].srcStages, kColorOut);
-    EXPECT_EQ(final[0].srcAccess, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+    // A final layout transition also waits on the frame's shaders and their storage writes (the ui pass is a draw:
+    // its vertex and fragment shaders), as one between passes does: graph_plan.cpp, for the validation layer.
+    EXPECT_EQ(final[0].srcStages, kColorOut | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | kFragment);
+    EXPECT_EQ(final[0].srcAccess, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     EXPECT_EQ(final[0].dstStages, VK_PIPELINE_STAGE_2_NONE);
     EXPECT_EQ(final[0].dstAccess, VK_ACCESS_2_NONE);
     EXPECT_EQ(final[0].oldLayout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
@@ -179,6 +181,49 @@ TEST(GraphFrames, ImportedSwapchainGetsItsFinalTransition) {
     EXPECT_EQ(last.images[0].subresourceRange.aspectMask, VkImageAspectFlags{VK_IMAGE_ASPECT_COLOR_BIT});
     EXPECT_EQ(last.images[0].subresourceRange.levelCount, VK_REMAINING_MIP_LEVELS);
     EXPECT_EQ(last.images[0].srcQueueFamilyIndex, VK_QUEUE_FAMILY_IGNORED);
+}
+
+// The VXGI voxel grid's frame: written as storage, sampled, then left in GENERAL for the next frame while later
+// passes (the OIT composite) write other images through the bindless storage array. The synchronization
+// validation layer (1.3.239) charges such a dispatch with a storage write of every image in the array, so the
+// final SHADER_READ_ONLY -> GENERAL transition must include the later compute writes in its source scope (without
+// it: SYNC-HAZARD-WRITE-AFTER-WRITE on the grid, tests/gpu/vxgi/vxgi_oit_sync_test.cpp). A final barrier without a
+// layout change keeps its plain scope.
+TEST(GraphFrames, FinalLayoutTransitionWaitsOnLaterShaderWrites) {
+    FakeBackend backend;
+    ResourcePool pool(backend);
+    RenderGraph graph(pool, {64, 64});
+    const TextureHandle grid = graph.importTexture("grid", PhysicalTexture{.format = VK_FORMAT_R16G16B16A16_SFLOAT},
+                                                   stateAfterAccess(Access::StorageRead, ResourceKind::Image, kCompute),
+                                                   FinalUse{Access::StorageRead, kCompute});
+    const TextureHandle volume =
+        graph.importTexture("volume", PhysicalTexture{.format = VK_FORMAT_R16G16B16A16_SFLOAT},
+                            stateAfterAccess(Access::SampledRead, ResourceKind::Image, kCompute),
+                            FinalUse{Access::SampledRead, kCompute});
+    TextureHandle written;
+    graph.addPass("merge", [&](PassBuilder& b) {
+        written = b.write(grid, Access::StorageWrite, kCompute);
+        b.sideEffect();
+    }, {});
+    graph.addPass("trace", [&](PassBuilder& b) {
+        b.read(written, Access::SampledRead, kCompute);
+        b.read(volume, Access::SampledRead, kCompute);
+        b.sideEffect();
+    }, {});
+    graph.addPass("composite", [&](PassBuilder& b) {
+        b.write(b.create("hdr", colorDesc(VK_FORMAT_R16G16B16A16_SFLOAT)), Access::StorageWrite, kCompute);
+        b.sideEffect();
+    }, {});
+    graph.compile();
+    const auto final = graph.finalBarriers();
+    ASSERT_EQ(final.size(), 1u) << "the volume stays where it was sampled";
+    EXPECT_EQ(graph.resourceName(final[0].resource), "grid");
+    EXPECT_EQ(final[0].oldLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    EXPECT_EQ(final[0].newLayout, VK_IMAGE_LAYOUT_GENERAL);
+    EXPECT_EQ(final[0].srcStages, kCompute);
+    EXPECT_EQ(final[0].srcAccess, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    EXPECT_EQ(final[0].dstStages, kCompute);
+    EXPECT_EQ(final[0].dstAccess, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
 }
 
 TEST(GraphFrames, ImportedBufferFinalUseAndStateForNextFrame) {

@@ -173,6 +173,8 @@ TEST(GltfMaterialExt, DispersionIsLoadedAndChecked) {
     EXPECT_TRUE(anyWarningHas(s, "'huge'", "dispersion 1000000000"));
     EXPECT_TRUE(anyWarningHas(s, "'word'", "dispersion is not a number"));
     EXPECT_FALSE(anyWarningHas(s, "'flint'", "dispersion"));
+}
+
 TEST(GltfMaterialExt, IridescenceIsLoadedAndChecked) {
     TempDir dir;
     auto f = triangle();

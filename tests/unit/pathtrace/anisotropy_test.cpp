@@ -14,6 +14,7 @@
 
 #include "pathtrace/albedo_integrator.hpp"
 #include "shared/pt_sampling.h"
+#include "support/pt_surface.hpp"
 
 namespace idk::test {
 namespace {
@@ -24,17 +25,7 @@ using glm::dvec3;
 constexpr double kPi = 3.14159265358979;
 
 PtSurface metal(glm::vec3 base, float roughness, float strength, glm::vec3 direction) {
-    PtSurface s{};
-    s.baseColor = base;
-    s.alpha = 1.0f;
-    s.metallic = 1.0f;
-    s.roughness = roughness;
-    s.ior = 1.5f;
-    s.attenuationColor = glm::vec3(1.0f);
-    s.shadingNormal = glm::vec3(0.0f, 0.0f, 1.0f);
-    s.geometricNormal = glm::vec3(0.0f, 0.0f, 1.0f);
-    s.specular = 1.0f;
-    s.specularColor = glm::vec3(1.0f);
+    PtSurface s = plainPtSurface(base, 1.0f, roughness);
     s.anisotropyStrength = strength;
     s.anisotropyDirection = direction;
     return s;

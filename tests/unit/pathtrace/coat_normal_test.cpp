@@ -10,6 +10,7 @@
 #include <random>
 
 #include "shared/pt_sampling.h"
+#include "support/pt_surface.hpp"
 
 namespace idk::test {
 namespace {
@@ -20,16 +21,8 @@ using glm::dvec3;
 constexpr double kPi = 3.14159265358979;
 
 PtSurface coated(float coatRoughness, glm::vec3 coatNormal) {
-    PtSurface s{};
-    s.baseColor = glm::vec3(0.7f, 0.2f, 0.1f);
-    s.alpha = 1.0f;
-    s.roughness = 0.6f;
-    s.ior = 1.0f;  // IOR 1: a Lambert base without its own specular
-    s.attenuationColor = glm::vec3(1.0f);
-    s.shadingNormal = glm::vec3(0.0f, 0.0f, 1.0f);
-    s.geometricNormal = glm::vec3(0.0f, 0.0f, 1.0f);
-    s.specular = 1.0f;
-    s.specularColor = glm::vec3(1.0f);
+    // IOR 1: a Lambert base without its own specular.
+    PtSurface s = plainPtSurface(glm::vec3(0.7f, 0.2f, 0.1f), 0.0f, 0.6f, 1.0f);
     s.clearcoat = 0.8f;
     s.clearcoatRoughness = coatRoughness;
     s.clearcoatNormal = coatNormal;

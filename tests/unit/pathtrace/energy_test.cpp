@@ -11,6 +11,7 @@
 
 #include "pathtrace/albedo_integrator.hpp"
 #include "shared/pt_sampling.h"
+#include "support/pt_surface.hpp"
 
 namespace idk::test {
 namespace {
@@ -18,19 +19,9 @@ namespace {
 using namespace idk::gpu;
 
 PtSurface whiteSurface(float metallic, float roughness, float transmission, float ior, float thickness) {
-    PtSurface s{};
-    s.baseColor = glm::vec3(1.0f);
-    s.alpha = 1.0f;
-    s.metallic = metallic;
-    s.roughness = roughness;
+    PtSurface s = plainPtSurface(glm::vec3(1.0f), metallic, roughness, ior);
     s.transmission = transmission;
-    s.ior = ior;
     s.thickness = thickness;
-    s.attenuationColor = glm::vec3(1.0f);
-    s.shadingNormal = glm::vec3(0.0f, 0.0f, 1.0f);
-    s.geometricNormal = glm::vec3(0.0f, 0.0f, 1.0f);
-    s.specular = 1.0f;
-    s.specularColor = glm::vec3(1.0f);
     return s;
 }
 

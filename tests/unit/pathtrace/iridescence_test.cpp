@@ -19,6 +19,7 @@
 
 #include "shared/pt_sampling.h"
 #include "shared/pt_iridescence.h"
+#include "support/pt_surface.hpp"
 
 namespace idk::test {
 namespace {
@@ -74,17 +75,7 @@ dvec3 airyOracle(double cos1, double n2, double d, dvec3 baseF0) {
 }
 
 PtSurface dielectric(glm::vec3 base, float roughness) {
-    PtSurface s{};
-    s.baseColor = base;
-    s.alpha = 1.0f;
-    s.roughness = roughness;
-    s.ior = 1.5f;
-    s.attenuationColor = glm::vec3(1.0f);
-    s.shadingNormal = glm::vec3(0.0f, 0.0f, 1.0f);
-    s.geometricNormal = glm::vec3(0.0f, 0.0f, 1.0f);
-    s.specular = 1.0f;
-    s.specularColor = glm::vec3(1.0f);
-    return s;
+    return plainPtSurface(base, 0.0f, roughness);
 }
 
 // The specification's series against the spectral Airy integral, at chosen angles, thicknesses and bases. The

@@ -10,6 +10,7 @@
 
 #include "support/plastic_weight.hpp"
 #include "shared/pt_sampling.h"
+#include "support/pt_surface.hpp"
 
 namespace idk::test {
 namespace {
@@ -20,18 +21,7 @@ using glm::dvec3;
 constexpr double kPi = 3.14159265358979;
 
 PtSurface surface(glm::vec3 base, float metallic, float roughness, float ior) {
-    PtSurface s{};
-    s.baseColor = base;
-    s.alpha = 1.0f;
-    s.metallic = metallic;
-    s.roughness = roughness;
-    s.ior = ior;
-    s.attenuationColor = glm::vec3(1.0f);
-    s.shadingNormal = glm::vec3(0.0f, 0.0f, 1.0f);
-    s.geometricNormal = glm::vec3(0.0f, 0.0f, 1.0f);
-    s.specular = 1.0f;
-    s.specularColor = glm::vec3(1.0f);
-    return s;
+    return plainPtSurface(base, metallic, roughness, ior);
 }
 
 dvec3 dir(double cosTheta, double phi) {

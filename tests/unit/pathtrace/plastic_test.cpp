@@ -10,6 +10,7 @@
 #include <random>
 
 #include "shared/pt_sampling.h"
+#include "support/pt_surface.hpp"
 
 namespace idk::test {
 namespace {
@@ -17,18 +18,7 @@ namespace {
 using namespace idk::gpu;
 
 PtSurface plastic(float roughness, float ior) {
-    PtSurface s{};
-    s.baseColor = glm::vec3(1.0f);
-    s.alpha = 1.0f;
-    s.roughness = roughness;
-    s.ior = ior;
-    s.attenuationColor = glm::vec3(1.0f);
-    s.shadingNormal = glm::vec3(0.0f, 0.0f, 1.0f);
-    s.geometricNormal = glm::vec3(0.0f, 0.0f, 1.0f);
-    s.specular = 1.0f;
-    s.specularColor = glm::vec3(1.0f);
-    s.diffuseTransmissionColor = glm::vec3(1.0f);
-    return s;
+    return plainPtSurface(glm::vec3(1.0f), 0.0f, roughness, ior);
 }
 
 glm::vec3 view(float mu) { return glm::vec3(std::sqrt(1.0f - mu * mu), 0.0f, mu); }

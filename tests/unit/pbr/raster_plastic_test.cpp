@@ -13,6 +13,7 @@
 #include "shared/pt_sampling.h"
 #include "support/pbr_oracle.hpp"
 #include "support/plastic_weight.hpp"
+#include "support/pt_surface.hpp"
 
 namespace idk::test {
 namespace {
@@ -87,17 +88,7 @@ TEST(PbrPlastic, DiffuseLobeIsThePathTracers) {
                 };
                 const double f = diffuse(v, l), fr = diffuse(l, v);
                 worstRecip = std::max(worstRecip, std::abs(f - fr) / f);
-                gpu::PtSurface s{};
-                s.baseColor = glm::vec3(1.0f);
-                s.alpha = 1.0f;
-                s.roughness = float(r);
-                s.ior = 1.5f;
-                s.attenuationColor = glm::vec3(1.0f);
-                s.shadingNormal = glm::vec3(0.0f, 0.0f, 1.0f);
-                s.geometricNormal = glm::vec3(0.0f, 0.0f, 1.0f);
-                s.specular = 1.0f;
-                s.specularColor = glm::vec3(1.0f);
-                s.diffuseTransmissionColor = glm::vec3(1.0f);
+                const gpu::PtSurface s = plainPtSurface(glm::vec3(1.0f), 0.0f, float(r));
                 gpu::PtBsdfFrame fr0;
                 ASSERT_TRUE(gpu::ptBsdfSetup(s, glm::vec3(v), fr0));
                 const double pt = double(gpu::ptDiffuseWeight(fr0, float(muI))) / kPi;

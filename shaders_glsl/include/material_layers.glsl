@@ -28,7 +28,7 @@
 // compensation) wherever the direction is known.
 // KHR_materials_diffuse_transmission, a thin-surface approximation: the diffuse term keeps 1 - diffuseTransmission
 // of its weight and a light behind the surface (n.l < 0) gives diffuseTransmission * diffuseTransmissionColor / pi
-// * (1 - max F_dielectric at the mirrored half vector) * |n.l|, the path tracer's lobe for that light
+// * W(n.v, |n.l|) * |n.l| (W the diffuse weight above), the path tracer's lobe for that light
 // (shared/pt_diffuse_transmission.h); surface_lighting.glsl adds the SH irradiance from behind the same way. It
 // omits what the path tracer has and one lookup per light cannot give: light scattered inside a thick volume
 // (thickness, attenuation), the transmitted part of the specular ambient and of VXGI/SSR's traced light (they
@@ -221,22 +221,6 @@ vec3 dielectricFresnel(SurfaceLayers s, float VdotH) {
     return s.specular * (f0 + (1.0 - f0) * w);
 }
 
-// KHR_materials_diffuse_transmission: f * |n.l| for a light behind the surface (n.l <= 0), beneath the clearcoat
-// and sheen layers as the reflected base is (the layer weights depend on n.v only).
-vec3 diffuseTransmissionCosine(SurfaceLayers s, float metallic, vec3 n, vec3 v, vec3 l) {
-    if ((s.flags & kMaterialDiffuseTransmission) == 0u || s.diffuseTransmission <= 0.0) return vec3(0.0);
-    float NdotL = dot(n, l);
-    vec3 mirrored = l - n * (2.0 * NdotL);
-    vec3 h = normalize(mirrored + v);
-    vec3 result = s.diffuseTransmissionColor * (s.diffuseTransmission * (1.0 - metallic) / kPi *
-                                                (1.0 - maxOf(dielectricFresnel(s, max(dot(v, h), 0.0)))));
-    float NdotV = max(dot(n, v), 1e-4);
-    if ((s.flags & kMaterialSheen) != 0u)
-        result *= max(1.0 - maxOf(s.sheenColor) * ptAlbedoSheen(NdotV, s.sheenRoughness), 0.0);
-    if ((s.flags & kMaterialClearcoat) != 0u) result *= 1.0 - s.clearcoat * fresnelSchlick(vec3(0.04), NdotV).x;
-    return result * -NdotL;
-}
-
 // W(n.v, n.l): the albedo-scaled weight of the base's Lambert lobe (shared/pt_energy.h), the path tracers' for the
 // raster's dielectric (IOR 1.5, f0 0.04, KHR_materials_specular's specular and strongest f0'); perceptual roughness
 // already clamped. Reciprocal, and a white base reflects exactly 1 - Es(n.v). Per light here; on a real GPU the
@@ -254,11 +238,28 @@ float dielectricDiffuseWeight(SurfaceLayers s, float roughness, float NdotV, flo
     return max(1.0 - esV, 0.0) * max(1.0 - esL, 0.0) / max(1.0 - esAvg, 1e-4);
 }
 
+// KHR_materials_diffuse_transmission: f * |n.l| for a light behind the surface (n.l <= 0), beneath the clearcoat
+// and sheen layers as the reflected base is (the layer weights depend on n.v only). What passes the dielectric is
+// the Lambert lobes' albedo-scaled weight at |n.l| (dielectricDiffuseWeight), the path tracers' ptDiffuseWeight
+// for this lobe, so a back-lit leaf is the front-lit Lambert mirrored, specular layer included.
+vec3 diffuseTransmissionCosine(SurfaceLayers s, float metallic, float perceptualRoughness, vec3 n, vec3 v, vec3 l) {
+    if ((s.flags & kMaterialDiffuseTransmission) == 0u || s.diffuseTransmission <= 0.0) return vec3(0.0);
+    float NdotL = dot(n, l);
+    float NdotV = max(dot(n, v), 1e-4);
+    float roughness = clamp(perceptualRoughness, kMinRoughness, 1.0);
+    float pass = metallic < 1.0 ? dielectricDiffuseWeight(s, roughness, NdotV, -NdotL) : 0.0;
+    vec3 result = s.diffuseTransmissionColor * (s.diffuseTransmission * (1.0 - metallic) / kPi * pass);
+    if ((s.flags & kMaterialSheen) != 0u)
+        result *= max(1.0 - maxOf(s.sheenColor) * ptAlbedoSheen(NdotV, s.sheenRoughness), 0.0);
+    if ((s.flags & kMaterialClearcoat) != 0u) result *= 1.0 - s.clearcoat * fresnelSchlick(vec3(0.04), NdotV).x;
+    return result * -NdotL;
+}
+
 // f(l, v) * NdotL with the material's extension layers.
 vec3 layeredBrdfCosine(SurfaceLayers s, vec3 baseColor, float metallic, float perceptualRoughness, vec3 n, vec3 v,
                        vec3 l) {
     float NdotL = dot(n, l);
-    if (NdotL <= 0.0) return diffuseTransmissionCosine(s, metallic, n, v, l);
+    if (NdotL <= 0.0) return diffuseTransmissionCosine(s, metallic, perceptualRoughness, n, v, l);
     float NdotV = max(dot(n, v), 1e-4);
     float roughness = clamp(perceptualRoughness, kMinRoughness, 1.0);
     // Without extension flags the dielectric is the plain one (specular 1, colour 1) whatever the factors hold.

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <numeric>
 #include <vector>
@@ -14,6 +15,7 @@
 #include <glm/gtx/matrix_decompose.hpp>
 
 #include "frame/settings_table.hpp"
+#include "frame/vxgi_memory.hpp"
 #include "viewer/viewer_app.hpp"
 
 namespace idk::viewer {
@@ -62,6 +64,7 @@ void rendererPanel(Viewer& v) {
                                     : render::defaultEnvironmentPath().string();
     ImGui::TextWrapped("environment: %s", env.c_str());
     std::string panel;
+    const frame::VxgiSettings vxgiBefore = s.vxgi;
     for (const frame::SettingOption& o : frame::settingOptions()) {
         if (panel != o.panel) {
             panel = o.panel;
@@ -69,6 +72,20 @@ void rendererPanel(Viewer& v) {
             ImGui::TextDisabled("%s", o.panel);
         }
         settingWidget(o, s);
+    }
+    // A grid size (or turning VXGI on) the device memory cannot hold is refused here, before the frame would
+    // release the old grid: the setting reverts and the status line says why.
+    const bool newGrid = s.vxgi.voxels != vxgiBefore.voxels || vxgiBefore.mode != frame::GiMode::Vxgi;
+    if (s.vxgi.mode == frame::GiMode::Vxgi && newGrid) {
+        try {
+            frame::checkVxgiMemory(*v.ctx, s.vxgi.voxels, v.ctx->ladder("vxgi-atomics").chosen,
+                                   v.renderer->vxgi().heldBytes());
+        } catch (const frame::VxgiMemoryError& e) {
+            s.vxgi.voxels = vxgiBefore.voxels;
+            s.vxgi.mode = vxgiBefore.mode;
+            v.state.status = e.what();
+            std::fprintf(stderr, "idk-viewer: %s\n", e.what());
+        }
     }
     ImGui::Separator();
     bool vsync = v.swapchain->vsync();

@@ -43,9 +43,24 @@ void checkVxgiMemory(vk::Context& ctx, uint32_t voxels, vk::Rung atomics, VkDevi
     throw VxgiMemoryError("--voxels " + n + ": the " + n + "^3 VXGI grid needs " + vk::bytesText(need.total()) +
                           ": volumes " + std::to_string(need.volumes) + " + accumulators " +
                           std::to_string(need.accumulators) + " bytes, but the device-local memory budget has " +
-                          vk::bytesText(available) + " free (" + budget.source + "); " +
+                          vk::bytesText(available) + " free (" + budget.source +
+                          (released ? ", with the " + std::to_string(released) + " bytes of the grid it replaces" : "") +
+                          "); " +
                           (fits ? "the largest --voxels that fits is " + std::to_string(fits)
                                 : std::string("no --voxels fits: use --gi none")));
+}
+
+std::string refuseVxgiChange(vk::Context& ctx, const VxgiSettings& before, VxgiSettings& settings, VkDeviceSize held) {
+    const bool newGrid = settings.voxels != before.voxels || before.mode != GiMode::Vxgi;
+    if (settings.mode != GiMode::Vxgi || !newGrid) return {};
+    try {
+        checkVxgiMemory(ctx, settings.voxels, ctx.ladder("vxgi-atomics").chosen, held);
+        return {};
+    } catch (const VxgiMemoryError& e) {
+        settings.voxels = before.voxels;
+        settings.mode = before.mode;
+        return e.what();
+    }
 }
 
 }  // namespace idk::frame

@@ -5,6 +5,7 @@
 // anything is released or allocated, so the scene and any grid already there stay as they were.
 #pragma once
 #include <stdexcept>
+#include <string>
 
 #include "frame/vxgi_settings.hpp"
 #include "vk/context.hpp"
@@ -29,5 +30,10 @@ public:
 // Throws VxgiMemoryError when vxgiMemory(voxels) exceeds the device-local budget plus `released` (the bytes of a
 // grid the new one replaces, freed first).
 void checkVxgiMemory(vk::Context& ctx, uint32_t voxels, vk::Rung atomics, VkDeviceSize released = 0);
+
+// The viewer's guard, before a frame acts on a settings change: when `settings` asks for a new grid (another size,
+// or VXGI turned on) that does not fit, restores `before`'s mode and size and returns the message; else "".
+// `held`: the bytes of the grid there now (VxgiFeature::heldBytes), freed first by a resize.
+std::string refuseVxgiChange(vk::Context& ctx, const VxgiSettings& before, VxgiSettings& settings, VkDeviceSize held);
 
 }  // namespace idk::frame

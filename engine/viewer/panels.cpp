@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <functional>
 #include <numeric>
+#include <string>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -75,17 +76,10 @@ void rendererPanel(Viewer& v) {
     }
     // A grid size (or turning VXGI on) the device memory cannot hold is refused here, before the frame would
     // release the old grid: the setting reverts and the status line says why.
-    const bool newGrid = s.vxgi.voxels != vxgiBefore.voxels || vxgiBefore.mode != frame::GiMode::Vxgi;
-    if (s.vxgi.mode == frame::GiMode::Vxgi && newGrid) {
-        try {
-            frame::checkVxgiMemory(*v.ctx, s.vxgi.voxels, v.ctx->ladder("vxgi-atomics").chosen,
-                                   v.renderer->vxgi().heldBytes());
-        } catch (const frame::VxgiMemoryError& e) {
-            s.vxgi.voxels = vxgiBefore.voxels;
-            s.vxgi.mode = vxgiBefore.mode;
-            v.state.status = e.what();
-            std::fprintf(stderr, "idk-viewer: %s\n", e.what());
-        }
+    if (std::string refused = frame::refuseVxgiChange(*v.ctx, vxgiBefore, s.vxgi, v.renderer->vxgi().heldBytes());
+        !refused.empty()) {
+        v.state.status = refused;
+        std::fprintf(stderr, "idk-viewer: %s\n", refused.c_str());
     }
     ImGui::Separator();
     bool vsync = v.swapchain->vsync();

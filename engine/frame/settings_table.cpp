@@ -21,8 +21,6 @@ double cubeSizeIndex(uint32_t size) {
     return 2.0;
 }
 
-constexpr std::array<uint32_t, 5> kVoxelGridSizes = {64, 128, 256, 384, 512};
-
 double voxelSizeIndex(uint32_t size) {
     for (size_t i = 0; i < kVoxelGridSizes.size(); ++i)
         if (kVoxelGridSizes[i] == size) return double(i);

@@ -5,7 +5,7 @@
 
 namespace idk::frame {
 
-void VoxelVolume::create(vk::Context& ctx, const char* name, uint32_t size, uint32_t levels) {
+vk::ImageDesc voxelVolumeDesc(const char* name, uint32_t size, uint32_t levels) {
     vk::ImageDesc desc;
     desc.type = VK_IMAGE_TYPE_3D;
     desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
@@ -14,6 +14,17 @@ void VoxelVolume::create(vk::Context& ctx, const char* name, uint32_t size, uint
     desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
     desc.name = name;
     desc.category = "vxgi";
+    return desc;
+}
+
+uint32_t voxelMipLevels(uint32_t size) {
+    uint32_t levels = 1;
+    while ((size >> levels) > 0) ++levels;
+    return levels;
+}
+
+void VoxelVolume::create(vk::Context& ctx, const char* name, uint32_t size, uint32_t levels) {
+    const vk::ImageDesc desc = voxelVolumeDesc(name, size, levels);
     image = ctx.createImage(desc);
     for (uint32_t level = 0; level < levels; ++level) {
         VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};

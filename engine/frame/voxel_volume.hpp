@@ -11,6 +11,12 @@
 
 namespace idk::frame {
 
+// The image a volume of `size`^3 voxels and `levels` mip levels allocates (RGBA16F, storage + sampled; category
+// "vxgi"): create() uses it, and so does the memory check (frame/vxgi_memory.hpp), so the two cannot drift.
+vk::ImageDesc voxelVolumeDesc(const char* name, uint32_t size, uint32_t levels);
+// Levels of a full mip chain of `size` (down to 1^3): the directional volumes' count.
+uint32_t voxelMipLevels(uint32_t size);
+
 struct VoxelVolume {
     vk::Image image;
     std::vector<VkImageView> levelViews;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "frame/frame_inputs.hpp"
+#include "frame/vxgi_memory.hpp"
 #include "render/draw_bounds.hpp"
 #include "shared/vxgi_types.h"
 #include "vk/check.hpp"
@@ -50,6 +51,12 @@ void VxgiFeature::release() {
     ctx_.bindless().release(sampler_);
 }
 
+VkDeviceSize VxgiFeature::heldBytes() const noexcept {
+    VkDeviceSize bytes = grid_.image.allocation.size;
+    for (const VoxelVolume& d : directions_) bytes += d.image.allocation.size;
+    return bytes;
+}
+
 void VxgiFeature::setScene(const render::GpuScene& scene) {
     bounds_ = render::sceneBounds(scene.data(), render::meshBounds(scene.data()));
 }
@@ -60,14 +67,18 @@ void VxgiFeature::addPasses(FrameContext& f, const std::optional<passes::VoxelSh
         release();  // --gi none holds nothing
         return;
     }
-    if (grid_.image.image && grid_.image.extent.width != s.voxels) release();
+    const vk::Rung atomics = f.ctx.ladder("vxgi-atomics").chosen;
+    if (!grid_.image.image || grid_.image.extent.width != s.voxels) {
+        // Refused before the old grid is released: the frame fails with the message, nothing is lost.
+        checkVxgiMemory(ctx_, s.voxels, atomics, heldBytes());
+        release();
+    }
     if (!grid_.image.image) {
         grid_.create(ctx_, "vxgi voxel grid", s.voxels, 1);
         // Directional volumes of the grid's size: level 0 is the voxels seen along each direction (anisotropic
         // from the start, by the surfaces' facing), levels up to 1^3. 6 x 8 bytes x 8/7 per voxel: 512^3 takes
         // 7.4 GB on a real GPU, where an implementation would keep level 0 sparse or drop to half precision.
-        uint32_t levels = 1;
-        while ((s.voxels >> levels) > 0) ++levels;
+        const uint32_t levels = voxelMipLevels(s.voxels);
         const char* names[6] = {"vxgi mips +x", "vxgi mips -x", "vxgi mips +y", "vxgi mips -y", "vxgi mips +z",
                                 "vxgi mips -z"};
         for (uint32_t d = 0; d < 6; ++d) directions_[d].create(ctx_, names[d], s.voxels, levels);
@@ -89,8 +100,7 @@ void VxgiFeature::addPasses(FrameContext& f, const std::optional<passes::VoxelSh
     for (uint32_t d = 0; d < 6; ++d)
         directionHandles_[d] = directions_[d].import(f.graph, names[d], {graph::Access::SampledRead, kCs});
 
-    passes::VoxelizeInputs in{f.scene, f.frameConstants, f.pointShadows, box_,
-                              f.ctx.ladder("vxgi-atomics").chosen};
+    passes::VoxelizeInputs in{f.scene, f.frameConstants, f.pointShadows, box_, atomics};
     if (in.atomics == vk::Rung::GlInterop) {  // the GL pass's shared buffers live across frames
         const passes::VxgiGlProgram program = f.ctx.ladder("vxgi-gl-accumulate").chosen == vk::Rung::Native
                                                   ? passes::VxgiGlProgram::Fp16Vector

@@ -42,6 +42,8 @@ public:
     void setScene(const render::GpuScene& scene);
     // Voxelization; nothing unless settings.vxgi.mode == Vxgi. `rays`: --shadows raytraced's BVH (the lights are
     // then shadowed by rays, there being no shadow table yet).
+    // Before (re)creating the grid, checks it fits the device-local memory budget (frame/vxgi_memory.hpp): throws
+    // VxgiMemoryError naming the size, the bytes, the budget and the largest size that fits, the old grid kept.
     void addPasses(FrameContext& f, const std::optional<passes::VoxelShadowRays>& rays = std::nullopt);
     void addConeTracing(FrameContext& f);  // after the G-buffer: mips + cone tracing into f.indirectLight
     // --gi-debug voxels: after everything else lit f.hdr, overwrites it with the voxel debug view (nothing when off).
@@ -49,6 +51,8 @@ public:
     // The grid of the last frame (RGBA16F, size^3; left in GENERAL layout) or nullptr: tests read it back.
     const vk::Image* grid() const noexcept { return grid_.image.image ? &grid_.image : nullptr; }
     const passes::VoxelGridBox& box() const noexcept { return box_; }
+    // Device bytes the grid and its directional volumes hold now (0 when none): what a resize frees first.
+    VkDeviceSize heldBytes() const noexcept;
     // The gl-interop rung's state (record capacity, last frame's overflow) or nullptr on the other rungs.
     passes::VxgiGlAccumulator* glAccumulator() const noexcept { return gl_.get(); }
     // The six directional volumes (+x -x +y -y +z -z, level 0 the voxels seen along each; left where the cone

@@ -1,11 +1,15 @@
 // vxgi_settings.hpp: the options of voxel global illumination (frame/vxgi_feature.hpp), a member of
 // render::RenderSettings; the rows of frame/settings_table.cpp set them (--gi, --voxels, --gi-grid, ...).
 #pragma once
+#include <array>
 #include <cstdint>
 
 namespace idk::frame {
 
 enum class GiMode : uint8_t { None, Vxgi };
+
+// The grid sizes --voxels accepts (the settings table's choices; the memory check names the largest that fits).
+inline constexpr std::array<uint32_t, 5> kVoxelGridSizes = {64, 128, 256, 384, 512};
 
 // How voxelization rasterizes: Conservative (every voxel a triangle touches, by the "conservative-raster" ladder:
 // VK_EXT_conservative_rasterization or geometry-shader dilation; thin walls never leak) or Centre (only voxels

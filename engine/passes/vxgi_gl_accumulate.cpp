@@ -44,6 +44,9 @@ VkDeviceSize recordBytes(uint32_t capacity) {
     return (VkDeviceSize(gpu::kVoxelRecordHeaderWords) + VkDeviceSize(capacity) * gpu::kVoxelRecordWords) * 4;
 }
 
+VkDeviceSize sumsBytes(uint32_t n) { return VkDeviceSize(n) * n * n * gpu::kVoxelSumWords * 4; }
+uint32_t firstCapacity(uint32_t n) { return 16 * n * n; }  // a few walls across the grid, with depth complexity
+
 // The label the graph opened around the pass closes before the command buffer ends and reopens after it begins
 // again, so each submission's labels balance.
 void endLabel(VkCommandBuffer cmd) {
@@ -122,10 +125,11 @@ void VxgiGlAccumulator::releaseHalfSums() {
     if (counts_) api.glDeleteBuffers(1, &counts_);
     halfSums_[0] = halfSums_[1] = counts_ = 0;
 }
+VkDeviceSize VxgiGlAccumulator::firstFrameBytes(uint32_t n) { return sumsBytes(n) + recordBytes(firstCapacity(n)); }
 
 void VxgiGlAccumulator::prepare(uint32_t n) {
     settleStats();  // the last frame's overflow decides this frame's capacity
-    if (wanted_ == 0) wanted_ = 16 * n * n;  // a few walls across the grid, with depth complexity
+    if (wanted_ == 0) wanted_ = firstCapacity(n);
     if (sums_ && gridSize_ == n && capacity_ == wanted_) return;
     const gl::GlContext& gl = *ctx_.glContext();
     // The descriptor's range limit caps the records (the sums of a 512^3 grid, 2.7 GB, would exceed it too: the
@@ -136,7 +140,7 @@ void VxgiGlAccumulator::prepare(uint32_t n) {
     if (!sums_ || gridSize_ != n) {
         if (sums_) ctx_.bindless().release(sumsIndex_);
         sums_.reset();
-        const VkDeviceSize bytes = VkDeviceSize(n) * n * n * gpu::kVoxelSumWords * 4;
+        const VkDeviceSize bytes = sumsBytes(n);
         sums_ = std::make_unique<gl::SharedBuffer>(ctx_, gl, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "vxgi gl sums");
         sumsIndex_ = ctx_.bindless().addBuffer(sums_->vk().buffer, bytes, "vxgi gl sums");
         gridSize_ = n;

@@ -69,6 +69,9 @@ public:
 
     // Before a frame's passes: sizes the sums for an n^3 grid and the records for the current capacity.
     void prepare(uint32_t gridSize);
+    // The shared buffers' bytes for an n^3 grid's first frame (sums, and records at the first capacity); the memory
+    // check (frame/vxgi_memory.hpp) uses it.
+    static VkDeviceSize firstFrameBytes(uint32_t gridSize);
     // With semaphores this waits for the last frame's hand-off to complete (it has by the time a frame is read).
     const VxgiGlStats& lastStats() const;
     uint32_t capacity() const noexcept { return capacity_; }

@@ -52,6 +52,15 @@ struct VoxelizeInputs {
     // shader re-emitting it (the dilation fallback of "conservative-raster" projects by itself). Unset: three draws.
     std::optional<vk::Rung> singleDraw;
 };
+// The write-conflict accumulators "vxgi_clear" creates for a rung of "vxgi-atomics" (transient 3D images of the
+// grid's size, all live at once): Native 8 x R32F (r g b, facing xyzw, count), Fallback 7 x R32UI, GlInterop none
+// (its shared buffers instead). The memory check (frame/vxgi_memory.hpp) sizes them from this too.
+struct VoxelAccumulatorImages {
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    uint32_t count = 0;
+};
+VoxelAccumulatorImages voxelAccumulatorImages(vk::Rung atomics);
+
 graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                        const VoxelizeInputs& inputs, graph::TextureHandle grid,
                                        std::array<graph::TextureHandle, 6>& directions, IndirectDrawLog* log);

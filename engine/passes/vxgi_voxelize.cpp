@@ -49,6 +49,14 @@ vk::ShaderId fragmentShader(uint32_t mode, bool dilated) {
 
 }  // namespace
 
+VoxelAccumulatorImages voxelAccumulatorImages(vk::Rung atomics) {
+    const uint32_t mode = modeOf(atomics);
+    if (mode == gpu::kVoxelAtomicsGlRecords) return {};
+    // r, g, b, the facing's x, y, z, w, and the float-add rung's count (kVoxelAccum*)
+    if (mode == gpu::kVoxelAtomicsFloatAdd) return {VK_FORMAT_R32_SFLOAT, 8};
+    return {VK_FORMAT_R32_UINT, 7};
+}
+
 graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                        const VoxelizeInputs& in, graph::TextureHandle grid,
                                        std::array<graph::TextureHandle, 6>& directions, IndirectDrawLog* log) {
@@ -70,12 +78,12 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
                 acc->sums = b.write(acc->sums, graph::Access::TransferDst);
                 return;
             }
+            const VoxelAccumulatorImages images = voxelAccumulatorImages(in.atomics);
             graph::TextureDesc desc;
-            desc.format = mode == gpu::kVoxelAtomicsFloatAdd ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32_UINT;
+            desc.format = images.format;
             desc.sizeMode = graph::SizeMode::Absolute;
             desc.extent = {n, n, n};
-            // r, g, b, the facing's x, y, z, w, and the float-add rung's count (kVoxelAccum*)
-            acc->count = mode == gpu::kVoxelAtomicsFloatAdd ? 8 : 7;
+            acc->count = images.count;
             const char* names[8] = {"vxgi accum r",        "vxgi accum g",        "vxgi accum b",
                                     "vxgi accum facing x", "vxgi accum facing y", "vxgi accum facing z",
                                     "vxgi accum facing w", "vxgi accum count"};

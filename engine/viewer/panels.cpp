@@ -6,14 +6,17 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <numeric>
+#include <string>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtx/matrix_decompose.hpp>
 
 #include "frame/settings_table.hpp"
+#include "frame/vxgi_memory.hpp"
 #include "viewer/viewer_app.hpp"
 
 namespace idk::viewer {
@@ -62,6 +65,7 @@ void rendererPanel(Viewer& v) {
                                     : render::defaultEnvironmentPath().string();
     ImGui::TextWrapped("environment: %s", env.c_str());
     std::string panel;
+    const frame::VxgiSettings vxgiBefore = s.vxgi;
     for (const frame::SettingOption& o : frame::settingOptions()) {
         if (panel != o.panel) {
             panel = o.panel;
@@ -69,6 +73,13 @@ void rendererPanel(Viewer& v) {
             ImGui::TextDisabled("%s", o.panel);
         }
         settingWidget(o, s);
+    }
+    // A grid size (or turning VXGI on) the device memory cannot hold is refused here, before the frame would
+    // release the old grid: the setting reverts and the status line says why.
+    if (std::string refused = frame::refuseVxgiChange(*v.ctx, vxgiBefore, s.vxgi, v.renderer->vxgi().heldBytes());
+        !refused.empty()) {
+        v.state.status = refused;
+        std::fprintf(stderr, "idk-viewer: %s\n", refused.c_str());
     }
     ImGui::Separator();
     bool vsync = v.swapchain->vsync();

@@ -125,6 +125,7 @@ void VxgiGlAccumulator::releaseHalfSums() {
     if (counts_) api.glDeleteBuffers(1, &counts_);
     halfSums_[0] = halfSums_[1] = counts_ = 0;
 }
+
 VkDeviceSize VxgiGlAccumulator::firstFrameBytes(uint32_t n) { return sumsBytes(n) + recordBytes(firstCapacity(n)); }
 
 void VxgiGlAccumulator::prepare(uint32_t n) {

@@ -43,6 +43,15 @@ inline std::vector<PlacedQuad> closedRoomQuads(const std::array<glm::vec3, 5>& w
     return q;
 }
 
+// The room with one more quad standing in it (index kStandingQuad, facing the camera, blue-grey), which the
+// transparency tests make transparent.
+inline constexpr size_t kStandingQuad = 10;  // after the room's ten
+inline std::vector<PlacedQuad> closedRoomWithStandingQuad() {
+    std::vector<PlacedQuad> q = closedRoomQuads();
+    q.push_back(roomWall({0.1f, -0.35f, -0.3f}, {0, 0, 1}, {0.35f, 0.35f}, glm::vec3(0.5f, 0.6f, 0.7f)));
+    return q;
+}
+
 // The room's scene (closedRoomQuads), dielectric, quad 5 emitting `panelEmission`.
 inline scene::Scene closedRoomScene(glm::vec3 panelEmission, const std::vector<PlacedQuad>& quads = closedRoomQuads()) {
     scene::Scene s = makePlacedQuadScene(quads);

@@ -27,16 +27,10 @@ namespace idk::test {
 namespace {
 
 constexpr uint32_t kSize = 64;
-constexpr size_t kQuad = 10;  // the standing quad, after the room's ten
-
-std::vector<PlacedQuad> roomWithQuad() {
-    std::vector<PlacedQuad> q = closedRoomQuads();
-    q.push_back(roomWall({0.1f, -0.35f, -0.3f}, {0, 0, 1}, {0.35f, 0.35f}, glm::vec3(0.5f, 0.6f, 0.7f)));
-    return q;
-}
+constexpr size_t kQuad = kStandingQuad;
 
 scene::Scene roomScene(bool blend) {
-    scene::Scene s = closedRoomScene(glm::vec3(8.0f), roomWithQuad());
+    scene::Scene s = closedRoomScene(glm::vec3(8.0f), closedRoomWithStandingQuad());
     if (blend) {
         s.materials[kQuad].alphaMode = scene::AlphaMode::Blend;
         s.materials[kQuad].baseColorFactor.a = 1.0f;  // "over" with alpha 1: the forward radiance alone
@@ -68,7 +62,7 @@ Frame render(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene::Scene& s
 
 // The quad's interior pixels: the camera ray through the pixel and through its four neighbours hits it first.
 std::vector<size_t> quadPixels() {
-    const std::vector<PlacedQuad> quads = roomWithQuad();
+    const std::vector<PlacedQuad> quads = closedRoomWithStandingQuad();
     const scene::CameraView camera = closedRoomCamera();
     const glm::mat4 inverseViewProjection =
         glm::inverse(scene::projectionMatrix(camera, 1.0f) * scene::viewMatrix(camera));

@@ -17,6 +17,7 @@
 #include "pathtrace/cpu_path_tracer.hpp"
 #include "pathtrace/pt_scene.hpp"
 #include "support/gpu_fixture.hpp"
+#include "support/same_pixels.hpp"
 
 namespace idk::test {
 namespace {
@@ -107,19 +108,6 @@ double centroidX(const core::ImageRgba32f& img, int c) {
             weighted += v * (x + 0.5);
         }
     return sum > 0.0 ? weighted / sum : -1.0;
-}
-
-double samePixelFraction(const core::ImageRgba32f& gpu, const core::ImageRgba32f& cpu) {
-    size_t same = 0;
-    for (size_t p = 0; p < size_t(kSize) * kSize; ++p) {
-        bool close = true;
-        for (int k = 0; k < 3; ++k) {
-            const float a = gpu.pixels[4 * p + k], b = cpu.pixels[4 * p + k];
-            close &= std::abs(a - b) <= 1e-3f * (1.0f + std::abs(b));
-        }
-        same += close;
-    }
-    return double(same) / double(size_t(kSize) * kSize);
 }
 
 TEST_F(PtDispersionTest, ChannelsSeparateAsSnellSaysAndGpuEqualsCpu) {

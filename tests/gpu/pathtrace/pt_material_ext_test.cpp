@@ -25,6 +25,7 @@
 #include "scene/gltf_loader.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/layer_textures.hpp"
+#include "support/same_pixels.hpp"
 
 namespace idk::test {
 namespace {
@@ -44,21 +45,6 @@ pathtrace::PtSettings settings() {
     s.maxDepth = 4;
     s.rouletteDepth = 3;
     return s;
-}
-
-// Per-pixel agreement at the same seed: the fraction of pixels whose RGB all lie within 1e-3 relative of the CPU's.
-double samePixelFraction(const core::ImageRgba32f& gpu, const core::ImageRgba32f& cpu) {
-    size_t same = 0;
-    const size_t pixels = size_t(kSize) * kSize;
-    for (size_t p = 0; p < pixels; ++p) {
-        bool close = true;
-        for (int k = 0; k < 3; ++k) {
-            const float a = gpu.pixels[4 * p + k], b = cpu.pixels[4 * p + k];
-            close &= std::abs(a - b) <= 1e-3f * (1.0f + std::abs(b));
-        }
-        same += close;
-    }
-    return double(same) / double(pixels);
 }
 
 TEST_F(PtMaterialExtTest, GpuGivesTheCpuSamples) {

@@ -121,8 +121,11 @@ double ggxAnisoReflectionAlbedo(float mu, float q, float roughness, float streng
     return sum / (double(strata) * double(strata));
 }
 
-double ggxDielectricAlbedo(float mu, float roughness, float eta, int strata) {
-    if (std::abs(eta - 1.0f) < 1.0e-3f) return 1.0;  // the BSDF's delta pass-through: nothing is lost
+namespace {
+
+// The rough dielectric interface's albedo, by VNDF samples on the tail-warped grid: the reflected energy, plus the
+// refracted energy when `withTransmission`.
+double ggxDielectricInterface(float mu, float roughness, float eta, int strata, bool withTransmission) {
     const glm::vec3 o = outgoing(mu);
     const float alpha = alphaOf(roughness);
     const double g1 = ptGgxG1(o.z, alpha);
@@ -136,6 +139,7 @@ double ggxDielectricAlbedo(float mu, float roughness, float eta, int strata) {
             const float f = ptFresnelDielectric(cosOH, eta);
             const glm::vec3 r = h * (2.0f * cosOH) - o;
             if (r.z > 0.0f) sum += weight * f * ptGgxG2(o.z, r.z, alpha) / g1;
+            if (!withTransmission) continue;
             const float sin2T = (1.0f - cosOH * cosOH) / (eta * eta);
             if (sin2T >= 1.0f) continue;
             const glm::vec3 t = glm::normalize(-o / eta + h * (cosOH / eta - std::sqrt(1.0f - sin2T)));
@@ -145,22 +149,15 @@ double ggxDielectricAlbedo(float mu, float roughness, float eta, int strata) {
     return sum / (double(strata) * double(strata));
 }
 
+}  // namespace
+
+double ggxDielectricAlbedo(float mu, float roughness, float eta, int strata) {
+    if (std::abs(eta - 1.0f) < 1.0e-3f) return 1.0;  // the BSDF's delta pass-through: nothing is lost
+    return ggxDielectricInterface(mu, roughness, eta, strata, true);
+}
+
 double ggxDielectricReflectionAlbedo(float mu, float roughness, float eta, int strata) {
-    const glm::vec3 o = outgoing(mu);
-    const float alpha = alphaOf(roughness);
-    const double g1 = ptGgxG1(o.z, alpha);
-    double sum = 0.0;
-    for (int a = 0; a < strata; ++a) {
-        double weight;
-        const float u1 = tailWarp(a, strata, weight);
-        for (int b = 0; b < strata; ++b) {
-            const glm::vec3 h = ptSampleGgxVndf(o, alpha, u1, (float(b) + 0.5f) / float(strata));
-            const float cosOH = glm::dot(o, h);
-            const glm::vec3 r = h * (2.0f * cosOH) - o;
-            if (r.z > 0.0f) sum += weight * ptFresnelDielectric(cosOH, eta) * ptGgxG2(o.z, r.z, alpha) / g1;
-        }
-    }
-    return sum / (double(strata) * double(strata));
+    return ggxDielectricInterface(mu, roughness, eta, strata, false);
 }
 
 double sheenAlbedo(float mu, float roughness, int strata) {

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <memory>
 
+#include "gl_probed_context.hpp"
 #include "gl/gl_compute.hpp"
 #include "gl/interop_probe.hpp"
 #include "gl/shared_memory.hpp"
@@ -20,14 +21,6 @@
 namespace idk::test {
 namespace {
 
-std::unique_ptr<vk::Context> probedContext(std::vector<vk::RungForce> forced = {}) {
-    vk::ContextDesc desc;
-    desc.validation = true;
-    desc.probeGlInterop = true;
-    desc.forcedRungs = std::move(forced);
-    return std::make_unique<vk::Context>(desc);
-}
-
 void expectNoValidationErrors(const vk::Context& ctx) {
     EXPECT_EQ(ctx.validationErrors(), 0u);
     for (const std::string& m : ctx.validationMessages()) ADD_FAILURE() << m;
@@ -35,7 +28,7 @@ void expectNoValidationErrors(const vk::Context& ctx) {
 
 
 TEST(GlInteropTest, ImageAndBufferRoundTripThroughGlComputeAreExact) {
-    auto ctx = probedContext();
+    auto ctx = glProbedContext();
     const gl::GlContext* gl = ctx->glContext();
     ASSERT_NE(gl, nullptr) << ctx->capabilities().glInteropNote;
     const uint32_t width = 24, height = 16, count = width * height;
@@ -76,7 +69,7 @@ TEST(GlInteropTest, ImageAndBufferRoundTripThroughGlComputeAreExact) {
 }
 
 TEST(GlInteropTest, ProbeRoundTripPassesAndTheRungIsOffered) {
-    auto ctx = probedContext();
+    auto ctx = glProbedContext();
     ASSERT_NE(ctx->glContext(), nullptr) << ctx->capabilities().glInteropNote;
     EXPECT_EQ(gl::roundTrip(*ctx, *ctx->glContext(), 13, 7), "");  // odd sizes: no row padding assumption
     EXPECT_NE(ctx->capabilities().glInteropNote.find("sync:"), std::string::npos);
@@ -94,7 +87,7 @@ TEST(GlInteropTest, ProbeRoundTripPassesAndTheRungIsOffered) {
 // --rung float-atomics=gl-interop makes the ladder's own choice the GL pass even though the device has native
 // float atomics: the graph's splat pass runs in GL and its Vulkan consumer (the sum) reads the result.
 TEST(GlInteropTest, ForcedGlRungRunsTheGlPassWhoseOutputVulkanConsumes) {
-    auto ctx = probedContext({vk::RungForce{"float-atomics", vk::Rung::GlInterop}});
+    auto ctx = glProbedContext({vk::RungForce{"float-atomics", vk::Rung::GlInterop}});
     ASSERT_TRUE(ctx->forcedRungError().empty()) << ctx->forcedRungError();
     vk::ShaderLibrary shaders(*ctx);
     render::SplatInput input;
@@ -112,7 +105,7 @@ TEST(GlInteropTest, ForcedGlRungRunsTheGlPassWhoseOutputVulkanConsumes) {
     ASSERT_EQ(ran.size(), 1u);
     EXPECT_EQ(ran[0].chosen, vk::Rung::GlInterop);
     // Without the forcing the device takes its own best rung (native float atomics on lavapipe), with the same bits.
-    auto native = probedContext();
+    auto native = glProbedContext();
     vk::ShaderLibrary nativeShaders(*native);
     const render::SplatResult nat = render::runSplatGraph(*native, nativeShaders, input);
     EXPECT_NE(nat.rung, vk::Rung::GlInterop);
@@ -124,7 +117,7 @@ TEST(GlInteropTest, ForcedGlRungRunsTheGlPassWhoseOutputVulkanConsumes) {
 
 TEST(GlInteropTest, WithoutEglTheRungIsAbsentWithTheReasonAndOtherRungsRun) {
     ::setenv("IDK_GL_INTEROP", "off", 1);
-    auto ctx = probedContext({vk::RungForce{"float-atomics", vk::Rung::GlInterop}});
+    auto ctx = glProbedContext({vk::RungForce{"float-atomics", vk::Rung::GlInterop}});
     ::unsetenv("IDK_GL_INTEROP");
     EXPECT_EQ(ctx->glContext(), nullptr);
     EXPECT_FALSE(ctx->capabilities().glInterop);

@@ -9,6 +9,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "gl_probed_context.hpp"
 #include "gl/gl_compute.hpp"
 #include "gl/gl_sync.hpp"
 #include "gl/shared_memory.hpp"
@@ -22,13 +23,6 @@ namespace {
 
 using gl::SyncCapabilities;
 using gl::SyncMode;
-
-std::unique_ptr<vk::Context> probedContext() {
-    vk::ContextDesc desc;
-    desc.validation = true;
-    desc.probeGlInterop = true;
-    return std::make_unique<vk::Context>(desc);
-}
 
 TEST(GlInteropSyncTest, SemaphoresOnlyWhereBothApisHaveThem) {
     for (const char* override : {static_cast<const char*>(nullptr), "auto"}) {
@@ -61,7 +55,7 @@ TEST(GlInteropSyncTest, EnvironmentForcesCpuWaitsAndRefusesUnknownValues) {
 }
 
 TEST(GlInteropSyncTest, ProbedModeMatchesTheDeviceAndIsStated) {
-    auto ctx = probedContext();
+    auto ctx = glProbedContext();
     const gl::GlContext* gl = ctx->glContext();
     ASSERT_NE(gl, nullptr) << ctx->capabilities().glInteropNote;
     const SyncCapabilities caps = gl::querySyncCapabilities(*ctx, *gl);
@@ -81,7 +75,7 @@ TEST(GlInteropSyncTest, ProbedModeMatchesTheDeviceAndIsStated) {
 
 
 TEST(GlInteropSyncTest, HandOffRoundTripIsExactInTheProbedMode) {
-    auto ctx = probedContext();
+    auto ctx = glProbedContext();
     const gl::GlContext* gl = ctx->glContext();
     ASSERT_NE(gl, nullptr) << ctx->capabilities().glInteropNote;
     const uint32_t width = 16, height = 8, count = width * height;

@@ -16,6 +16,7 @@
 #include <memory>
 #include <sstream>
 
+#include "gl_probed_context.hpp"
 #include "gl/gl_compute.hpp"
 #include "passes/vxgi_gl_accumulate.hpp"
 #include "shared/vxgi_types.h"
@@ -24,16 +25,8 @@
 namespace idk::test {
 namespace {
 
-std::unique_ptr<vk::Context> probedContext(std::vector<vk::RungForce> forced = {}) {
-    vk::ContextDesc desc;
-    desc.validation = true;
-    desc.probeGlInterop = true;
-    desc.forcedRungs = std::move(forced);
-    return std::make_unique<vk::Context>(desc);
-}
-
 TEST(VxgiGlFp16Test, NotOfferedWithoutTheExtensionAndForcingItNamesIt) {
-    auto ctx = probedContext();
+    auto ctx = glProbedContext();
     ASSERT_NE(ctx->glContext(), nullptr) << ctx->capabilities().glInteropNote;
     if (ctx->capabilities().glAtomicFp16Vector) GTEST_SKIP() << "this GL has GL_NV_shader_atomic_fp16_vector";
     const vk::Ladder& l = ctx->ladder("vxgi-gl-accumulate");
@@ -43,7 +36,7 @@ TEST(VxgiGlFp16Test, NotOfferedWithoutTheExtensionAndForcingItNamesIt) {
     EXPECT_EQ(l.chosen, ctx->capabilities().glAtomicFloat ? vk::Rung::Fallback : l.options.back().rung);
     EXPECT_EQ(l.reason, "the OpenGL context lacks GL_NV_shader_atomic_fp16_vector");
 
-    auto forced = probedContext({vk::RungForce{"vxgi-gl-accumulate", vk::Rung::Native}});
+    auto forced = glProbedContext({vk::RungForce{"vxgi-gl-accumulate", vk::Rung::Native}});
     EXPECT_EQ(forced->forcedRungError(),
               "--rung vxgi-gl-accumulate=native: the OpenGL context lacks GL_NV_shader_atomic_fp16_vector (rungs this "
               "device can run: vxgi-gl-accumulate=fallback)");
@@ -51,7 +44,7 @@ TEST(VxgiGlFp16Test, NotOfferedWithoutTheExtensionAndForcingItNamesIt) {
 }
 
 TEST(VxgiGlFp16Test, TheGlDriverRefusesTheFp16ProgramNamingTheExtension) {
-    auto ctx = probedContext();
+    auto ctx = glProbedContext();
     ASSERT_NE(ctx->glContext(), nullptr) << ctx->capabilities().glInteropNote;
     if (ctx->capabilities().glAtomicFp16Vector) GTEST_SKIP() << "this GL has GL_NV_shader_atomic_fp16_vector";
     try {
@@ -75,7 +68,7 @@ std::string resolveSource() {
 }
 
 TEST(VxgiGlFp16Test, ResolveWritesTheSumsLayoutOnLlvmpipe) {
-    auto ctx = probedContext();
+    auto ctx = glProbedContext();
     const gl::GlContext* gl = ctx->glContext();
     ASSERT_NE(gl, nullptr) << ctx->capabilities().glInteropNote;
     constexpr GLuint n = 6;  // not a multiple of the 4^3 group: the edge groups' bounds check runs

@@ -21,13 +21,20 @@
 // (render::albedoTableData uploads it), reached through gPtAlbedoTables, which each shader that shades sets from
 // its scene or frame constants at the start of main() (a GLSL constant array indexed at run time would be copied
 // into a local variable at every lookup by glslang: tens of kilobytes each).
+// IDK_ALBEDO_TABLE is a table passed to a lookup function: a pointer in C++, its offset into the buffer in GLSL.
 #ifdef __cplusplus
 #define IDK_ALBEDO(table, i) table[i]
+#define IDK_ALBEDO_TABLE const float*
+#define IDK_ALBEDO_REF(table) table
+#define IDK_ALBEDO_READ(ref, i) ref[i]
 #else
 #extension GL_EXT_buffer_reference : require
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer PtAlbedoTablesRef { float v[]; };
 uint64_t gPtAlbedoTables = 0ul;
 #define IDK_ALBEDO(table, i) PtAlbedoTablesRef(gPtAlbedoTables).v[table##Offset + (i)]
+#define IDK_ALBEDO_TABLE uint
+#define IDK_ALBEDO_REF(table) table##Offset
+#define IDK_ALBEDO_READ(ref, i) PtAlbedoTablesRef(gPtAlbedoTables).v[(ref) + (i)]
 #endif
 
 IDK_GPU_BEGIN
@@ -40,16 +47,40 @@ IDK_INLINE uint ptAlbedoCell(float t, uint n, IDK_OUT(float) frac) {
     return i;
 }
 
-// E(mu, roughness) of GGX reflection with F = 1.
-IDK_INLINE float ptAlbedoMetal(float mu, float roughness) {
+// Bilinear lookup in a (mu, roughness) table of nMu x nRough nodes, mu fastest.
+IDK_INLINE float ptAlbedoBilinear(IDK_ALBEDO_TABLE table, float mu, uint nMu, float roughness, uint nRough) {
     float fx;
     float fy;
-    uint i = ptAlbedoCell(mu, kPtAlbedoMu, fx);
-    uint j = ptAlbedoCell(roughness, kPtAlbedoRough, fy);
-    uint k = j * kPtAlbedoMu + i;
-    float a = mix(IDK_ALBEDO(kPtAlbedoMetal, k), IDK_ALBEDO(kPtAlbedoMetal, k + 1u), fx);
-    float b = mix(IDK_ALBEDO(kPtAlbedoMetal, k + kPtAlbedoMu), IDK_ALBEDO(kPtAlbedoMetal, k + kPtAlbedoMu + 1u), fx);
+    uint i = ptAlbedoCell(mu, nMu, fx);
+    uint j = ptAlbedoCell(roughness, nRough, fy);
+    uint k = j * nMu + i;
+    float a = mix(IDK_ALBEDO_READ(table, k), IDK_ALBEDO_READ(table, k + 1u), fx);
+    float b = mix(IDK_ALBEDO_READ(table, k + nMu), IDK_ALBEDO_READ(table, k + nMu + 1u), fx);
     return mix(a, b, fy);
+}
+
+// Trilinear lookup in a (mu, roughness, IOR coordinate) table of nMu x nRough x nIor nodes, mu fastest.
+IDK_INLINE float ptAlbedoTrilinear(IDK_ALBEDO_TABLE table, float mu, uint nMu, float roughness, uint nRough,
+                                   float iorCoord, uint nIor) {
+    float fx;
+    float fy;
+    float fz;
+    uint i = ptAlbedoCell(mu, nMu, fx);
+    uint j = ptAlbedoCell(roughness, nRough, fy);
+    uint k = ptAlbedoCell(iorCoord, nIor, fz);
+    float e[2];
+    for (uint dk = 0u; dk < 2u; ++dk) {
+        uint row = ((k + dk) * nRough + j) * nMu + i;
+        float a = mix(IDK_ALBEDO_READ(table, row), IDK_ALBEDO_READ(table, row + 1u), fx);
+        float b = mix(IDK_ALBEDO_READ(table, row + nMu), IDK_ALBEDO_READ(table, row + nMu + 1u), fx);
+        e[dk] = mix(a, b, fy);
+    }
+    return mix(e[0], e[1], fz);
+}
+
+// E(mu, roughness) of GGX reflection with F = 1.
+IDK_INLINE float ptAlbedoMetal(float mu, float roughness) {
+    return ptAlbedoBilinear(IDK_ALBEDO_REF(kPtAlbedoMetal), mu, kPtAlbedoMu, roughness, kPtAlbedoRough);
 }
 
 IDK_INLINE float ptAlbedoMetalAvg(float roughness) {
@@ -60,37 +91,15 @@ IDK_INLINE float ptAlbedoMetalAvg(float roughness) {
 
 // Directional albedo of the sheen lobe with sheen colour 1.
 IDK_INLINE float ptAlbedoSheen(float mu, float roughness) {
-    float fx;
-    float fy;
-    uint i = ptAlbedoCell(mu, kPtAlbedoMu, fx);
-    uint j = ptAlbedoCell(roughness, kPtAlbedoRough, fy);
-    uint k = j * kPtAlbedoMu + i;
-    float a = mix(IDK_ALBEDO(kPtAlbedoSheen, k), IDK_ALBEDO(kPtAlbedoSheen, k + 1u), fx);
-    float b = mix(IDK_ALBEDO(kPtAlbedoSheen, k + kPtAlbedoMu), IDK_ALBEDO(kPtAlbedoSheen, k + kPtAlbedoMu + 1u), fx);
-    return mix(a, b, fy);
-}
-
-IDK_INLINE float ptAlbedoDielectricAt(uint side, uint k, uint j, uint i) {
-    return IDK_ALBEDO(kPtAlbedoDielectric, ((side * kPtAlbedoDielIor + k) * kPtAlbedoDielRough + j) * kPtAlbedoDielMu + i);
+    return ptAlbedoBilinear(IDK_ALBEDO_REF(kPtAlbedoSheen), mu, kPtAlbedoMu, roughness, kPtAlbedoRough);
 }
 
 // Reflection + refraction albedo of a rough dielectric interface; inside: light leaves into the denser side's
-// interior (eta = 1 / ior).
+// interior (eta = 1 / ior). The table holds the outside half, then the inside half.
 IDK_INLINE float ptAlbedoDielectric(float mu, float roughness, float ior, bool inside) {
-    float fx;
-    float fy;
-    float fz;
-    uint i = ptAlbedoCell(mu, kPtAlbedoDielMu, fx);
-    uint j = ptAlbedoCell(roughness, kPtAlbedoDielRough, fy);
-    uint k = ptAlbedoCell(ptAlbedoIorCoord(ior), kPtAlbedoDielIor, fz);
-    uint side = inside ? 1u : 0u;
-    float e[2];
-    for (uint dk = 0u; dk < 2u; ++dk) {
-        float a = mix(ptAlbedoDielectricAt(side, k + dk, j, i), ptAlbedoDielectricAt(side, k + dk, j, i + 1u), fx);
-        float b = mix(ptAlbedoDielectricAt(side, k + dk, j + 1u, i), ptAlbedoDielectricAt(side, k + dk, j + 1u, i + 1u), fx);
-        e[dk] = mix(a, b, fy);
-    }
-    return mix(e[0], e[1], fz);
+    uint sideOffset = inside ? kPtAlbedoDielIor * kPtAlbedoDielRough * kPtAlbedoDielMu : 0u;
+    return ptAlbedoTrilinear(IDK_ALBEDO_REF(kPtAlbedoDielectric) + sideOffset, mu, kPtAlbedoDielMu, roughness,
+                             kPtAlbedoDielRough, ptAlbedoIorCoord(ior), kPtAlbedoDielIor);
 }
 
 // KHR_materials_anisotropy: E(wo) of the anisotropic GGX with F = 1 for a local direction (x along the anisotropy
@@ -134,26 +143,11 @@ IDK_INLINE float ptAlbedoAnisoAvg(float roughness, float strength) {
                mix(IDK_ALBEDO(kPtAlbedoAnisoAvg, b), IDK_ALBEDO(kPtAlbedoAnisoAvg, b + 1u), fr), fs);
 }
 
-IDK_INLINE float ptAlbedoSpecularAt(uint k, uint j, uint i) {
-    return IDK_ALBEDO(kPtAlbedoSpecular, (k * kPtAlbedoSpecRough + j) * kPtAlbedoDielMu + i);
-}
-
 // Albedo of the GGX reflection lobe alone with the exact dielectric Fresnel of `ior` (>= 1; light from outside),
 // single scattering.
 IDK_INLINE float ptAlbedoSpecular(float mu, float roughness, float ior) {
-    float fx;
-    float fy;
-    float fz;
-    uint i = ptAlbedoCell(mu, kPtAlbedoDielMu, fx);
-    uint j = ptAlbedoCell(roughness, kPtAlbedoSpecRough, fy);
-    uint k = ptAlbedoCell(ptAlbedoIorCoord(ior), kPtAlbedoSpecIor, fz);
-    float e[2];
-    for (uint dk = 0u; dk < 2u; ++dk) {
-        float a = mix(ptAlbedoSpecularAt(k + dk, j, i), ptAlbedoSpecularAt(k + dk, j, i + 1u), fx);
-        float b = mix(ptAlbedoSpecularAt(k + dk, j + 1u, i), ptAlbedoSpecularAt(k + dk, j + 1u, i + 1u), fx);
-        e[dk] = mix(a, b, fy);
-    }
-    return mix(e[0], e[1], fz);
+    return ptAlbedoTrilinear(IDK_ALBEDO_REF(kPtAlbedoSpecular), mu, kPtAlbedoDielMu, roughness, kPtAlbedoSpecRough,
+                             ptAlbedoIorCoord(ior), kPtAlbedoSpecIor);
 }
 
 // Its cosine-weighted average, of the interpolated rows (so that it is exactly the average of ptAlbedoSpecular).

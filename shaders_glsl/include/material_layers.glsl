@@ -221,21 +221,39 @@ vec3 dielectricFresnel(SurfaceLayers s, float VdotH) {
     return s.specular * (f0 + (1.0 - f0) * w);
 }
 
-// W(n.v, n.l): the albedo-scaled weight of the base's Lambert lobe (shared/pt_energy.h), the path tracers' for the
-// raster's dielectric (IOR 1.5, f0 0.04, KHR_materials_specular's specular and strongest f0'); perceptual roughness
-// already clamped. Reciprocal, and a white base reflects exactly 1 - Es(n.v). Per light here; on a real GPU the
-// n.v and average terms (and their eight table reads) would be hoisted out of the light loop.
-float dielectricDiffuseWeight(SurfaceLayers s, float roughness, float NdotV, float NdotL) {
-    const float kIor = 1.5;
-    const float kF0 = 0.04;
+// W(n.v, n.l) = (1 - Es(n.v)) (1 - Es(n.l)) / (1 - Es_avg): the albedo-scaled weight of the base's Lambert lobe
+// (shared/pt_energy.h), the path tracers' for the raster's dielectric (IOR 1.5, f0 0.04, KHR_materials_specular's
+// specular and strongest f0'); perceptual roughness already clamped. Reciprocal, and a white base reflects exactly
+// 1 - Es(n.v). DiffuseWeightView holds the part that does not depend on the light.
+const float kDiffuseWeightIor = 1.5;
+const float kDiffuseWeightF0 = 0.04;
+struct DiffuseWeightView {
+    vec3 coeffs;      // ptDielectricAlbedoCoeffs of the dielectric
+    float roughness;  // perceptual, clamped
+    float view;       // max(1 - Es(n.v), 0)
+    float average;    // max(1 - Es_avg, 1e-4)
+};
+
+DiffuseWeightView diffuseWeightView(SurfaceLayers s, float roughness, float NdotV) {
+    const float kIor = kDiffuseWeightIor;
+    const float kF0 = kDiffuseWeightF0;
     vec3 f0 = min(vec3(kF0) * s.specularColor, vec3(1.0));
     float wAvg = clamp((ptFresnelDielectricAverage(kIor) - kF0) / (1.0 - kF0), 0.0, 1.0);
     float eAvg = ptAlbedoMetalAvg(roughness);
     vec3 c = ptDielectricAlbedoCoeffs(s.specular, f0, kF0, s.specular * (f0 + (1.0 - f0) * wAvg), eAvg, false);
     float esAvg = ptDielectricAlbedoOf(c, kF0, eAvg, ptAlbedoSpecularAvg(roughness, kIor));
     float esV = ptDielectricAlbedoOf(c, kF0, ptAlbedoMetal(NdotV, roughness), ptAlbedoSpecular(NdotV, roughness, kIor));
-    float esL = ptDielectricAlbedoOf(c, kF0, ptAlbedoMetal(NdotL, roughness), ptAlbedoSpecular(NdotL, roughness, kIor));
-    return max(1.0 - esV, 0.0) * max(1.0 - esL, 0.0) / max(1.0 - esAvg, 1e-4);
+    return DiffuseWeightView(c, roughness, max(1.0 - esV, 0.0), max(1.0 - esAvg, 1e-4));
+}
+
+float dielectricDiffuseWeight(DiffuseWeightView w, float NdotL) {
+    float esL = ptDielectricAlbedoOf(w.coeffs, kDiffuseWeightF0, ptAlbedoMetal(NdotL, w.roughness),
+                                     ptAlbedoSpecular(NdotL, w.roughness, kDiffuseWeightIor));
+    return w.view * max(1.0 - esL, 0.0) / w.average;
+}
+
+float dielectricDiffuseWeight(SurfaceLayers s, float roughness, float NdotV, float NdotL) {
+    return dielectricDiffuseWeight(diffuseWeightView(s, roughness, NdotV), NdotL);
 }
 
 // KHR_materials_diffuse_transmission: f * |n.l| for a light behind the surface (n.l <= 0), beneath the clearcoat

@@ -43,17 +43,20 @@ vec3 ambientReflected(SurfaceLayers layers, vec3 n, vec3 v, vec3 baseColor, floa
     return ambient;
 }
 
-// KHR_materials_diffuse_transmission (thin-surface approximation, material_layers.glsl): the irradiance from
-// behind (SH on -n) through the surface, weighted like the reflected diffuse ambient (1 - E_s, the sheen and coat
-// layers above). Only the SH ambient: VXGI and SSR replace the reflected side's light, not this.
-vec3 ambientTransmitted(SurfaceLayers layers, vec3 n, vec3 v, vec3 baseColor, float metallic, float roughness,
-                        vec3 irradianceBehind) {
+// KHR_materials_diffuse_transmission (thin-surface approximation, material_layers.glsl): the irradiance E from
+// behind (SH on -n) through the surface, with the punctual lobe's weight W(n.v, mu) (dielectricDiffuseWeight, the
+// path tracers' ptDiffuseWeight) integrated over the hemisphere behind: the cosine-weighted mean of 1 - Es(mu) is
+// 1 - Es_avg, W's denominator, so E takes (1 - Es(n.v)) exactly, as the reflected split-sum diffuse takes its
+// 1 - E_s in front (exact for uniform light behind; SH light that varies over the hemisphere would weight the
+// grazing directions a little less). The sheen and coat layers above as in direct light. Only the SH ambient:
+// VXGI and SSR replace the reflected side's light, not this. roughness: the perceptual roughness the punctual lobe
+// takes.
+vec3 ambientTransmitted(SurfaceLayers layers, vec3 n, vec3 v, float metallic, float roughness, vec3 irradianceBehind) {
     if ((layers.flags & kMaterialDiffuseTransmission) == 0u) return vec3(0.0);
     float NdotV = max(dot(n, v), 1e-4);
-    vec3 specularAlbedo = ambientSpecularAlbedo(layers, baseColor, metallic, clamp(roughness, kMinRoughness, 1.0), n,
-                                                v);
-    vec3 t = (1.0 - clamp(specularAlbedo, 0.0, 1.0)) * layers.diffuseTransmissionColor *
-             (layers.diffuseTransmission * (1.0 - metallic) / kPi) * irradianceBehind;
+    float pass = metallic < 1.0 ? diffuseWeightView(layers, clamp(roughness, kMinRoughness, 1.0), NdotV).view : 0.0;
+    vec3 t = layers.diffuseTransmissionColor * (layers.diffuseTransmission * (1.0 - metallic) / kPi * pass) *
+             irradianceBehind;
     if ((layers.flags & kMaterialSheen) != 0u)
         t *= max(1.0 - maxOf(layers.sheenColor) * ptAlbedoSheen(NdotV, layers.sheenRoughness), 0.0);
     if ((layers.flags & kMaterialClearcoat) != 0u) t *= 1.0 - layers.clearcoat * fresnelSchlick(vec3(0.04), NdotV).x;
@@ -89,7 +92,7 @@ vec3 shadeSurface(GpuFrame f, uint64_t pointShadows, vec3 position, vec3 n, vec3
                                     environmentRadiance(f, rBase,
                                                         environmentLod(f, clamp(ambientRoughness, kMinRoughness, 1.0))),
                                     environmentRadiance(f, r, environmentLod(f, cr)));
-    ambient += ambientTransmitted(layers, n, v, baseColor, metallic, ambientRoughness, shIrradiance(f, -n));
+    ambient += ambientTransmitted(layers, n, v, metallic, roughness, shIrradiance(f, -n));
     return radiance + ambient * occlusion;
 }
 

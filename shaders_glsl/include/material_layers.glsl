@@ -224,7 +224,9 @@ vec3 dielectricFresnel(SurfaceLayers s, float VdotH) {
 // W(n.v, n.l) = (1 - Es(n.v)) (1 - Es(n.l)) / (1 - Es_avg): the albedo-scaled weight of the base's Lambert lobe
 // (shared/pt_energy.h), the path tracers' for the raster's dielectric (IOR 1.5, f0 0.04, KHR_materials_specular's
 // specular and strongest f0'); perceptual roughness already clamped. Reciprocal, and a white base reflects exactly
-// 1 - Es(n.v). DiffuseWeightView holds the part that does not depend on the light.
+// 1 - Es(n.v). DiffuseWeightView holds the part that does not depend on the light, computed once per pixel
+// (surface_lighting.glsl shadeSurface): of the 30 table entries the whole weight reads (Es(n.v) and Es(n.l) 12
+// each, Es_avg 6) only Es(n.l)'s 12 remain per light.
 const float kDiffuseWeightIor = 1.5;
 const float kDiffuseWeightF0 = 0.04;
 struct DiffuseWeightView {
@@ -252,20 +254,17 @@ float dielectricDiffuseWeight(DiffuseWeightView w, float NdotL) {
     return w.view * max(1.0 - esL, 0.0) / w.average;
 }
 
-float dielectricDiffuseWeight(SurfaceLayers s, float roughness, float NdotV, float NdotL) {
-    return dielectricDiffuseWeight(diffuseWeightView(s, roughness, NdotV), NdotL);
-}
 
 // KHR_materials_diffuse_transmission: f * |n.l| for a light behind the surface (n.l <= 0), beneath the clearcoat
 // and sheen layers as the reflected base is (the layer weights depend on n.v only). What passes the dielectric is
 // the Lambert lobes' albedo-scaled weight at |n.l| (dielectricDiffuseWeight), the path tracers' ptDiffuseWeight
-// for this lobe, so a back-lit leaf is the front-lit Lambert mirrored, specular layer included.
-vec3 diffuseTransmissionCosine(SurfaceLayers s, float metallic, float perceptualRoughness, vec3 n, vec3 v, vec3 l) {
+// for this lobe, so a back-lit leaf is the front-lit Lambert mirrored, specular layer included. w: the weight's
+// light-independent part (diffuseWeightView of s at the clamped roughness and n.v).
+vec3 diffuseTransmissionCosine(SurfaceLayers s, DiffuseWeightView w, float metallic, vec3 n, vec3 v, vec3 l) {
     if ((s.flags & kMaterialDiffuseTransmission) == 0u || s.diffuseTransmission <= 0.0) return vec3(0.0);
     float NdotL = dot(n, l);
     float NdotV = max(dot(n, v), 1e-4);
-    float roughness = clamp(perceptualRoughness, kMinRoughness, 1.0);
-    float pass = metallic < 1.0 ? dielectricDiffuseWeight(s, roughness, NdotV, -NdotL) : 0.0;
+    float pass = metallic < 1.0 ? dielectricDiffuseWeight(w, -NdotL) : 0.0;
     vec3 result = s.diffuseTransmissionColor * (s.diffuseTransmission * (1.0 - metallic) / kPi * pass);
     if ((s.flags & kMaterialSheen) != 0u)
         result *= max(1.0 - maxOf(s.sheenColor) * ptAlbedoSheen(NdotV, s.sheenRoughness), 0.0);
@@ -273,16 +272,21 @@ vec3 diffuseTransmissionCosine(SurfaceLayers s, float metallic, float perceptual
     return result * -NdotL;
 }
 
-// f(l, v) * NdotL with the material's extension layers.
-vec3 layeredBrdfCosine(SurfaceLayers s, vec3 baseColor, float metallic, float perceptualRoughness, vec3 n, vec3 v,
-                       vec3 l) {
+// The diffuse weight's light-independent part for layeredBrdfCosine, once per pixel: without extension flags the
+// dielectric is the plain one (specular 1, colour 1) whatever the factors hold.
+DiffuseWeightView surfaceDiffuseWeightView(SurfaceLayers s, float perceptualRoughness, vec3 n, vec3 v) {
+    return diffuseWeightView(s.flags == 0u ? noLayers() : s, clamp(perceptualRoughness, kMinRoughness, 1.0),
+                             max(dot(n, v), 1e-4));
+}
+
+// f(l, v) * NdotL with the material's extension layers; w: surfaceDiffuseWeightView(s, perceptualRoughness, n, v).
+vec3 layeredBrdfCosine(SurfaceLayers s, DiffuseWeightView w, vec3 baseColor, float metallic, float perceptualRoughness,
+                       vec3 n, vec3 v, vec3 l) {
     float NdotL = dot(n, l);
-    if (NdotL <= 0.0) return diffuseTransmissionCosine(s, metallic, perceptualRoughness, n, v, l);
+    if (NdotL <= 0.0) return diffuseTransmissionCosine(s, w, metallic, n, v, l);
     float NdotV = max(dot(n, v), 1e-4);
     float roughness = clamp(perceptualRoughness, kMinRoughness, 1.0);
-    // Without extension flags the dielectric is the plain one (specular 1, colour 1) whatever the factors hold.
-    float wDiffuse = metallic < 1.0 ? dielectricDiffuseWeight(s.flags == 0u ? noLayers() : s, roughness, NdotV, NdotL)
-                                    : 0.0;
+    float wDiffuse = metallic < 1.0 ? dielectricDiffuseWeight(w, NdotL) : 0.0;
     if (s.flags == 0u) return brdfCosine(baseColor, metallic, perceptualRoughness, wDiffuse, n, v, l);
     vec3 h = normalize(l + v);
     float NdotH = max(dot(n, h), 0.0);

@@ -129,6 +129,8 @@ void FrameInputs::addPasses(FrameContext& f, render::GpuScene& s, const render::
                      std::any_of(s.materials().begin(), s.materials().end(), [](const gpu::GpuMaterial& m) {
                          return (m.flags & gpu::kMaterialAnisotropy) != 0u;
                      });
+    // Its spill target only for scenes with a material whose texels exceed the first target's bits.
+    sb.layerSpill = sb.layerTexels && s.features().hasSpilledLayerTexels;
     if (s.materialsDirty() && sb.materials.valid()) {
         sb.materials = passes::addSceneUpdatePass(f.graph, sb.materials, s.materials());
         s.clearMaterialsDirty();

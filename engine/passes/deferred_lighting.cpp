@@ -26,6 +26,7 @@ graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Cont
             for (graph::TextureHandle t : {g.albedo, g.normal, g.material, g.emissive, g.depth})
                 b.read(t, graph::Access::StorageRead, kCs);
             if (g.layers.valid()) b.read(g.layers, graph::Access::StorageRead, kCs);
+            if (g.layerSpill.valid()) b.read(g.layerSpill, graph::Access::StorageRead, kCs);
             b.read(environment, graph::Access::SampledRead, kCs);
             b.read(frame, graph::Access::StorageRead, kCs);
             if (lights.valid()) b.read(lights, graph::Access::StorageRead, kCs);
@@ -70,6 +71,7 @@ graph::TextureHandle addDeferredLightingPass(graph::RenderGraph& graph, vk::Cont
                 in.indirect.specular.valid() ? pc.texture(in.indirect.specular).storageIndex : gpu::kNoVxgi;
             push.ssr = in.reflections.valid() ? pc.texture(in.reflections).storageIndex : gpu::kSsrNoImage;
             push.layers = g.layers.valid() ? pc.texture(g.layers).storageIndex : gpu::kLightingNoLayers;
+            push.layerSpill = g.layerSpill.valid() ? pc.texture(g.layerSpill).storageIndex : gpu::kLightingNoLayers;
             vk::pushConstants(cmd, ctx, push);
             VkExtent3D extent = pc.texture(*written).extent;
             vkCmdDispatch(cmd, vk::groupCount(extent.width, gpu::kLightingGroupSize),

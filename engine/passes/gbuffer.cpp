@@ -1,7 +1,7 @@
 // gbuffer.cpp: rasterizes every (instance, primitive) of the GPU scene with ONE vkCmdDrawIndexedIndirect
 // (gl_DrawID selects instance and material) into albedo, normal, material and emissive targets plus depth, and
 // for scenes with KHR_materials_specular/_clearcoat/_sheen textures or KHR_materials_anisotropy a layers target
-// with their texels and the anisotropy direction.
+// with their texels and the anisotropy direction (plus a spill target for materials whose texels exceed its bits).
 // Ports IDKEngine's RasterPipeline G-buffer step (GBuffer/VertexPath/vertex.glsl + GBuffer/fragment.glsl).
 // Deviation: IDKEngine draws twice (single-sided with culling, then double-sided); here one draw with culling
 // off and back faces of single-sided materials rejected in the fragment shader. With GPU culling (passes/cull.cpp)
@@ -42,6 +42,8 @@ constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;      // attachment only,
 constexpr VkFormat kIdFormat = VK_FORMAT_R32G32_UINT;        // surface IDs (optional): draw, triangle
 // Extension texels (optional): packUnorm4x8 words of include/gbuffer_fragment.glsl.
 constexpr VkFormat kLayersFormat = VK_FORMAT_R32G32B32A32_UINT;
+// Texels the layers target has no bits for (include/gbuffer_layer_bits.glsl): 48 bits used of 64.
+constexpr VkFormat kLayerSpillFormat = VK_FORMAT_R32G32_UINT;
 
 VkRenderingAttachmentInfo colorAttachment(VkImageView view) {
     VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -86,6 +88,8 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
                 out->depth = b.write(over.depth, graph::Access::ColorReadWrite);
                 out->depthAttachment = b.write(over.depthAttachment, graph::Access::DepthWrite);
                 if (over.layers.valid()) out->layers = b.write(over.layers, graph::Access::ColorReadWrite);
+                if (over.layerSpill.valid())
+                    out->layerSpill = b.write(over.layerSpill, graph::Access::ColorReadWrite);
             } else {
                 out->albedo = target(b, "gbuffer albedo", kAlbedoFormat, graph::Access::ColorWrite);
                 out->normal = target(b, "gbuffer normal", kNormalFormat, graph::Access::ColorWrite);
@@ -95,6 +99,8 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
                 out->depthAttachment = target(b, "gbuffer depth attachment", kDepthFormat, graph::Access::DepthWrite);
                 if (ids.valid()) out->ids = b.write(ids, graph::Access::ColorWrite);
                 if (s.layerTexels) out->layers = target(b, "gbuffer layers", kLayersFormat, graph::Access::ColorWrite);
+                if (s.layerTexels && s.layerSpill)
+                    out->layerSpill = target(b, "gbuffer layer spill", kLayerSpillFormat, graph::Access::ColorWrite);
             }
             b.read(frame, graph::Access::StorageRead, kVs);
             if (s.drawCount == 0) return;
@@ -118,19 +124,24 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
             VkExtent2D extent = pc.outputExtent();
             const bool writeIds = out->ids.valid();
             const bool writeLayers = out->layers.valid();
+            const bool writeSpill = out->layerSpill.valid();
 
             std::vector<VkRenderingAttachmentInfo> colors = {
                 colorAttachment(pc.view(out->albedo)), colorAttachment(pc.view(out->normal)),
                 colorAttachment(pc.view(out->material)), colorAttachment(pc.view(out->emissive)),
                 colorAttachment(pc.view(out->depth))};
             colors[4].clearValue.color = {{1.0f, 0.0f, 0.0f, 0.0f}};  // background depth
-            // Location 5: the layer texels; location 6: the surface IDs. Without the texels but with IDs, slot 5 is
-            // an attachment without a view (its writes are discarded, as Vulkan defines for VK_NULL_HANDLE).
-            if (writeLayers || writeIds)
+            // Location 5: the layer texels; location 6: their spill; location 7: the surface IDs. A slot below a used
+            // one is an attachment without a view (its writes are discarded, as Vulkan defines for VK_NULL_HANDLE).
+            // The IDs come last so that a frame without them has no such gap (the shader writes every slot below).
+            if (writeLayers || writeSpill || writeIds)
                 colors.push_back(writeLayers ? colorAttachment(pc.view(out->layers)) : colorAttachment(VK_NULL_HANDLE));
+            if (writeSpill || writeIds)
+                colors.push_back(writeSpill ? colorAttachment(pc.view(out->layerSpill))
+                                            : colorAttachment(VK_NULL_HANDLE));
             if (writeIds) {
                 colors.push_back(colorAttachment(pc.view(out->ids)));
-                colors[6].clearValue.color.uint32[0] = colors[6].clearValue.color.uint32[1] = UINT32_MAX;
+                colors[7].clearValue.color.uint32[0] = colors[7].clearValue.color.uint32[1] = UINT32_MAX;
             }
             if (load)
                 for (VkRenderingAttachmentInfo& a : colors) a.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
@@ -148,7 +159,10 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
                                                  : vk::ShaderId::gbuffer_gbuffer_vert;
                 desc.fragment = writeIds ? vk::ShaderId::gbuffer_gbuffer_ids_frag : vk::ShaderId::gbuffer_gbuffer_frag;
                 desc.colorFormats = {kAlbedoFormat, kNormalFormat, kMaterialFormat, kEmissiveFormat, kDepthCopyFormat};
-                if (writeLayers || writeIds) desc.colorFormats.push_back(writeLayers ? kLayersFormat : VK_FORMAT_UNDEFINED);
+                if (writeLayers || writeSpill || writeIds)
+                    desc.colorFormats.push_back(writeLayers ? kLayersFormat : VK_FORMAT_UNDEFINED);
+                if (writeSpill || writeIds)
+                    desc.colorFormats.push_back(writeSpill ? kLayerSpillFormat : VK_FORMAT_UNDEFINED);
                 if (writeIds) desc.colorFormats.push_back(kIdFormat);
                 desc.depthFormat = kDepthFormat;
                 desc.depthCompare = VK_COMPARE_OP_LESS;  // scene::camera convention: depth 0 near, 1 far

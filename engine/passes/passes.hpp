@@ -64,6 +64,8 @@ struct SceneBuffers {
     // The G-buffer adds its layers target: scene::SceneFeatures::hasLayerTextures, or an anisotropic material
     // (frame/frame_inputs.cpp).
     bool layerTexels = false;
+    // ... and its spill target (RG32UI): scene::SceneFeatures::hasSpilledLayerTexels (implies layerTexels).
+    bool layerSpill = false;
 };
 
 // scene_update.cpp: copies patched materials (GpuScene::setTexture) into the material buffer; returns the
@@ -99,6 +101,9 @@ struct GBufferOutputs {
     // RGBA32UI texels of the KHR_materials_specular / _clearcoat / _sheen textures and the KHR_materials_anisotropy
     // direction (include/gbuffer_fragment.glsl packs them), only when SceneBuffers::layerTexels.
     graph::TextureHandle layers;
+    // RG32UI texels the layers target has no bits for in materials that combine extensions (diffuse transmission,
+    // anisotropy direction: include/gbuffer_layer_bits.glsl), only when SceneBuffers::layerSpill.
+    graph::TextureHandle layerSpill;
 };
 // `culled` (passes/culling.hpp, optional): draw the culling pass's compacted commands with
 // vkCmdDrawIndexedIndirectCount instead of every scene draw. `drawOver` (optional, with `culled`): load and keep

@@ -31,6 +31,7 @@ graph::TextureHandle addVrsLightingRatePass(graph::RenderGraph& graph, vk::Conte
                                            in.gbuffer.emissive, in.gbuffer.depth})
                 b.read(t, graph::Access::StorageRead, kFs);
             if (in.gbuffer.layers.valid()) b.read(in.gbuffer.layers, graph::Access::StorageRead, kFs);
+            if (in.gbuffer.layerSpill.valid()) b.read(in.gbuffer.layerSpill, graph::Access::StorageRead, kFs);
             b.read(in.environment, graph::Access::SampledRead, kFs);
             b.read(in.frame, graph::Access::StorageRead, kFs);
             if (in.lights.valid()) b.read(in.lights, graph::Access::StorageRead, kFs);
@@ -116,6 +117,8 @@ graph::TextureHandle addVrsLightingRatePass(graph::RenderGraph& graph, vk::Conte
             p.vxgiSpecular = l.indirect.specular.valid() ? pc.texture(l.indirect.specular).storageIndex : gpu::kNoVxgi;
             p.ssr = l.reflections.valid() ? pc.texture(l.reflections).storageIndex : gpu::kSsrNoImage;
             p.layers = in.gbuffer.layers.valid() ? pc.texture(in.gbuffer.layers).storageIndex : gpu::kLightingNoLayers;
+            p.layerSpill = in.gbuffer.layerSpill.valid() ? pc.texture(in.gbuffer.layerSpill).storageIndex
+                                                          : gpu::kLightingNoLayers;
             push.invocations = pc.buffer(*counted).address;
             vk::pushConstants(cmd, ctx, push);
             vkCmdDraw(cmd, 3, 1, 0, 0);

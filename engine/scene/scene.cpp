@@ -48,6 +48,15 @@ SceneFeatures Scene::features() const {
                              m.clearcoatNormalTexture || m.anisotropyTexture ||
                              (m.diffuseTransmission > 0.0f && !m.unlit &&
                               (m.diffuseTransmissionTexture || m.diffuseTransmissionColorTexture));
+        if (!m.unlit) {  // the same conditions as the GPU material's flags (render/gpu_scene.cpp)
+            const bool diffTransTextured = m.diffuseTransmission > 0.0f &&
+                                           (m.diffuseTransmissionTexture || m.diffuseTransmissionColorTexture);
+            const bool coatNormal = m.clearcoat > 0.0f && m.clearcoatNormalTexture.has_value();
+            const bool anisotropic = m.anisotropyStrength > 0.0f;
+            f.hasSpilledLayerTexels = f.hasSpilledLayerTexels ||
+                                      (diffTransTextured && (m.iridescence > 0.0f || coatNormal || anisotropic)) ||
+                                      (anisotropic && coatNormal);
+        }
         f.hasNormalMaps = f.hasNormalMaps || m.normalTexture.has_value();
         f.hasTransmission = f.hasTransmission || m.transmission > 0.0f || m.transmissionTexture.has_value();
         f.hasVolume = f.hasVolume || m.thickness > 0.0f;

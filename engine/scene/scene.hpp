@@ -299,6 +299,10 @@ struct SceneFeatures {
     // KHR_materials_specular / _clearcoat / _sheen: a drawn material has one of their textures (the
     // G-buffer then carries the per-pixel texels to the lighting pass).
     bool hasLayerTextures = false;
+    // A drawn material combines extensions whose per-pixel texels exceed the layers target's bits
+    // (include/gbuffer_layer_bits.glsl): diffuse-transmission textures with iridescence, a clearcoat normal texture
+    // or anisotropy, or anisotropy with a clearcoat normal texture. The G-buffer then adds its spill target.
+    bool hasSpilledLayerTexels = false;
 };
 
 struct Scene {

@@ -14,6 +14,8 @@ layout(set = 0, binding = kBindingStorageImages, rgba8) uniform image2D gImagesR
 layout(set = 0, binding = kBindingStorageImages, r32f) uniform image2D gImagesR32f[];
 layout(set = 0, binding = kBindingStorageImages, r32ui) uniform uimage2D gImagesR32ui[];
 layout(set = 0, binding = kBindingStorageImages, rgba32ui) uniform uimage2D gImagesRgba32ui[];
+// rg32ui is one of SPIR-V's "extended" storage formats; Vulkan requires storage support for R32G32_UINT itself.
+layout(set = 0, binding = kBindingStorageImages, rg32ui) uniform uimage2D gImagesRg32ui[];
 layout(set = 0, binding = kBindingSamplers) uniform sampler gSamplers[];
 
 // Declares `name[]`, the storage-buffer binding viewed as arrays of `type`: name[index].data[i].

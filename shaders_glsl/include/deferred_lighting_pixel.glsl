@@ -46,9 +46,13 @@ bool deferredLightingPixel(LightingPush p, GpuFrame f, ivec2 pixel, out vec4 res
         vec4 specularColorT = unpackUnorm4x8(packed.y), sheenColorT = unpackUnorm4x8(packed.z);
         GpuMaterial material = MaterialBuffer(p.materials).data[layered - 1u];
         vec2 alphas = vec2(specularColorT.a, sheenColorT.a);  // gbuffer_layer_bits.glsl says what they hold
+        // The spill target (allocated for scenes whose materials combine more texels than `packed` holds).
+        const bool haveSpill = p.layerSpill != kLightingNoLayers;
+        uvec2 spill = haveSpill ? imageLoad(gImagesRg32ui[p.layerSpill], pixel).xy : uvec2(0u);
         float diffTransT;
         vec3 diffTransColorT;
-        unpackDiffuseTransmissionTexels(material.flags, alphas, packed.w, diffTransT, diffTransColorT);
+        unpackDiffuseTransmissionTexels(material.flags, alphas, packed.w, haveSpill, spill.x, diffTransT,
+                                        diffTransColorT);
         LayerTexels t = LayerTexels(scalars.x, srgbDecode(specularColorT.rgb), scalars.y, scalars.z,
                                     srgbDecode(sheenColorT.rgb), scalars.w, diffTransT, srgbDecode(diffTransColorT));
         layers = texturedLayers(layers, t);
@@ -59,6 +63,8 @@ bool deferredLightingPixel(LightingPush p, GpuFrame f, ivec2 pixel, out vec4 res
         // KHR_materials_anisotropy: the direction the G-buffer stored (none: the isotropic lobe at the rms alpha).
         if (layers.anisotropyStrength > 0.0 && layerBitsHoldAnisotropyDirection(material.flags))
             layers.anisotropyDirection = decodeAnisotropyDirection(packed.w & 0xFFFFu, n);
+        else if (layers.anisotropyStrength > 0.0 && haveSpill && layerBitsSpillAnisotropyDirection(material.flags))
+            layers.anisotropyDirection = decodeAnisotropyDirection(spill.y, n);
     }
     vec3 radiance = emissive.rgb;
     gShadowPixel = pixel;  // ray-traced shadows read their mask here (include/rt_shadows.glsl)

@@ -34,8 +34,11 @@ layout(location = 4) out float outDepth;    // R32F: the fragment's depth (what 
 // material's anisotropyTexture B in w's top byte. Discarded when the scene has neither such a texture nor an
 // anisotropic material (no attachment).
 layout(location = 5) out uvec4 outLayers;
+// RG32UI: the texels the layers target has no bits for in a material combining extensions (gbuffer_layer_bits.glsl:
+// diffuse transmission, anisotropy direction). Discarded unless the scene needs it (no attachment).
+layout(location = 6) out uvec2 outLayerSpill;
 #ifdef GBUFFER_IDS
-layout(location = 6) out uvec2 outIds;      // RG32UI: the draw and its triangle (gl_PrimitiveID) of the kept fragment
+layout(location = 7) out uvec2 outIds;      // RG32UI: the draw and its triangle (gl_PrimitiveID) of the kept fragment
 #endif
 
 vec4 sampleSlot(GpuTextureSlot slot) { return sampleMaterialSlot(slot, inUv, inUv1); }
@@ -109,6 +112,7 @@ void main() {
     outLayers = uvec4(packUnorm4x8(vec4(specularT, coatT, coatRoughnessT, sheenRoughnessT)),
                       packUnorm4x8(vec4(srgbEncode(clamp(specularColorT, 0.0, 1.0)), alphas.x)),
                       packUnorm4x8(vec4(srgbEncode(clamp(sheenColorT, 0.0, 1.0)), alphas.y)), w);
+    outLayerSpill = packLayerSpill(m.flags, diffTransT, diffTransColorEnc, anisotropyWord);
     outDepth = gl_FragCoord.z;
 #ifdef GBUFFER_IDS
     outIds = uvec2(inDraw, uint(gl_PrimitiveID));

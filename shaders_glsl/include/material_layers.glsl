@@ -221,33 +221,50 @@ vec3 dielectricFresnel(SurfaceLayers s, float VdotH) {
     return s.specular * (f0 + (1.0 - f0) * w);
 }
 
-// W(n.v, n.l): the albedo-scaled weight of the base's Lambert lobe (shared/pt_energy.h), the path tracers' for the
-// raster's dielectric (IOR 1.5, f0 0.04, KHR_materials_specular's specular and strongest f0'); perceptual roughness
-// already clamped. Reciprocal, and a white base reflects exactly 1 - Es(n.v). Per light here; on a real GPU the
-// n.v and average terms (and their eight table reads) would be hoisted out of the light loop.
-float dielectricDiffuseWeight(SurfaceLayers s, float roughness, float NdotV, float NdotL) {
-    const float kIor = 1.5;
-    const float kF0 = 0.04;
+// W(n.v, n.l) = (1 - Es(n.v)) (1 - Es(n.l)) / (1 - Es_avg): the albedo-scaled weight of the base's Lambert lobe
+// (shared/pt_energy.h), the path tracers' for the raster's dielectric (IOR 1.5, f0 0.04, KHR_materials_specular's
+// specular and strongest f0'); perceptual roughness already clamped. Reciprocal, and a white base reflects exactly
+// 1 - Es(n.v). DiffuseWeightView holds the part that does not depend on the light, computed once per pixel
+// (surface_lighting.glsl shadeSurface): of the 30 table entries the whole weight reads (Es(n.v) and Es(n.l) 12
+// each, Es_avg 6) only Es(n.l)'s 12 remain per light.
+const float kDiffuseWeightIor = 1.5;
+const float kDiffuseWeightF0 = 0.04;
+struct DiffuseWeightView {
+    vec3 coeffs;      // ptDielectricAlbedoCoeffs of the dielectric
+    float roughness;  // perceptual, clamped
+    float view;       // max(1 - Es(n.v), 0)
+    float average;    // max(1 - Es_avg, 1e-4)
+};
+
+DiffuseWeightView diffuseWeightView(SurfaceLayers s, float roughness, float NdotV) {
+    const float kIor = kDiffuseWeightIor;
+    const float kF0 = kDiffuseWeightF0;
     vec3 f0 = min(vec3(kF0) * s.specularColor, vec3(1.0));
     float wAvg = clamp((ptFresnelDielectricAverage(kIor) - kF0) / (1.0 - kF0), 0.0, 1.0);
     float eAvg = ptAlbedoMetalAvg(roughness);
     vec3 c = ptDielectricAlbedoCoeffs(s.specular, f0, kF0, s.specular * (f0 + (1.0 - f0) * wAvg), eAvg, false);
     float esAvg = ptDielectricAlbedoOf(c, kF0, eAvg, ptAlbedoSpecularAvg(roughness, kIor));
     float esV = ptDielectricAlbedoOf(c, kF0, ptAlbedoMetal(NdotV, roughness), ptAlbedoSpecular(NdotV, roughness, kIor));
-    float esL = ptDielectricAlbedoOf(c, kF0, ptAlbedoMetal(NdotL, roughness), ptAlbedoSpecular(NdotL, roughness, kIor));
-    return max(1.0 - esV, 0.0) * max(1.0 - esL, 0.0) / max(1.0 - esAvg, 1e-4);
+    return DiffuseWeightView(c, roughness, max(1.0 - esV, 0.0), max(1.0 - esAvg, 1e-4));
 }
+
+float dielectricDiffuseWeight(DiffuseWeightView w, float NdotL) {
+    float esL = ptDielectricAlbedoOf(w.coeffs, kDiffuseWeightF0, ptAlbedoMetal(NdotL, w.roughness),
+                                     ptAlbedoSpecular(NdotL, w.roughness, kDiffuseWeightIor));
+    return w.view * max(1.0 - esL, 0.0) / w.average;
+}
+
 
 // KHR_materials_diffuse_transmission: f * |n.l| for a light behind the surface (n.l <= 0), beneath the clearcoat
 // and sheen layers as the reflected base is (the layer weights depend on n.v only). What passes the dielectric is
 // the Lambert lobes' albedo-scaled weight at |n.l| (dielectricDiffuseWeight), the path tracers' ptDiffuseWeight
-// for this lobe, so a back-lit leaf is the front-lit Lambert mirrored, specular layer included.
-vec3 diffuseTransmissionCosine(SurfaceLayers s, float metallic, float perceptualRoughness, vec3 n, vec3 v, vec3 l) {
+// for this lobe, so a back-lit leaf is the front-lit Lambert mirrored, specular layer included. w: the weight's
+// light-independent part (diffuseWeightView of s at the clamped roughness and n.v).
+vec3 diffuseTransmissionCosine(SurfaceLayers s, DiffuseWeightView w, float metallic, vec3 n, vec3 v, vec3 l) {
     if ((s.flags & kMaterialDiffuseTransmission) == 0u || s.diffuseTransmission <= 0.0) return vec3(0.0);
     float NdotL = dot(n, l);
     float NdotV = max(dot(n, v), 1e-4);
-    float roughness = clamp(perceptualRoughness, kMinRoughness, 1.0);
-    float pass = metallic < 1.0 ? dielectricDiffuseWeight(s, roughness, NdotV, -NdotL) : 0.0;
+    float pass = metallic < 1.0 ? dielectricDiffuseWeight(w, -NdotL) : 0.0;
     vec3 result = s.diffuseTransmissionColor * (s.diffuseTransmission * (1.0 - metallic) / kPi * pass);
     if ((s.flags & kMaterialSheen) != 0u)
         result *= max(1.0 - maxOf(s.sheenColor) * ptAlbedoSheen(NdotV, s.sheenRoughness), 0.0);
@@ -255,16 +272,21 @@ vec3 diffuseTransmissionCosine(SurfaceLayers s, float metallic, float perceptual
     return result * -NdotL;
 }
 
-// f(l, v) * NdotL with the material's extension layers.
-vec3 layeredBrdfCosine(SurfaceLayers s, vec3 baseColor, float metallic, float perceptualRoughness, vec3 n, vec3 v,
-                       vec3 l) {
+// The diffuse weight's light-independent part for layeredBrdfCosine, once per pixel: without extension flags the
+// dielectric is the plain one (specular 1, colour 1) whatever the factors hold.
+DiffuseWeightView surfaceDiffuseWeightView(SurfaceLayers s, float perceptualRoughness, vec3 n, vec3 v) {
+    return diffuseWeightView(s.flags == 0u ? noLayers() : s, clamp(perceptualRoughness, kMinRoughness, 1.0),
+                             max(dot(n, v), 1e-4));
+}
+
+// f(l, v) * NdotL with the material's extension layers; w: surfaceDiffuseWeightView(s, perceptualRoughness, n, v).
+vec3 layeredBrdfCosine(SurfaceLayers s, DiffuseWeightView w, vec3 baseColor, float metallic, float perceptualRoughness,
+                       vec3 n, vec3 v, vec3 l) {
     float NdotL = dot(n, l);
-    if (NdotL <= 0.0) return diffuseTransmissionCosine(s, metallic, perceptualRoughness, n, v, l);
+    if (NdotL <= 0.0) return diffuseTransmissionCosine(s, w, metallic, n, v, l);
     float NdotV = max(dot(n, v), 1e-4);
     float roughness = clamp(perceptualRoughness, kMinRoughness, 1.0);
-    // Without extension flags the dielectric is the plain one (specular 1, colour 1) whatever the factors hold.
-    float wDiffuse = metallic < 1.0 ? dielectricDiffuseWeight(s.flags == 0u ? noLayers() : s, roughness, NdotV, NdotL)
-                                    : 0.0;
+    float wDiffuse = metallic < 1.0 ? dielectricDiffuseWeight(w, NdotL) : 0.0;
     if (s.flags == 0u) return brdfCosine(baseColor, metallic, perceptualRoughness, wDiffuse, n, v, l);
     vec3 h = normalize(l + v);
     float NdotH = max(dot(n, h), 0.0);

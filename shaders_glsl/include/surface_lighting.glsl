@@ -43,17 +43,20 @@ vec3 ambientReflected(SurfaceLayers layers, vec3 n, vec3 v, vec3 baseColor, floa
     return ambient;
 }
 
-// KHR_materials_diffuse_transmission (thin-surface approximation, material_layers.glsl): the irradiance from
-// behind (SH on -n) through the surface, weighted like the reflected diffuse ambient (1 - E_s, the sheen and coat
-// layers above). Only the SH ambient: VXGI and SSR replace the reflected side's light, not this.
-vec3 ambientTransmitted(SurfaceLayers layers, vec3 n, vec3 v, vec3 baseColor, float metallic, float roughness,
+// KHR_materials_diffuse_transmission (thin-surface approximation, material_layers.glsl): the irradiance E from
+// behind (SH on -n) through the surface, with the punctual lobe's weight W(n.v, mu) (dielectricDiffuseWeight, the
+// path tracers' ptDiffuseWeight) integrated over the hemisphere behind: the cosine-weighted mean of 1 - Es(mu) is
+// 1 - Es_avg, W's denominator, so E takes (1 - Es(n.v)) exactly, as the reflected split-sum diffuse takes its
+// 1 - E_s in front (exact for uniform light behind; SH light that varies over the hemisphere would weight the
+// grazing directions a little less). The sheen and coat layers above as in direct light. Only the SH ambient:
+// VXGI and SSR replace the reflected side's light, not this. w: the punctual lobe's (surfaceDiffuseWeightView).
+vec3 ambientTransmitted(SurfaceLayers layers, DiffuseWeightView w, vec3 n, vec3 v, float metallic,
                         vec3 irradianceBehind) {
     if ((layers.flags & kMaterialDiffuseTransmission) == 0u) return vec3(0.0);
     float NdotV = max(dot(n, v), 1e-4);
-    vec3 specularAlbedo = ambientSpecularAlbedo(layers, baseColor, metallic, clamp(roughness, kMinRoughness, 1.0), n,
-                                                v);
-    vec3 t = (1.0 - clamp(specularAlbedo, 0.0, 1.0)) * layers.diffuseTransmissionColor *
-             (layers.diffuseTransmission * (1.0 - metallic) / kPi) * irradianceBehind;
+    float pass = metallic < 1.0 ? w.view : 0.0;
+    vec3 t = layers.diffuseTransmissionColor * (layers.diffuseTransmission * (1.0 - metallic) / kPi * pass) *
+             irradianceBehind;
     if ((layers.flags & kMaterialSheen) != 0u)
         t *= max(1.0 - maxOf(layers.sheenColor) * ptAlbedoSheen(NdotV, layers.sheenRoughness), 0.0);
     if ((layers.flags & kMaterialClearcoat) != 0u) t *= 1.0 - layers.clearcoat * fresnelSchlick(vec3(0.04), NdotV).x;
@@ -65,11 +68,13 @@ vec3 ambientTransmitted(SurfaceLayers layers, vec3 n, vec3 v, vec3 baseColor, fl
 vec3 shadeSurface(GpuFrame f, uint64_t pointShadows, vec3 position, vec3 n, vec3 v, vec3 baseColor, float metallic,
                   float roughness, float occlusion, SurfaceLayers layers) {
     vec3 radiance = vec3(0.0);
+    // The diffuse weight's light-independent part, hoisted out of the light loop (material_layers.glsl).
+    DiffuseWeightView diffuseWeight = surfaceDiffuseWeightView(layers, roughness, n, v);
     LightBuffer lights = LightBuffer(f.lights);
     for (uint i = 0; i < f.lightCount; ++i) {
         vec3 l;
         vec3 incident = lightIncidence(lights.data[i], position, l);
-        vec3 direct = layeredBrdfCosine(layers, baseColor, metallic, roughness, n, v, l) * incident;
+        vec3 direct = layeredBrdfCosine(layers, diffuseWeight, baseColor, metallic, roughness, n, v, l) * incident;
         if (pointShadows != 0 && any(greaterThan(direct, vec3(0.0)))) {
             GpuPointShadow s = PointShadowBuffer(pointShadows).data[i];
             vec3 ns = dot(n, l) < 0.0 ? -n : n;  // diffuse transmission: the lit side is the back, offset toward it
@@ -89,7 +94,7 @@ vec3 shadeSurface(GpuFrame f, uint64_t pointShadows, vec3 position, vec3 n, vec3
                                     environmentRadiance(f, rBase,
                                                         environmentLod(f, clamp(ambientRoughness, kMinRoughness, 1.0))),
                                     environmentRadiance(f, r, environmentLod(f, cr)));
-    ambient += ambientTransmitted(layers, n, v, baseColor, metallic, ambientRoughness, shIrradiance(f, -n));
+    ambient += ambientTransmitted(layers, diffuseWeight, n, v, metallic, shIrradiance(f, -n));
     return radiance + ambient * occlusion;
 }
 

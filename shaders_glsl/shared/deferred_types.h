@@ -67,7 +67,7 @@ struct LightingPush {
     uint vxgiSpecular;           // RGBA16F VXGI reflection radiance
     uint ssr;                    // RGBA16F screen-space reflections (shared/ssr_types.h), kSsrNoImage: off
     uint layers;                 // RGBA32UI G-buffer extension texels, kLightingNoLayers: none
-    uint pad;                    // keeps the C++ size (8-byte aligned) equal to the scalar layout's
+    uint layerSpill;             // RG32UI G-buffer texels the layers target has no bits for, kLightingNoLayers: none
 };
 IDK_GPU_SIZE(LightingPush, 80);
 IDK_CONST(uint, kLightingNoAo, 0xFFFFFFFFu);

@@ -13,6 +13,7 @@
 //  * dispersion: a tilted thick dispersive interface with a small emitter behind it (as pt_dispersion_test): the
 //    channels' image centroids come out in the path tracer's order (red, green, blue), separated by the path
 //    tracer's spread within 35%, each within 1.5 px of its centroid; with dispersion 0 they coincide (0.02 px);
+//  * only scenes with transmissive materials run the passes; `--transmission off` runs no opaque-colour chain;
 //  * TransmissionTest renders under the validation layers (sync validation in CI) and its transmissive pixels are
 //    closer to the path tracer's image than the opaque look was: RMSE below 0.8 x the opaque look's (measured 0.087
 //    vs 0.187 at 96x96 against 48 spp).
@@ -193,6 +194,33 @@ TEST_F(ScreenTransmissionTest, TransmissionZeroIsTheOpaqueImageAndOffDrawsItOpaq
         if (i % 4 != 3) worst = std::max(worst, std::abs(double(off.pixels[i]) - a.pixels[i]) / peak);
     std::printf("--transmission off vs the deferred opaque quad: worst %.2e of the peak\n", worst);
     EXPECT_LT(worst, 1e-2);
+}
+
+// The passes a frame ran whose names start with `prefix`.
+size_t passesNamed(vk::Context& ctx, vk::ShaderLibrary& shaders, const scene::Scene& scene,
+                   render::TransmissionMode mode, const std::string& prefix) {
+    render::RenderSettings settings;
+    settings.output = render::OutputKind::Hdr;
+    settings.environment = std::filesystem::path();
+    settings.transmission = mode;
+    render::Renderer renderer(ctx, shaders, settings);
+    renderer.setScene(scene);
+    size_t n = 0;
+    for (const std::string& pass : renderer.renderOffscreen(frontCamera(2.0f, 0.6f), 16, 16).passesRun)
+        n += pass.rfind(prefix, 0) == 0;
+    return n;
+}
+
+TEST_F(ScreenTransmissionTest, OnlyScenesWithTransmissiveMaterialsRunThePasses) {
+    // No transmissive material: no transmission pass and no chain (and no sorted-draw buffer: setScene skips it).
+    EXPECT_EQ(passesNamed(ctx(), shaders(), thinQuad(0.0f), render::TransmissionMode::Screen, "transmission"), 0u);
+    // --transmission off: the forward pass alone, no opaque-colour chain.
+    EXPECT_EQ(passesNamed(ctx(), shaders(), thinQuad(1.0f), render::TransmissionMode::Off, "transmission_chain"), 0u);
+    EXPECT_EQ(passesNamed(ctx(), shaders(), thinQuad(1.0f), render::TransmissionMode::Off, "transmission"), 1u);
+    EXPECT_EQ(passesNamed(ctx(), shaders(), thinQuad(1.0f), render::TransmissionMode::Screen, "transmission"), 6u);
+    // Screen: the chain of a 16 x 16 frame (16, 8, 4, 2, 1: five levels) and the forward pass.
+    EXPECT_EQ(passesNamed(ctx(), shaders(), thinQuad(1.0f), render::TransmissionMode::Screen, "transmission_chain"),
+              5u);
 }
 
 // ------------------------------------------------------------------------------------------------ volume slabs

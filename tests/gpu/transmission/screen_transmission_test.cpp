@@ -13,6 +13,7 @@
 //  * dispersion: a tilted thick dispersive interface with a small emitter behind it (as pt_dispersion_test): the
 //    channels' image centroids come out in the path tracer's order (red, green, blue), separated by the path
 //    tracer's spread within 35%, each within 1.5 px of its centroid; with dispersion 0 they coincide (0.02 px);
+//  * transmissive surfaces still cast shadows (coverage, as BLEND ones);
 //  * only scenes with transmissive materials run the passes; `--transmission off` runs no opaque-colour chain;
 //  * TransmissionTest renders under the validation layers (sync validation in CI) and its transmissive pixels are
 //    closer to the path tracer's image than the opaque look was: RMSE below 0.8 x the opaque look's (measured 0.087
@@ -221,6 +222,42 @@ TEST_F(ScreenTransmissionTest, OnlyScenesWithTransmissiveMaterialsRunThePasses) 
     // Screen: the chain of a 16 x 16 frame (16, 8, 4, 2, 1: five levels) and the forward pass.
     EXPECT_EQ(passesNamed(ctx(), shaders(), thinQuad(1.0f), render::TransmissionMode::Screen, "transmission_chain"),
               5u);
+}
+
+// A transmissive quad leaves the G-buffer but still casts a shadow (as BLEND draws do: by coverage), as it did
+// when it was drawn opaque: a white floor at z = -1 lit by a point light at z = 1 through a glass quad at z = 0.
+TEST_F(ScreenTransmissionTest, TransmissiveSurfacesStillCastShadows) {
+    conformance::QuadSpec glass;
+    glass.halfSize = kGlassHalf;
+    glass.roughness = 0.0f;
+    conformance::QuadSpec floor;
+    floor.halfSize = 2.0f;
+    scene::Scene s = conformance::makeQuadScene({glass, floor});
+    place(s, 1, glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, -1.0f)));
+    scene::Light light;
+    light.type = scene::LightType::Point;
+    light.position = glm::vec3(0.0f, 0.0f, 1.0f);
+    light.intensity = 2.0f;
+    s.lights.push_back(light);
+    const scene::CameraView camera = frontCamera(2.0f, 0.9f);
+    // The floor seen beside the glass (|x| > 0.45 at z = -1) and inside its shadow (|x| < 0.6), and outside it.
+    auto floorAt = [&](const core::ImageRgba32f& img, double wx) {
+        uint32_t best = 0;
+        double bestDistance = 1e9;
+        for (uint32_t x = 0; x < kQuadSize; ++x) {
+            const double d = std::abs(onPlane(camera, kQuadSize, x, kQuadSize / 2, -1.0).x - wx);
+            if (d < bestDistance) bestDistance = d, best = x;
+        }
+        return double(pixel(img, kQuadSize, best, kQuadSize / 2)[1]);
+    };
+    for (float transmission : {0.0f, 1.0f}) {
+        s.materials[0].transmission = transmission;
+        const core::ImageRgba32f img = raster(ctx(), shaders(), s, camera, kQuadSize, Env{});
+        const double shadowed = floorAt(img, 0.53), lit = floorAt(img, 0.8);
+        std::printf("glass transmission %.0f: floor in its shadow %.4f, beside it %.4f\n", transmission, shadowed, lit);
+        EXPECT_GT(lit, 0.0);
+        EXPECT_LT(shadowed, 0.1 * lit) << "transmission " << transmission;
+    }
 }
 
 // ------------------------------------------------------------------------------------------------ volume slabs

@@ -31,6 +31,7 @@ graph::TextureHandle finish(FrameContext& f) {
 // The point-shadow cubes are released by Renderer::setScene before the old scene they were built from.
 void Features::setScene(vk::Context& ctx, const render::GpuScene& scene, uint32_t framesInFlight) {
     transparency.setScene(ctx, scene, framesInFlight);
+    transmission.setScene(ctx, scene, framesInFlight);
     culling.setScene();
     vxgi.setScene(scene);
 }
@@ -67,6 +68,7 @@ graph::TextureHandle recordPbrFrame(FrameContext& f, render::GpuScene& scene, Fe
                                    f.hdr, f.vrsRates);
     }
     x.vrs.addReconstructPass(f);                                      // VRS: fills the pixels not shaded
+    x.transmission.addPasses(f, scene);                               // refracts f.hdr behind transmissive surfaces
     x.upscale.keepOpaque(f, x.transparency.enabled());                // upscaler: the reactive term's reference
     x.transparency.addPasses(f, scene);                               // blends into f.hdr
     x.volumetrics.addPasses(f, scene);                                // fogs f.hdr (--volumetrics)

@@ -14,6 +14,7 @@
 #include "frame/upscale_feature.hpp"
 #include "frame/volumetrics_feature.hpp"
 #include "frame/transparency_feature.hpp"
+#include "frame/transmission_feature.hpp"
 #include "frame/vrs_feature.hpp"
 #include "frame/vxgi_feature.hpp"
 #include "frame/ssr_feature.hpp"
@@ -33,6 +34,7 @@ struct Features {
     EnvironmentFeature environment;
     PointShadowFeature pointShadows;
     TransparencyFeature transparency;
+    TransmissionFeature transmission;
     VrsFeature vrs;
     CullingFeature culling;
     TemporalFeature temporal;

@@ -210,6 +210,14 @@ std::vector<SettingOption> buildTable() {
                  OptionKind::Choice, 0.0, 0.0, {"sorted", "weighted", "layers"},
                  [](const RenderSettings& s) { return double(static_cast<uint8_t>(s.oit)); },
                  [](RenderSettings& s, double v) { s.oit = static_cast<render::OitMode>(std::lround(v)); }});
+    // KHR_materials_transmission (frame/transmission_feature.hpp): screen-space refraction of the opaque frame.
+    t.push_back({"--transmission", "Transparency", "transmission",
+                 "screen: transmissive materials show the opaque frame refracted behind them; off: drawn opaque",
+                 OptionKind::Choice, 0.0, 0.0, {"screen", "off"},
+                 [](const RenderSettings& s) { return double(static_cast<uint8_t>(s.transmission)); },
+                 [](RenderSettings& s, double v) {
+                     s.transmission = static_cast<render::TransmissionMode>(std::lround(v));
+                 }});
     // Soft ray-traced shadows (rt_shadows/mask_body.h): sphere lights sampled stochastically.
     t.push_back({"--light-radius", "Shadows", "light radius",
                  "raytraced: point and spot lights as spheres of this radius in metres (0: hard shadows)",

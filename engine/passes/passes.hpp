@@ -227,6 +227,13 @@ graph::TextureHandle addLayeredOitPasses(graph::RenderGraph& graph, vk::Context&
                                          const TransparencyInputs& inputs, graph::TextureHandle target,
                                          IndirectDrawLog* log);
 
+// transmission.cpp: the screen-space transmission pass: `inputs` holds the transmissive draws; with `screen`, the lit
+// `target` (of `extent` pixels) is first copied into a chain of halved levels (transmission/downsample.comp) that the forward pass reads
+// behind each surface; without it (`--transmission off`) the surfaces are drawn opaque. Returns target's new version.
+graph::TextureHandle addTransmissionPasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                           const TransparencyInputs& inputs, graph::TextureHandle target,
+                                           VkExtent2D extent, bool screen, IndirectDrawLog* log);
+
 // tonemap.cpp: AgX of exposure * hdr into the RGBA8 `target` (sRGB-encoded values); returns its new version.
 graph::TextureHandle addTonemapPass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                     graph::TextureHandle hdr, graph::TextureHandle target, float exposure);

@@ -10,14 +10,20 @@
 
 namespace idk::render {
 
+// Which forward draws: BLEND materials (the transparency pass) or transmissive non-BLEND ones (drawnByTransmission,
+// the screen-space transmission pass), sorted alike.
+enum class ForwardDraws : uint8_t { Blend, Transmission };
+
 // The BLEND draws of `scene` (material alphaMode BLEND), farthest first: each the scene's command with
 // instanceCount 1 and firstInstance = its draw index. Ties keep the draw order (stable sort).
 std::vector<VkDrawIndexedIndirectCommand> sortBlendDraws(const GpuSceneData& scene,
-                                                         const std::vector<scene::Aabb>& meshBoxes, glm::vec3 eye);
+                                                         const std::vector<scene::Aabb>& meshBoxes, glm::vec3 eye,
+                                                         ForwardDraws kind = ForwardDraws::Blend);
 
 class BlendDraws {
 public:
-    BlendDraws(vk::Context& ctx, const GpuSceneData& scene, uint32_t framesInFlight);
+    BlendDraws(vk::Context& ctx, const GpuSceneData& scene, uint32_t framesInFlight,
+               ForwardDraws kind = ForwardDraws::Blend);
     ~BlendDraws();
     BlendDraws(const BlendDraws&) = delete;
     BlendDraws& operator=(const BlendDraws&) = delete;
@@ -28,12 +34,13 @@ public:
 
 private:
     vk::Context& ctx_;
+    ForwardDraws kind_;
     std::vector<scene::Aabb> meshBoxes_;
     uint32_t count_ = 0;
     std::vector<vk::Buffer> slots_;
 };
 
 // Number of draws the transparency pass would draw (0: no pass, no buffers).
-uint32_t blendDrawCount(const GpuSceneData& scene);
+uint32_t blendDrawCount(const GpuSceneData& scene, ForwardDraws kind = ForwardDraws::Blend);
 
 }  // namespace idk::render

@@ -37,9 +37,10 @@ std::vector<gpu::GpuCullDraw> packCullDraws(const GpuSceneData& scene, const Mes
         c.indexCount = d.indexCount;
         c.firstIndex = d.firstIndex;
         c.vertexOffset = d.vertexOffset;
-        // The scene's commands leave BLEND draws without an instance (the transparency pass draws them).
+        // The scene's commands leave BLEND and transmissive draws without an instance (the forward passes draw
+        // them); they cast shadows by coverage like the others.
         const bool blend = mesh < scene.meshes.size() && scene.meshes[mesh].material < scene.materials.size() &&
-                           scene.materials[scene.meshes[mesh].material].alphaMode == gpu::kAlphaBlend;
+                           drawnForward(scene.materials[scene.meshes[mesh].material]);
         if (d.instanceCount == 0 && !(blendCasts && blend)) c.flags |= gpu::kCullSkip;
         if (mesh >= scene.meshes.size() || d.vertexOffset != scene.meshes[mesh].baseVertex)
             c.flags |= gpu::kCullAlwaysVisible;

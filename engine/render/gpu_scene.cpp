@@ -107,6 +107,17 @@ gpu::GpuMaterial packMaterial(const scene::Material& m, const TextureBindings& b
     g.iridescenceThicknessMin = m.iridescenceThicknessMin;
     g.iridescenceThicknessMax = m.iridescenceThicknessMax;
     g.clearcoatNormalScale = m.clearcoatNormalScale;
+    // KHR_materials_transmission / _ior / _volume: the screen-space transmission pass reads them.
+    const bool transmits = !m.unlit && m.transmission > 0.0f;
+    g.slots[gpu::kSlotTransmission] = slotFor(transmits ? m.transmissionTexture : std::nullopt, b.white, b);
+    g.slots[gpu::kSlotThickness] = slotFor(transmits ? m.thicknessTexture : std::nullopt, b.white, b);
+    g.transmission = m.transmission;
+    g.ior = m.ior;
+    g.thickness = m.thickness;
+    g.attenuationDistance = std::isfinite(m.attenuationDistance) ? m.attenuationDistance : 0.0f;
+    g.attenuationColor = m.attenuationColor;
+    if (transmits) g.flags |= gpu::kMaterialTransmission;
+    if (transmits && m.thickness > 0.0f) g.flags |= gpu::kMaterialVolume;
     if (!m.unlit) {
         if (m.specular != 1.0f || m.specularColor != glm::vec3(1.0f) || m.specularTexture || m.specularColorTexture)
             g.flags |= gpu::kMaterialSpecular;
@@ -127,11 +138,13 @@ std::array<uint32_t, gpu::kSlotCount> slotTextures(const scene::Material& m) {
         &m.emissiveTexture,    &m.specularTexture,           &m.specularColorTexture, &m.clearcoatTexture,
         &m.clearcoatRoughnessTexture, &m.sheenColorTexture, &m.sheenRoughnessTexture,
         &m.diffuseTransmissionTexture, &m.diffuseTransmissionColorTexture, &m.iridescenceTexture,
-        &m.iridescenceThicknessTexture, &m.clearcoatNormalTexture, &m.anisotropyTexture};
+        &m.iridescenceThicknessTexture, &m.clearcoatNormalTexture, &m.anisotropyTexture, &m.transmissionTexture,
+        &m.thicknessTexture};
     std::array<uint32_t, gpu::kSlotCount> t;
     for (uint32_t s = 0; s < gpu::kSlotCount; ++s) t[s] = *refs[s] ? (*refs[s])->texture : UINT32_MAX;
     if (m.unlit || !(m.diffuseTransmission > 0.0f))  // packMaterial binds white there: nothing to stream
         t[gpu::kSlotDiffuseTransmission] = t[gpu::kSlotDiffuseTransmissionColor] = UINT32_MAX;
+    if (m.unlit || !(m.transmission > 0.0f)) t[gpu::kSlotTransmission] = t[gpu::kSlotThickness] = UINT32_MAX;
     return t;
 }
 
@@ -245,8 +258,9 @@ GpuSceneData packGpuScene(const scene::Scene& scene, const TextureBindings& b) {
             out.instances.push_back(packInstance(inst.world, firstMesh[inst.mesh] + p));
             out.drawInstance.push_back(i);
             const int32_t base = out.deformation.baseVertex(inst.node, firstMesh[inst.mesh] + p, gm.baseVertex);
-            // BLEND primitives keep their slot with no instance: the transparency pass draws them, sorted.
-            const uint32_t count = out.materials[gm.material].alphaMode == gpu::kAlphaBlend ? 0u : 1u;
+            // BLEND and transmissive primitives keep their slot with no instance: the transparency and the
+            // transmission passes draw them, sorted.
+            const uint32_t count = drawnForward(out.materials[gm.material]) ? 0u : 1u;
             out.draws.push_back(VkDrawIndexedIndirectCommand{gm.indexCount, count, gm.firstIndex, base, 0});
         }
     }

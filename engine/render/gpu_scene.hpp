@@ -55,6 +55,15 @@ struct GpuSceneData {
 };
 
 GpuSceneData packGpuScene(const scene::Scene& scene, const TextureBindings& bindings);
+// Whether a material's draws leave the G-buffer for a forward pass: BLEND (the transparency pass) or a lit
+// KHR_materials_transmission material (the screen-space transmission pass, frame/transmission_feature.hpp).
+inline bool drawnForward(const gpu::GpuMaterial& m) {
+    return m.alphaMode == gpu::kAlphaBlend || (m.flags & gpu::kMaterialTransmission) != 0u;
+}
+// Whether a material is drawn by the transmission pass (transmissive and not BLEND: BLEND keeps the blend pass).
+inline bool drawnByTransmission(const gpu::GpuMaterial& m) {
+    return m.alphaMode != gpu::kAlphaBlend && (m.flags & gpu::kMaterialTransmission) != 0u;
+}
 // One draw's GpuInstance: `world` with its normal matrix and mirror flag, drawing GpuMesh `mesh`.
 gpu::GpuInstance packInstance(const glm::mat4& world, uint32_t mesh);
 

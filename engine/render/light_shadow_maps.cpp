@@ -34,8 +34,9 @@ LightShadowMaps::LightShadowMaps(vk::Context& ctx, const GpuSceneData& scene, st
     sampler_ = ctx.bindless().addSampler(sampler);
     try {
         createMaps(ctx);
-        // BLEND draws have no instance in the scene's buffer (the G-buffer skips them); these commands give them one.
-        if (!scene.draws.empty() && blendDrawCount(scene) > 0)
+        // BLEND and transmissive draws have no instance in the scene's buffer (the G-buffer skips them); these
+        // commands give them one.
+        if (!scene.draws.empty() && blendDrawCount(scene) + blendDrawCount(scene, ForwardDraws::Transmission) > 0)
             casterDraws_ = createShadowCasterDraws(ctx, scene, 1, "light shadow draw commands");
     } catch (...) {  // no destructor runs for a throwing constructor
         release();

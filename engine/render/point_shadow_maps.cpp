@@ -98,8 +98,9 @@ void PointShadowMaps::createCubes(vk::Context& ctx, const GpuSceneData& scene) {
     }
 
     // Own draw commands where the scene's buffer will not do: six instances per draw on the native rung
-    // (instance = face), and BLEND draws, which the scene's buffer leaves without an instance, so they cast.
-    blendCasters_ = blendDrawCount(scene) > 0;
+    // (instance = face), and BLEND and transmissive draws, which the scene's buffer leaves without an instance (the
+    // forward passes draw them), so they cast.
+    blendCasters_ = blendDrawCount(scene) + blendDrawCount(scene, ForwardDraws::Transmission) > 0;
     if (!scene.draws.empty() && (layered_ || blendCasters_))
         casterDraws_ = createShadowCasterDraws(ctx, scene, layered_ ? 6u : 1u, "point shadow draw commands");
 }

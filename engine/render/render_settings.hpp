@@ -24,6 +24,9 @@ enum class Shading : uint8_t { Pbr, Lambert };
 // Transparency: Sorted = BLEND draws back to front, "over" (the exact reference); Weighted = weighted blended OIT;
 // Layers = the 10 nearest fragments per pixel, composited in order (passes/oit_layers.cpp).
 enum class OitMode : uint8_t { Sorted, Weighted, Layers };
+// KHR_materials_transmission in the rasterizer: Screen = the opaque frame refracted behind transmissive surfaces
+// (frame/transmission_feature.hpp); Off = the surfaces drawn opaque (their reflected lobes only).
+enum class TransmissionMode : uint8_t { Screen, Off };
 enum class OutputKind : uint8_t {
     Display,  // AgX-tonemapped, sRGB-encoded 8-bit (what a PNG stores)
     Hdr,      // linear radiance before tonemapping (what an EXR stores); no tonemap pass
@@ -48,6 +51,7 @@ struct RenderSettings {
     AtmosphereSettings atmosphere;     // `--sky atmosphere`: the baked single-scattering sky as the environment
     frame::VolumetricSettings volumetrics;  // `--volumetrics`: in-scattering in a homogeneous medium
     OitMode oit = OitMode::Sorted;     // `--oit sorted|weighted|layers`
+    TransmissionMode transmission = TransmissionMode::Screen;  // `--transmission screen|off`
     frame::SsrSettings ssr;            // --ssr, --ssr-steps, --ssr-thickness (frame/ssr_feature.hpp)
 };
 

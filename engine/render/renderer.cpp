@@ -90,6 +90,7 @@ FrameResult Renderer::renderOffscreen(const scene::CameraView& camera, uint32_t 
     // Display: the tonemap pass's colour attachment. Hdr: the lighting and sky passes' storage image.
     desc.usage = pbr && !display ? VK_IMAGE_USAGE_STORAGE_BIT : VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
     if (pbr && features_.transparency.enabled()) desc.usage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;  // Hdr: transparency blends into it
+    if (pbr && features_.transmission.enabled()) desc.usage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;  // and transmission
     if (pbr && frame::VrsFeature::usesHardwareRung(ctx_, settings_.vrs))
         desc.usage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;  // Hdr: the hardware-VRS lighting pass renders into it
     desc.name = "offscreen output";

@@ -8,8 +8,9 @@
 // expectation over the three picks is the full RGB estimate); every dispersive surface the path meets later
 // refracts at the same channel's IOR. Each channel stands for the Fraunhofer line the Abbe number is defined at:
 // R = C (656.3 nm), G = d (587.6 nm), B = F (486.1 nm), so n_B - n_R = (ior - 1) / V_d (within 0.04%: the
-// specification rounds its constants). The raster ignores
-// the extension (README). The GPU tracer keeps the channel in GpuPtPath::flags (kPtPathChannel*).
+// specification rounds its constants). The rasterizer's screen-space transmission (include/screen_transmission.glsl)
+// refracts each channel at ptDispersionIor of its wavelength. The GPU tracer keeps the channel in GpuPtPath::flags
+// (kPtPathChannel*).
 #ifndef IDK_PT_DISPERSION_H
 #define IDK_PT_DISPERSION_H
 #include "pt_common.h"

@@ -1,7 +1,7 @@
 // pt_types.h: the path tracer's data shared by the CPU reference (engine/pathtrace) and the GPU wavefront tracer
 // (shaders_glsl/pathtrace): lights for next-event estimation (punctual lights and emissive triangles), alias-table
-// entries (light selection by power, environment texel selection), the environment description, the extra
-// material fields the raster's GpuMaterial lacks (transmission, IOR, volume), and the macros that let
+// entries (light selection by power, environment texel selection), the environment description, the tracers'
+// transmission, IOR and volume material fields (with texture indices into Scene::textures), and the macros that let
 // pt_sampling.h be one source for C++ and GLSL. IDKEngine's path tracer (PathTracing/include/Shading.glsl) has
 // no light list at all (reference 2.1); this is new.
 //

@@ -69,7 +69,10 @@ IDK_CONST(uint, kSlotIridescence, 13);           // linear: R scales iridescence
 IDK_CONST(uint, kSlotIridescenceThickness, 14);  // linear: G, thickness = mix(min, max, G)
 IDK_CONST(uint, kSlotClearcoatNormal, 15);       // linear: the coat's tangent-space normal, xy remapped to [-1, 1]
 IDK_CONST(uint, kSlotAnisotropy, 16);            // linear: RG direction remapped to [-1, 1], B scales strength
-IDK_CONST(uint, kSlotCount, 17);
+// KHR_materials_transmission / _volume textures (read only with kMaterialTransmission).
+IDK_CONST(uint, kSlotTransmission, 17);  // linear: R scales transmission
+IDK_CONST(uint, kSlotThickness, 18);     // linear: G scales thickness
+IDK_CONST(uint, kSlotCount, 19);
 
 IDK_CONST(uint, kAlphaOpaque, 0);
 IDK_CONST(uint, kAlphaMask, 1);
@@ -91,6 +94,10 @@ IDK_CONST(uint, kMaterialAnisotropy, 128u);  // KHR_materials_anisotropy with an
 IDK_CONST(uint, kMaterialIridescence, 256u);         // KHR_materials_iridescence with iridescenceFactor > 0
 IDK_CONST(uint, kMaterialClearcoatNormal, 512u);     // clearcoat with a clearcoatNormalTexture (kSlotClearcoatNormal)
 IDK_CONST(uint, kMaterialAnisotropyTexture, 1024u);  // anisotropy with an anisotropyTexture (kSlotAnisotropy)
+// KHR_materials_transmission with transmissionFactor > 0 on a lit material: drawn by the screen-space transmission
+// pass (frame/transmission_feature.hpp) instead of the G-buffer; _volume: thicknessFactor > 0 (refracts).
+IDK_CONST(uint, kMaterialTransmission, 2048u);
+IDK_CONST(uint, kMaterialVolume, 4096u);
 
 // glTF metallic-roughness material (core + KHR_materials_emissive_strength, KHR_texture_transform, and the
 // factors and textures of KHR_materials_specular, _clearcoat, _sheen).
@@ -125,8 +132,14 @@ struct GpuMaterial {
     float iridescenceThicknessMin;  // nanometres
     float iridescenceThicknessMax;  // nanometres (the thickness without a thickness texture)
     float clearcoatNormalScale;     // read when kMaterialClearcoatNormal
+    // KHR_materials_transmission, _ior, _volume (read when kMaterialTransmission; defaults 0, 1.5, 0, 0, 1)
+    float transmission;             // transmissionFactor
+    float ior;                      // KHR_materials_ior
+    float thickness;                // thicknessFactor, object space (0: thin-walled)
+    float attenuationDistance;      // 0: no absorption (glTF's infinity)
+    vec3 attenuationColor;          // linear
 };
-IDK_GPU_SIZE(GpuMaterial, 756);
+IDK_GPU_SIZE(GpuMaterial, 856);
 
 IDK_CONST(uint, kLightDirectional, 0);
 IDK_CONST(uint, kLightPoint, 1);

@@ -4,6 +4,8 @@
 // With --gi vxgi, the sorted rung's fragments inside the voxel grid trace the cone set themselves (include/cone_trace.glsl, the
 // parameters from the VXGI feature's buffer, TransparencyPush::vxgiCones) in place of the SH ambient, as deferred
 // lighting does with the G-buffer pass's traced images (vxgi_ambient.glsl).
+// With IDK_FORWARD_TRANSMISSION (transmission/forward.frag), the screen-space transmission pass: transmissive
+// materials, their radiance from include/screen_transmission.glsl, written opaque (alpha 1).
 // Ports IDKEngine's RecordTransparent/fragment.glsl, sorted back to front instead of its k-buffer (reference 2.14).
 #extension GL_GOOGLE_include_directive : require
 #include "scene_buffers.glsl"
@@ -24,6 +26,10 @@ IDK_BINDLESS_BUFFER_READONLY(gVxgiCones, VxgiConeParams);
 // The fixed-layer rung (oit/layers_depth.frag, oit/layers_shade.frag): its arrays follow the forward push block.
 #include "oit_layers.glsl"
 layout(push_constant, scalar) uniform Push { TransparencyPush p; OitLayerBuffers oitLayers; };
+#elif defined(IDK_FORWARD_TRANSMISSION)
+// The transmission pass: its opaque-colour chain follows the forward push block.
+#include "screen_transmission.glsl"
+layout(push_constant, scalar) uniform Push { TransparencyPush p; TransmissionPush tp; };
 #else
 layout(push_constant, scalar) uniform Push { TransparencyPush p; };
 #endif
@@ -93,6 +99,10 @@ void main() {
     if ((m.flags & kMaterialIridescence) != 0u)
         iridescenceTexels = vec2(sampleMaterialSlot(m.slots[kSlotIridescence], inUv, inUv1).r,
                                  sampleMaterialSlot(m.slots[kSlotIridescenceThickness], inUv, inUv1).g);
+#ifdef IDK_FORWARD_TRANSMISSION
+    vec2 transmissionTexels = vec2(sampleMaterialSlot(m.slots[kSlotTransmission], inUv, inUv1).r,
+                                   sampleMaterialSlot(m.slots[kSlotThickness], inUv, inUv1).g);
+#endif
     vec3 n = normalize(inNormal);
     vec3 t, b;
     bool haveFrame = materialTangentFrame(n, inTangent, inWorldPosition, inUv, t, b);
@@ -101,6 +111,9 @@ void main() {
     float opaqueDepth = imageLoad(gImagesR32f[p.depth], ivec2(gl_FragCoord.xy)).r;
     bool front = gl_FrontFacing != ((instance.flags & kInstanceMirrored) != 0u);
     if (gl_FragCoord.z >= opaqueDepth || (!front && (m.flags & kMaterialDoubleSided) == 0u)) discard;
+#ifdef IDK_FORWARD_TRANSMISSION
+    if (m.alphaMode == kAlphaMask && baseColor.a < m.alphaCutoff) discard;  // as the G-buffer's alpha test
+#endif
 #ifdef IDK_OIT_LAYER_DEPTHS
     oitInsertDepth(oitLayers, ivec2(gl_FragCoord.xy), gl_FragCoord.z);  // fixed-layer rung, first pass: depth only
     return;
@@ -133,6 +146,13 @@ void main() {
     if ((m.flags & kMaterialClearcoatNormal) != 0u) layers.clearcoatNormal = nc;
     layers = withAnisotropyStrengthTexel(layers, anisotropyTexel.b);
     if (haveFrame) layers = withAnisotropyFrame(layers, m, t, b, anisotropyTexel.rg);
+#ifdef IDK_FORWARD_TRANSMISSION
+    writeTransparent(vec4(emissive + shadeTransmissive(f, p.pointShadows, tp, instance, m, inWorldPosition, n, v,
+                                                       baseColor.rgb, metallic, roughness, occlusion, layers,
+                                                       transmissionTexels),
+                          1.0));  // opaque over the frame: the light behind is in the refracted term
+    return;
+#endif
     vec3 radiance = emissive + shadeSurface(f, p.pointShadows, inWorldPosition, n, v, baseColor.rgb, metallic,
                                             roughness, occlusion, layers);
 #ifdef IDK_FORWARD_VXGI

@@ -86,11 +86,13 @@ IndirectLightImages addConeTracePasses(graph::RenderGraph& graph, vk::Context& c
             push.dst[d] = in.directionLevels[level][d];
         }
         push.dstSize = std::max(1u, in.box.size >> level);
+        push.grid = level == 1 ? in.gridStorage : gpu::kVoxelNoGrid;  // level 1 skips cells empty in the grid
         graph.addPass(
             "vxgi_mip " + std::to_string(level),
             // Levels are read and written through views the graph does not see: each directional volume is one
             // read-write resource, so consecutive levels get a full barrier between them.
             [&](graph::PassBuilder& b) {
+                if (level == 1) b.read(grid, graph::Access::StorageRead, kCs);
                 for (graph::TextureHandle& d : dirs) d = b.write(d, graph::Access::StorageReadWrite, kCs);
             },
             [&ctx, &shaders, push](graph::PassContext& pc) {

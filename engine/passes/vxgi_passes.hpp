@@ -33,7 +33,8 @@ struct VoxelShadowRays {
 // formats), "vxgi_voxelize" rasterizes the scene three times (one orthographic projection per axis; each triangle
 // keeps the fragments of its dominant axis) and adds every fragment's outgoing diffuse radiance to its voxel,
 // "vxgi_merge" resolves them into `grid` (RGBA16F, size^3, mip 0) and into level 0 of the six directional volumes
-// (`directions`, updated to their new versions). Returns the grid's new version.
+// (`directions`, updated to their new versions), storing only the voxels that changed from or to empty unless
+// `fullMerge`. Returns the grid's new version.
 struct VoxelizeInputs {
     SceneBuffers scene;
     graph::BufferHandle frame;
@@ -46,6 +47,9 @@ struct VoxelizeInputs {
     // none: pixel-centre rasterization (thin voxelization).
     std::optional<vk::Rung> conservative;
     std::array<uint32_t, 6> directionLevel0{};  // storage indices of the directional volumes' level-0 views
+    // The grid and the directional volumes are new (contents undefined): the merge stores every voxel. Otherwise it
+    // skips the empty voxels the previous frames left zero (merge.comp.glsl), and reads the grid to know which.
+    bool fullMerge = true;
     std::optional<VoxelShadowRays> shadowRays;  // --shadows raytraced (then `shadows` has no table yet)
     // Set: one draw, each triangle projected along its dominant axis by ladder "voxel-single-draw"'s rung: Native
     // a passthrough geometry shader picking a swizzled viewport (vxgi_axis_swizzle.hpp), Fallback a geometry

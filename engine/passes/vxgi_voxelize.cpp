@@ -215,18 +215,20 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
 
     auto written = std::make_shared<graph::TextureHandle>();
     const std::array<uint32_t, 6> level0 = in.directionLevel0;
+    const bool full = in.fullMerge;
     graph.addPass(
         "vxgi_merge",
         [&](graph::PassBuilder& b) {
             constexpr VkPipelineStageFlags2 kCs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
             for (uint32_t i = 0; i < acc->count; ++i) b.read(acc->images[i], graph::Access::StorageRead, kCs);
             if (acc->sums.valid()) b.read(acc->sums, graph::Access::StorageRead, kCs);
-            *written = b.write(grid, graph::Access::StorageWrite, kCs);
+            // Read too: a voxel empty now and all zero in the grid already is not stored again (merge.comp.glsl).
+            *written = b.write(grid, full ? graph::Access::StorageWrite : graph::Access::StorageReadWrite, kCs);
             // Level 0 through its own view; the graph tracks each volume whole (the mips read it next).
             for (graph::TextureHandle& d : directions) d = b.write(d, graph::Access::StorageReadWrite, kCs);
             b.sideEffect();  // the grid is persistent state: later frames and readers outside the graph use it
         },
-        [&ctx, &shaders, acc, written, n, mode, gl, level0](graph::PassContext& pc) {
+        [&ctx, &shaders, acc, written, n, mode, gl, level0, full](graph::PassContext& pc) {
             VkCommandBuffer cmd = pc.commandBuffer();
             vk::ComputePipelineDesc desc;
             desc.shader = vk::ShaderId::vxgi_merge_comp;
@@ -241,6 +243,7 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             for (uint32_t d = 0; d < 6; ++d) push.directions[d] = level0[d];
             push.gridSize = n;
             push.mode = mode;
+            push.full = full ? 1u : 0u;
             vk::pushConstants(cmd, ctx, push);
             const uint32_t groups = vk::groupCount(n, gpu::kVoxelGroupSize);
             vkCmdDispatch(cmd, groups, groups, groups);

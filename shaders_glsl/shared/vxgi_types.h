@@ -73,7 +73,8 @@ struct VoxelMergePush {
     uint directions[6];  // storage indices of the directional volumes' level 0
     uint gridSize;
     uint mode;           // kVoxelAtomics*
-    uint pad;
+    uint full;           // 1: store every voxel (the volumes are new: their contents undefined); 0: skip the empty
+                         // voxels whose grid voxel is already all-zero bits (merge.comp.glsl says why that is exact)
 };
 IDK_GPU_SIZE(VoxelMergePush, 72);
 
@@ -85,9 +86,11 @@ struct VoxelMipPush {
     uint src[6];   // storage indices of the source level per direction (all the grid's for L = 0)
     uint dst[6];   // storage indices of level L per direction
     uint dstSize;  // voxels per side of level L
-    uint pad;
+    uint grid;     // L = 1: storage index of the grid (level 0, every side), whose 2x2x2 all-zero children mark an
+                   // empty cell (mip.comp.glsl); kVoxelNoGrid for L >= 2
 };
 IDK_GPU_SIZE(VoxelMipPush, 56);
+IDK_CONST(uint, kVoxelNoGrid, 0xFFFFFFFFu);
 
 // The cone tracer's parameters (include/cone_trace.glsl). The G-buffer pass has them in its push block
 // (ConeTracePush); the forward pass of transparent surfaces (transparency/forward_body.h), whose push block has no

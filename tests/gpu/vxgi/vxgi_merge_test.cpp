@@ -4,7 +4,7 @@
 // by one grid step along x and y, so the scene shifts by 8 voxels in the grid (voxels turn empty, others turn
 // occupied, most stay empty); its second frame's grid and all levels of the six directional volumes must equal,
 // bit for bit, those of a fresh renderer's first frame at the second position (whose merge stores every voxel).
-// On the float-add rung (lavapipe's native one) and on the r32ui fallback rung. Both skips rest on one invariant,
+// On the float-add rung (lavapipe's native one), the r32ui fallback rung and the gl-interop rung (llvmpipe's GL). Both skips rest on one invariant,
 // checked on the read-back volumes: a voxel whose grid bits are all zero has all-zero bits in every direction. And
 // the mip chain, skips included, is checked against a CPU mip of the read-back levels (mip.comp.glsl's composite:
 // each level from the GPU's level below; zero exactly where the CPU's is zero, else within one fp16 step).
@@ -182,19 +182,29 @@ TEST_F(VxgiMergeTest, SkippingEmptyVoxelsGivesTheFullMergeBitForBit) {
     expectIncrementalEqualsFull(ctx(), shaders(), "float-add rung");
 }
 
-TEST_F(VxgiMergeTest, SkippingEmptyVoxelsGivesTheFullMergeBitForBitOnTheUintRung) {
+// A context of its own with "vxgi-atomics" forced to `rung`.
+void expectIncrementalEqualsFullOn(vk::Rung rung, const char* what) {
     vk::ContextDesc desc = sharedContext().desc();
     desc.validation = true;
-    desc.forcedRungs = {vk::RungForce{"vxgi-atomics", vk::Rung::Fallback}};
+    desc.probeGlInterop = rung == vk::Rung::GlInterop;
+    desc.forcedRungs = {vk::RungForce{"vxgi-atomics", rung}};
     auto ctx = std::make_unique<vk::Context>(desc);
-    ASSERT_EQ(ctx->ladder("vxgi-atomics").chosen, vk::Rung::Fallback);
+    ASSERT_EQ(ctx->ladder("vxgi-atomics").chosen, rung) << what << " must be forcible on lavapipe + llvmpipe";
     {
         vk::ShaderLibrary shaders(*ctx);
-        expectIncrementalEqualsFull(*ctx, shaders, "r32ui rung");
+        expectIncrementalEqualsFull(*ctx, shaders, what);
     }
     ctx->waitIdle();
     EXPECT_EQ(ctx->validationErrors(), 0u);
     for (const std::string& m : ctx->validationMessages()) ADD_FAILURE() << m;
+}
+
+TEST_F(VxgiMergeTest, SkippingEmptyVoxelsGivesTheFullMergeBitForBitOnTheUintRung) {
+    expectIncrementalEqualsFullOn(vk::Rung::Fallback, "r32ui rung");
+}
+
+TEST_F(VxgiMergeTest, SkippingEmptyVoxelsGivesTheFullMergeBitForBitOnTheGlRung) {
+    expectIncrementalEqualsFullOn(vk::Rung::GlInterop, "gl-interop rung");
 }
 
 }  // namespace

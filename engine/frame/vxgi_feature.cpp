@@ -127,7 +127,7 @@ void VxgiFeature::addPasses(FrameContext& f, const std::optional<passes::VoxelSh
                                                               : f.ctx.ladder("voxel-single-draw").chosen;
     std::array<graph::TextureHandle, 6> handles;
     for (uint32_t d = 0; d < 6; ++d) handles[d] = directionHandles_[d];
-    f.voxelGrid = passes::addVoxelizePasses(f.graph, f.ctx, f.shaders, in, grid, handles, &f.log);
+    f.voxelGrid = passes::addVoxelizePasses(f.graph, f.ctx, f.shaders, in, grid, handles, cells_, &f.log);
     for (uint32_t d = 0; d < 6; ++d) directionHandles_[d] = handles[d];
     f.voxelBox = box_;
 }
@@ -151,6 +151,7 @@ void VxgiFeature::addConeTracing(FrameContext& f) {
         in.directionLevels.push_back(views);
     }
     in.gridSampler = sampler_.value;
+    in.cells = cells_;
     in.box = box_;
     in.ringCones = f.settings.vxgi.ringCones;
     in.stepFactor = f.settings.vxgi.stepFactor;

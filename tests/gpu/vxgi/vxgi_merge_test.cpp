@@ -1,13 +1,14 @@
 // vxgi_merge_test.cpp: the merge's skip of voxels that stay empty (shaders_glsl/vxgi/merge.comp.glsl) and the level-1
-// mip's skip of cells empty in the grid (mip.comp.glsl) change no bit. The closed room with its standing quad at
-// 64^3 voxels, the grid following the camera (--gi-grid camera): one renderer draws a frame, then moves the camera
-// by one grid step along x and y, so the scene shifts by 8 voxels in the grid (voxels turn empty, others turn
-// occupied, most stay empty); its second frame's grid and all levels of the six directional volumes must equal,
-// bit for bit, those of a fresh renderer's first frame at the second position (whose merge stores every voxel).
-// On the float-add rung (lavapipe's native one), the r32ui fallback rung and the gl-interop rung (llvmpipe's GL). Both skips rest on one invariant,
-// checked on the read-back volumes: a voxel whose grid bits are all zero has all-zero bits in every direction. And
-// the mip chain, skips included, is checked against a CPU mip of the read-back levels (mip.comp.glsl's composite:
-// each level from the GPU's level below; zero exactly where the CPU's is zero, else within one fp16 step).
+// mip's skip of the cells the merge's mask marks empty (mip.comp.glsl) change no bit. The closed room with its standing
+// quad at 64^3 voxels, the grid following the camera (--gi-grid camera): one renderer draws a frame, then moves the
+// camera by one grid step along x and y, so the scene shifts by 8 voxels in the grid (voxels turn empty, others turn
+// occupied, most stay empty); its second frame's grid and all levels of the six directional volumes must equal, bit for
+// bit, those of a fresh renderer's first frame at the second position (whose merge stores every voxel). On the
+// float-add rung (lavapipe's native one), the r32ui fallback rung and the gl-interop rung (llvmpipe's GL). The merge's
+// skip rests on an invariant, checked on the read-back volumes: a voxel whose grid bits are all zero has all-zero bits
+// in every direction. And the mip chain, skips included, is checked against a CPU mip of the read-back levels
+// (mip.comp.glsl's composite: each level from the GPU's level below; zero exactly where the CPU's is zero, else within
+// one fp16 step).
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -69,7 +70,9 @@ size_t mipMismatches(const ConeGridData& g, size_t& zeros) {
         const VoxelVolumeData& v = g.directions[d];
         for (size_t level = 1; level < v.levels.size(); ++level) {
             const int n = int(v.size >> level), m = int(v.size >> (level - 1));
-            auto at = [&](glm::ivec3 c) { return v.levels[level - 1][(size_t(c.z) * m + size_t(c.y)) * m + size_t(c.x)]; };
+            auto at = [&](glm::ivec3 c) {
+                return v.levels[level - 1][(size_t(c.z) * m + size_t(c.y)) * m + size_t(c.x)];
+            };
             for (int z = 0; z < n; ++z)
                 for (int y = 0; y < n; ++y)
                     for (int x = 0; x < n; ++x) {

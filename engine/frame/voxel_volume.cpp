@@ -65,7 +65,8 @@ graph::TextureHandle VoxelVolume::import(graph::RenderGraph& graph, const char* 
     p.mips = uint32_t(levelViews.size());
     p.storageIndex = levelStorage[0].value;
     p.sampledIndex = sampled.value;
-    // Every frame rewrites the volumes whole, so old contents never matter, only the layout they were left in.
+    // The layout the previous frame left (contents are kept: the merge skips voxels that stay empty, whose zeros are
+    // there from an earlier frame; before the first frame they are undefined and the first merge stores them all).
     graph::ResourceState state;
     if (written) state = graph::stateAfterAccess(finalUse.access, graph::ResourceKind::Image, finalUse.stages);
     written = true;

@@ -94,6 +94,9 @@ void VxgiFeature::addPasses(FrameContext& f, const std::optional<passes::VoxelSh
     // The grid ends each frame in GENERAL (storage) where the merge and the mip passes used it; tests read it
     // back from there. The directional mips end where the cone tracer sampled them.
     constexpr VkPipelineStageFlags2 kCs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    // A grid no frame has used yet holds undefined contents: its first merge stores every voxel; later merges
+    // skip the voxels that stay empty (their zeros are already there).
+    const bool fullMerge = !grid_.written;
     graph::TextureHandle grid = grid_.import(f.graph, "vxgi voxel grid", {graph::Access::StorageRead, kCs});
     const char* names[6] = {"vxgi mips +x", "vxgi mips -x", "vxgi mips +y", "vxgi mips -y", "vxgi mips +z",
                             "vxgi mips -z"};
@@ -115,6 +118,7 @@ void VxgiFeature::addPasses(FrameContext& f, const std::optional<passes::VoxelSh
     if (f.settings.vxgi.raster == VoxelRaster::Conservative)
         in.conservative = f.ctx.ladder("conservative-raster").chosen;
     for (uint32_t d = 0; d < 6; ++d) in.directionLevel0[d] = directions_[d].levelStorage[0].value;
+    in.fullMerge = fullMerge;
     in.shadowRays = rays;
     // The single draw's projection follows "voxel-single-draw", except under the dilation fallback, whose geometry
     // shader projects each triangle itself (a passthrough shader could not dilate): the ladder is then not consulted.
@@ -123,7 +127,7 @@ void VxgiFeature::addPasses(FrameContext& f, const std::optional<passes::VoxelSh
                                                               : f.ctx.ladder("voxel-single-draw").chosen;
     std::array<graph::TextureHandle, 6> handles;
     for (uint32_t d = 0; d < 6; ++d) handles[d] = directionHandles_[d];
-    f.voxelGrid = passes::addVoxelizePasses(f.graph, f.ctx, f.shaders, in, grid, handles, &f.log);
+    f.voxelGrid = passes::addVoxelizePasses(f.graph, f.ctx, f.shaders, in, grid, handles, cells_, &f.log);
     for (uint32_t d = 0; d < 6; ++d) directionHandles_[d] = handles[d];
     f.voxelBox = box_;
 }
@@ -147,6 +151,7 @@ void VxgiFeature::addConeTracing(FrameContext& f) {
         in.directionLevels.push_back(views);
     }
     in.gridSampler = sampler_.value;
+    in.cells = cells_;
     in.box = box_;
     in.ringCones = f.settings.vxgi.ringCones;
     in.stepFactor = f.settings.vxgi.stepFactor;

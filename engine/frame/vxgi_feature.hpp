@@ -68,6 +68,7 @@ private:
     std::array<VoxelVolume, 6> directions_; // anisotropic volumes (+x -x +y -y +z -z), levels 0 .. log2(size)
     vk::SamplerIndex sampler_;
     graph::TextureHandle directionHandles_[6];  // this frame's imports
+    graph::TextureHandle cells_;                // this frame's cell mask (the merge's, for the level-1 mip)
     std::array<graph::TextureHandle, 6> mipped_;  // this frame's directional volumes after the mip passes
     std::unique_ptr<passes::VxgiGlAccumulator> gl_;  // "vxgi-atomics" gl-interop rung only
     // The cone parameters for forward passes (gpu::VxgiConeParams), one host-visible buffer per frame in flight.

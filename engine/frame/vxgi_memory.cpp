@@ -15,9 +15,17 @@ VxgiMemory vxgiMemory(vk::Context& ctx, uint32_t voxels, vk::Rung atomics) {
     // The grid (one level) and the six directional volumes (full chains), as VxgiFeature::addPasses creates them.
     m.volumes = vk::imageBytes(ctx, voxelVolumeDesc("vxgi voxel grid", voxels, 1)) +
                 6 * vk::imageBytes(ctx, voxelVolumeDesc("vxgi mips", voxels, voxelMipLevels(voxels)));
+    // The merge's cell mask (transient, every rung).
+    vk::ImageDesc cells;
+    cells.type = VK_IMAGE_TYPE_3D;
+    cells.format = passes::kVoxelCellMaskFormat;
+    const uint32_t c = passes::voxelCellMaskSize(voxels);
+    cells.extent = {c, c, c};
+    cells.usage = VK_IMAGE_USAGE_STORAGE_BIT;
+    m.accumulators = vk::imageBytes(ctx, cells);
     const passes::VoxelAccumulatorImages acc = passes::voxelAccumulatorImages(atomics);
     if (acc.count == 0) {
-        m.accumulators = passes::VxgiGlAccumulator::firstFrameBytes(voxels);
+        m.accumulators += passes::VxgiGlAccumulator::firstFrameBytes(voxels);
     } else {
         // The graph's transient images: storage, cleared by a transfer. (Placed in the graph's aliased heaps,
         // whose alignment may add a little on top.)
@@ -26,7 +34,7 @@ VxgiMemory vxgiMemory(vk::Context& ctx, uint32_t voxels, vk::Rung atomics) {
         desc.format = acc.format;
         desc.extent = {voxels, voxels, voxels};
         desc.usage = VK_IMAGE_USAGE_STORAGE_BIT;
-        m.accumulators = acc.count * vk::imageBytes(ctx, desc);
+        m.accumulators += acc.count * vk::imageBytes(ctx, desc);
     }
     return m;
 }

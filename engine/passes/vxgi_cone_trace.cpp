@@ -86,15 +86,19 @@ IndirectLightImages addConeTracePasses(graph::RenderGraph& graph, vk::Context& c
             push.dst[d] = in.directionLevels[level][d];
         }
         push.dstSize = std::max(1u, in.box.size >> level);
+        push.cells = gpu::kVoxelNoCells;  // level 1: the mask's index, known when the pass runs
+        const graph::TextureHandle cells = level == 1 ? in.cells : graph::TextureHandle{};
         graph.addPass(
             "vxgi_mip " + std::to_string(level),
             // Levels are read and written through views the graph does not see: each directional volume is one
             // read-write resource, so consecutive levels get a full barrier between them.
             [&](graph::PassBuilder& b) {
+                if (cells.valid()) b.read(cells, graph::Access::StorageRead, kCs);
                 for (graph::TextureHandle& d : dirs) d = b.write(d, graph::Access::StorageReadWrite, kCs);
             },
-            [&ctx, &shaders, push](graph::PassContext& pc) {
+            [&ctx, &shaders, push, cells](graph::PassContext& pc) mutable {
                 VkCommandBuffer cmd = pc.commandBuffer();
+                if (cells.valid()) push.cells = pc.texture(cells).storageIndex;
                 vk::ComputePipelineDesc desc;
                 desc.shader = vk::ShaderId::vxgi_mip_comp;
                 desc.pushBytes = sizeof(gpu::VoxelMipPush);

@@ -33,7 +33,9 @@ struct VoxelShadowRays {
 // formats), "vxgi_voxelize" rasterizes the scene three times (one orthographic projection per axis; each triangle
 // keeps the fragments of its dominant axis) and adds every fragment's outgoing diffuse radiance to its voxel,
 // "vxgi_merge" resolves them into `grid` (RGBA16F, size^3, mip 0) and into level 0 of the six directional volumes
-// (`directions`, updated to their new versions). Returns the grid's new version.
+// (`directions`, updated to their new versions), storing only the voxels that changed from or to empty unless
+// `fullMerge`, and marks the level-1 cells holding an occupied voxel in `cells` (a transient R32UI mask the level-1
+// mip reads: voxelCellMaskDesc). Returns the grid's new version.
 struct VoxelizeInputs {
     SceneBuffers scene;
     graph::BufferHandle frame;
@@ -46,6 +48,9 @@ struct VoxelizeInputs {
     // none: pixel-centre rasterization (thin voxelization).
     std::optional<vk::Rung> conservative;
     std::array<uint32_t, 6> directionLevel0{};  // storage indices of the directional volumes' level-0 views
+    // The grid and the directional volumes are new (contents undefined): the merge stores every voxel. Otherwise it
+    // skips the empty voxels the previous frames left zero (merge.comp.glsl), and reads the grid to know which.
+    bool fullMerge = true;
     std::optional<VoxelShadowRays> shadowRays;  // --shadows raytraced (then `shadows` has no table yet)
     // Set: one draw, each triangle projected along its dominant axis by ladder "voxel-single-draw"'s rung: Native
     // a passthrough geometry shader picking a swizzled viewport (vxgi_axis_swizzle.hpp), Fallback a geometry
@@ -60,10 +65,15 @@ struct VoxelAccumulatorImages {
     uint32_t count = 0;
 };
 VoxelAccumulatorImages voxelAccumulatorImages(vk::Rung atomics);
+// The cell mask of a grid of n^3 voxels: R32UI, (n / 2)^3 (one texel per level-1 cell), transient, on every rung.
+// (R32UI rather than R8UI: storage images of 8-bit formats need shaderStorageImageExtendedFormats.)
+inline constexpr VkFormat kVoxelCellMaskFormat = VK_FORMAT_R32_UINT;
+inline uint32_t voxelCellMaskSize(uint32_t n) { return n > 1 ? n / 2 : 1; }
 
 graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                        const VoxelizeInputs& inputs, graph::TextureHandle grid,
-                                       std::array<graph::TextureHandle, 6>& directions, IndirectDrawLog* log);
+                                       std::array<graph::TextureHandle, 6>& directions, graph::TextureHandle& cells,
+                                       IndirectDrawLog* log);
 
 // vxgi_cone_trace.cpp: "vxgi_mip L" (one pass per level L >= 1 of the six directional volumes, each from the
 // level below; the voxelization's merge wrote level 0), then "vxgi_cone_trace": per G-buffer pixel inside the grid,
@@ -83,6 +93,7 @@ struct ConeTraceInputs {
     std::array<uint32_t, 6> directionSampled{};
     std::vector<std::array<uint32_t, 6>> directionLevels;
     uint32_t gridSampler = 0;            // bindless sampler: trilinear, clamp to edge
+    graph::TextureHandle cells;          // the merge's cell mask (addVoxelizePasses): the level-1 mip skips its zeros
     VoxelGridBox box;
     uint32_t ringCones = 5;
     float stepFactor = 0.5f;

@@ -29,6 +29,7 @@ namespace {
 
 struct Accumulators {
     graph::TextureHandle images[8];
+    graph::TextureHandle cells;  // the merge's cell mask (kVoxelCellMaskFormat), cleared here
     uint32_t count = 0;
     graph::BufferHandle records, sums;  // gl-interop rung: the shared buffers instead of images
 };
@@ -59,7 +60,8 @@ VoxelAccumulatorImages voxelAccumulatorImages(vk::Rung atomics) {
 
 graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                        const VoxelizeInputs& in, graph::TextureHandle grid,
-                                       std::array<graph::TextureHandle, 6>& directions, IndirectDrawLog* log) {
+                                       std::array<graph::TextureHandle, 6>& directions, graph::TextureHandle& cells,
+                                       IndirectDrawLog* log) {
     const uint32_t mode = modeOf(in.atomics);
     const uint32_t n = in.box.size;
     VxgiGlAccumulator* gl = in.gl;
@@ -73,6 +75,12 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
     graph.addPass(
         "vxgi_clear",
         [&](graph::PassBuilder& b) {
+            graph::TextureDesc cellDesc;
+            cellDesc.format = kVoxelCellMaskFormat;
+            cellDesc.sizeMode = graph::SizeMode::Absolute;
+            const uint32_t c = voxelCellMaskSize(n);
+            cellDesc.extent = {c, c, c};
+            acc->cells = b.write(b.create("vxgi cell mask", cellDesc), graph::Access::TransferDst);
             if (gl) {  // the record counter (the header) and the sums start at zero
                 acc->records = b.write(acc->records, graph::Access::TransferDst);
                 acc->sums = b.write(acc->sums, graph::Access::TransferDst);
@@ -91,13 +99,15 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
                 acc->images[i] = b.write(b.create(names[i], desc), graph::Access::TransferDst);
         },
         [acc](graph::PassContext& pc) {
+            VkClearColorValue zero{};
+            VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+            vkCmdClearColorImage(pc.commandBuffer(), pc.image(acc->cells), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero,
+                                 1, &range);
             if (acc->records.valid()) {
                 vkCmdFillBuffer(pc.commandBuffer(), pc.vkBuffer(acc->records), 0, gpu::kVoxelRecordHeaderWords * 4, 0);
                 vkCmdFillBuffer(pc.commandBuffer(), pc.vkBuffer(acc->sums), 0, VK_WHOLE_SIZE, 0);
                 return;
             }
-            VkClearColorValue zero{};
-            VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
             for (uint32_t i = 0; i < acc->count; ++i)
                 vkCmdClearColorImage(pc.commandBuffer(), pc.image(acc->images[i]),
                                      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
@@ -215,18 +225,21 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
 
     auto written = std::make_shared<graph::TextureHandle>();
     const std::array<uint32_t, 6> level0 = in.directionLevel0;
+    const bool full = in.fullMerge;
     graph.addPass(
         "vxgi_merge",
         [&](graph::PassBuilder& b) {
             constexpr VkPipelineStageFlags2 kCs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
             for (uint32_t i = 0; i < acc->count; ++i) b.read(acc->images[i], graph::Access::StorageRead, kCs);
             if (acc->sums.valid()) b.read(acc->sums, graph::Access::StorageRead, kCs);
-            *written = b.write(grid, graph::Access::StorageWrite, kCs);
+            // Read too: a voxel empty now and all zero in the grid already is not stored again (merge.comp.glsl).
+            *written = b.write(grid, full ? graph::Access::StorageWrite : graph::Access::StorageReadWrite, kCs);
+            acc->cells = b.write(acc->cells, graph::Access::StorageWrite, kCs);
             // Level 0 through its own view; the graph tracks each volume whole (the mips read it next).
             for (graph::TextureHandle& d : directions) d = b.write(d, graph::Access::StorageReadWrite, kCs);
             b.sideEffect();  // the grid is persistent state: later frames and readers outside the graph use it
         },
-        [&ctx, &shaders, acc, written, n, mode, gl, level0](graph::PassContext& pc) {
+        [&ctx, &shaders, acc, written, n, mode, gl, level0, full](graph::PassContext& pc) {
             VkCommandBuffer cmd = pc.commandBuffer();
             vk::ComputePipelineDesc desc;
             desc.shader = vk::ShaderId::vxgi_merge_comp;
@@ -241,10 +254,13 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             for (uint32_t d = 0; d < 6; ++d) push.directions[d] = level0[d];
             push.gridSize = n;
             push.mode = mode;
+            push.full = full ? 1u : 0u;
+            push.cells = pc.texture(acc->cells).storageIndex;
             vk::pushConstants(cmd, ctx, push);
             const uint32_t groups = vk::groupCount(n, gpu::kVoxelGroupSize);
             vkCmdDispatch(cmd, groups, groups, groups);
         });
+    cells = acc->cells;
     return *written;
 }
 

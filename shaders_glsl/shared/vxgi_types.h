@@ -73,9 +73,12 @@ struct VoxelMergePush {
     uint directions[6];  // storage indices of the directional volumes' level 0
     uint gridSize;
     uint mode;           // kVoxelAtomics*
-    uint pad;
+    uint full;           // 1: store every voxel (the volumes are new: their contents undefined); 0: skip the empty
+                         // voxels whose grid voxel is already all-zero bits (merge.comp.glsl says why that is exact)
+    uint cells;          // storage index of the frame's cell mask (R32UI, (size / 2)^3, cleared to 0): the merge
+                         // sets 1 in the level-1 cell of every occupied voxel, the level-1 mip skips the others
 };
-IDK_GPU_SIZE(VoxelMergePush, 72);
+IDK_GPU_SIZE(VoxelMergePush, 76);
 
 // mip.comp: one level of the anisotropic mip chain (Crassin et al. 2011): for each direction d of +x -x +y -y +z
 // -z, a voxel of level L >= 1 is its 2x2x2 children of level L - 1 of direction d (level 0: the merge's)
@@ -85,9 +88,11 @@ struct VoxelMipPush {
     uint src[6];   // storage indices of the source level per direction (all the grid's for L = 0)
     uint dst[6];   // storage indices of level L per direction
     uint dstSize;  // voxels per side of level L
-    uint pad;
+    uint cells;    // L = 1: storage index of the merge's cell mask (VoxelMergePush::cells), 0 where none of the
+                   // cell's eight voxels is occupied (mip.comp.glsl); kVoxelNoCells for L >= 2
 };
 IDK_GPU_SIZE(VoxelMipPush, 56);
+IDK_CONST(uint, kVoxelNoCells, 0xFFFFFFFFu);
 
 // The cone tracer's parameters (include/cone_trace.glsl). The G-buffer pass has them in its push block
 // (ConeTracePush); the forward pass of transparent surfaces (transparency/forward_body.h), whose push block has no

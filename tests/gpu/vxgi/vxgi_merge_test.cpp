@@ -1,0 +1,214 @@
+// vxgi_merge_test.cpp: the merge's skip of voxels that stay empty (shaders_glsl/vxgi/merge.comp.glsl) and the level-1
+// mip's skip of the cells the merge's mask marks empty (mip.comp.glsl) change no bit. The closed room with its standing
+// quad at 64^3 voxels, the grid following the camera (--gi-grid camera): one renderer draws a frame, then moves the
+// camera by one grid step along x and y, so the scene shifts by 8 voxels in the grid (voxels turn empty, others turn
+// occupied, most stay empty); its second frame's grid and all levels of the six directional volumes must equal, bit for
+// bit, those of a fresh renderer's first frame at the second position (whose merge stores every voxel). On the
+// float-add rung (lavapipe's native one), the r32ui fallback rung and the gl-interop rung (llvmpipe's GL). The merge's
+// skip rests on an invariant, checked on the read-back volumes: a voxel whose grid bits are all zero has all-zero bits
+// in every direction. And the mip chain, skips included, is checked against a CPU mip of the read-back levels
+// (mip.comp.glsl's composite: each level from the GPU's level below; zero exactly where the CPU's is zero, else within
+// one fp16 step).
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <memory>
+
+#include "frame/vxgi_feature.hpp"
+#include "render/renderer.hpp"
+#include "support/gpu_fixture.hpp"
+#include "support/vxgi_cone_oracle.hpp"
+#include "vxgi_room.hpp"
+
+namespace idk::test {
+namespace {
+
+constexpr uint32_t kVoxels = 64;
+
+render::RenderSettings mergeSettings() {
+    render::RenderSettings s;
+    s.output = render::OutputKind::Hdr;
+    s.pointShadows.maxLights = 0;
+    s.vxgi.mode = frame::GiMode::Vxgi;
+    s.vxgi.voxels = kVoxels;
+    s.vxgi.grid = frame::VoxelGridPlacement::Camera;
+    return s;
+}
+
+scene::Scene mergeScene() {
+    scene::Scene s = closedRoomScene(glm::vec3(4.0f), closedRoomWithStandingQuad());
+    s.lights.push_back(pointLight({0.2f, 0.4f, 0.1f}, 2.0f));
+    return s;
+}
+
+size_t differingWords(const VoxelVolumeData& a, const VoxelVolumeData& b) {
+    size_t n = 0;
+    for (size_t l = 0; l < a.levels.size(); ++l) {
+        if (a.levels[l].size() != b.levels[l].size()) return SIZE_MAX;
+        for (size_t i = 0; i < a.levels[l].size(); ++i)
+            for (int k = 0; k < 4; ++k) n += std::memcmp(&a.levels[l][i][k], &b.levels[l][i][k], sizeof(float)) != 0;
+    }
+    return n;
+}
+
+size_t occupied(const std::vector<glm::vec4>& grid) {
+    size_t n = 0;
+    for (const glm::vec4& v : grid) n += v.a > 0.0f;
+    return n;
+}
+
+glm::vec4 over(glm::vec4 front, glm::vec4 back) { return front + (1.0f - front.a) * back; }
+
+// Cells of levels >= 1 that differ from the CPU mip of the level below (zero where it is not, or more than an fp16
+// step away); `zeros` counts the CPU's all-zero cells (the skipped ones among them at level 1).
+size_t mipMismatches(const ConeGridData& g, size_t& zeros) {
+    size_t bad = 0;
+    zeros = 0;
+    for (uint32_t d = 0; d < 6; ++d) {
+        const int axis = int(d / 2);
+        const bool positive = (d & 1u) == 0u;
+        const VoxelVolumeData& v = g.directions[d];
+        for (size_t level = 1; level < v.levels.size(); ++level) {
+            const int n = int(v.size >> level), m = int(v.size >> (level - 1));
+            auto at = [&](glm::ivec3 c) {
+                return v.levels[level - 1][(size_t(c.z) * m + size_t(c.y)) * m + size_t(c.x)];
+            };
+            for (int z = 0; z < n; ++z)
+                for (int y = 0; y < n; ++y)
+                    for (int x = 0; x < n; ++x) {
+                        glm::ivec3 step(0), u(0), w(0);
+                        step[axis] = 1;
+                        u[(axis + 1) % 3] = 1;
+                        w[(axis + 2) % 3] = 1;
+                        glm::vec4 sum(0.0f);
+                        for (int i = 0; i < 4; ++i) {
+                            const glm::ivec3 c = glm::ivec3(x, y, z) * 2 + u * (i & 1) + w * (i >> 1);
+                            sum += positive ? over(at(c), at(c + step)) : over(at(c + step), at(c));
+                        }
+                        const glm::vec4 cpu = sum * 0.25f;
+                        const glm::vec4 gpu = v.levels[level][(size_t(z) * n + size_t(y)) * n + size_t(x)];
+                        const bool cpuZero = cpu == glm::vec4(0.0f);
+                        zeros += cpuZero;
+                        if (cpuZero) {
+                            bad += gpu != glm::vec4(0.0f);
+                            continue;
+                        }
+                        for (int k = 0; k < 4; ++k)
+                            if (std::abs(gpu[k] - cpu[k]) > 1e-3f * std::abs(cpu[k]) + 1e-7f) {
+                                ++bad;
+                                break;
+                            }
+                    }
+        }
+    }
+    return bad;
+}
+
+// Voxels whose grid bits are all zero but some direction's are not (the skips' premise: there are none).
+size_t zeroGridNonzeroDirections(const ConeGridData& g) {
+    size_t n = 0;
+    const std::vector<glm::vec4>& grid = g.grid.levels[0];
+    for (size_t i = 0; i < grid.size(); ++i) {
+        uint32_t bits[4];
+        std::memcpy(bits, &grid[i], sizeof(bits));
+        if (bits[0] | bits[1] | bits[2] | bits[3]) continue;
+        for (uint32_t d = 0; d < 6; ++d) {
+            std::memcpy(bits, &g.directions[d].levels[0][i], sizeof(bits));
+            if (bits[0] | bits[1] | bits[2] | bits[3]) {
+                ++n;
+                break;
+            }
+        }
+    }
+    return n;
+}
+
+void expectIncrementalEqualsFull(vk::Context& ctx, vk::ShaderLibrary& shaders, const char* rung) {
+    const scene::Scene scene = mergeScene();
+    const glm::vec3 start(0.05f, -0.1f, 0.3f);
+    ConeGridData first, moved, fresh;
+    passes::VoxelGridBox boxFirst, boxMoved, boxFresh;
+    glm::vec3 end{};
+    {
+        render::Renderer r(ctx, shaders, mergeSettings());
+        r.setScene(scene);
+        r.renderOffscreen(closedRoomCamera(start), 16, 16);
+        first = readConeGrid(ctx, r.vxgi());
+        boxFirst = r.vxgi().box();
+        const float step = frame::voxelGridStep(boxFirst);
+        end = start + glm::vec3(step, -step, 0.0f);
+        r.renderOffscreen(closedRoomCamera(end), 16, 16);
+        moved = readConeGrid(ctx, r.vxgi());
+        boxMoved = r.vxgi().box();
+    }
+    {
+        render::Renderer r(ctx, shaders, mergeSettings());
+        r.setScene(scene);
+        r.renderOffscreen(closedRoomCamera(end), 16, 16);
+        fresh = readConeGrid(ctx, r.vxgi());
+        boxFresh = r.vxgi().box();
+    }
+    ASSERT_NE(boxFirst.gridMin, boxMoved.gridMin) << rung << ": the move must shift the grid";
+    ASSERT_EQ(boxMoved.gridMin, boxFresh.gridMin) << rung;
+
+    // The move exercises every case: voxels turning empty, turning occupied, and staying empty (skipped).
+    const std::vector<glm::vec4>& a = first.grid.levels[0];
+    const std::vector<glm::vec4>& b = moved.grid.levels[0];
+    size_t emptied = 0, filled = 0, stayedEmpty = 0;
+    for (size_t i = 0; i < a.size(); ++i) {
+        emptied += a[i].a > 0.0f && b[i].a == 0.0f;
+        filled += a[i].a == 0.0f && b[i].a > 0.0f;
+        stayedEmpty += a[i].a == 0.0f && b[i].a == 0.0f;
+    }
+    EXPECT_GT(occupied(b), 5000u) << rung << ": the grid should hold the room";
+    EXPECT_GT(emptied, 1000u) << rung;
+    EXPECT_GT(filled, 1000u) << rung;
+    EXPECT_GT(stayedEmpty, a.size() / 2) << rung;
+
+    EXPECT_EQ(zeroGridNonzeroDirections(moved), 0u) << rung;
+    size_t zeros = 0;
+    EXPECT_EQ(mipMismatches(moved, zeros), 0u) << rung << ": the mip chain against the CPU's";
+    EXPECT_GT(zeros, 1000u) << rung << ": empty cells the level-1 mip skips";
+
+    EXPECT_EQ(differingWords(moved.grid, fresh.grid), 0u) << rung << ": grid";
+    for (uint32_t d = 0; d < 6; ++d) {
+        ASSERT_EQ(moved.directions[d].levels.size(), fresh.directions[d].levels.size());
+        EXPECT_EQ(differingWords(moved.directions[d], fresh.directions[d]), 0u)
+            << rung << ": directional volume " << d << " (all levels)";
+    }
+}
+
+class VxgiMergeTest : public GpuTest {};
+
+TEST_F(VxgiMergeTest, SkippingEmptyVoxelsGivesTheFullMergeBitForBit) {
+    ASSERT_EQ(ctx().ladder("vxgi-atomics").chosen, vk::Rung::Native) << "lavapipe has float image atomic add";
+    expectIncrementalEqualsFull(ctx(), shaders(), "float-add rung");
+}
+
+// A context of its own with "vxgi-atomics" forced to `rung`.
+void expectIncrementalEqualsFullOn(vk::Rung rung, const char* what) {
+    vk::ContextDesc desc = sharedContext().desc();
+    desc.validation = true;
+    desc.probeGlInterop = rung == vk::Rung::GlInterop;
+    desc.forcedRungs = {vk::RungForce{"vxgi-atomics", rung}};
+    auto ctx = std::make_unique<vk::Context>(desc);
+    ASSERT_EQ(ctx->ladder("vxgi-atomics").chosen, rung) << what << " must be forcible on lavapipe + llvmpipe";
+    {
+        vk::ShaderLibrary shaders(*ctx);
+        expectIncrementalEqualsFull(*ctx, shaders, what);
+    }
+    ctx->waitIdle();
+    EXPECT_EQ(ctx->validationErrors(), 0u);
+    for (const std::string& m : ctx->validationMessages()) ADD_FAILURE() << m;
+}
+
+TEST_F(VxgiMergeTest, SkippingEmptyVoxelsGivesTheFullMergeBitForBitOnTheUintRung) {
+    expectIncrementalEqualsFullOn(vk::Rung::Fallback, "r32ui rung");
+}
+
+TEST_F(VxgiMergeTest, SkippingEmptyVoxelsGivesTheFullMergeBitForBitOnTheGlRung) {
+    expectIncrementalEqualsFullOn(vk::Rung::GlInterop, "gl-interop rung");
+}
+
+}  // namespace
+}  // namespace idk::test

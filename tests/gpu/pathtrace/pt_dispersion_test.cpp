@@ -17,40 +17,23 @@
 #include "pathtrace/cpu_path_tracer.hpp"
 #include "pathtrace/pt_scene.hpp"
 #include "support/gpu_fixture.hpp"
+#include "support/dispersion_prism.hpp"
 #include "support/same_pixels.hpp"
 
 namespace idk::test {
 namespace {
 
 constexpr uint32_t kSize = 64;
-constexpr float kTilt = 0.6981317f;  // 40 degrees about +y
-constexpr float kEmitterZ = -1.0f, kEmitterHalf = 0.05f;
-constexpr float kYfov = 0.15f, kCameraZ = 3.0f;
-constexpr float kIor = 1.5f, kDispersion = 4.0f;  // Abbe number 5: strong, so the channels land pixels apart
+constexpr float kDispersion = 4.0f;  // Abbe number 5: strong, so the channels land pixels apart
 
 class PtDispersionTest : public GpuTest {};
-
-glm::mat3 tilt() { return glm::mat3(glm::rotate(glm::mat4(1.0f), kTilt, glm::vec3(0.0f, 1.0f, 0.0f))); }
 
 double emitterX();
 
 scene::Scene prismScene(float dispersion) {
-    conformance::QuadSpec glass;
-    glass.halfSize = 2.0f;
-    glass.basis = tilt();
-    glass.roughness = 0.0f;
-    conformance::QuadSpec emitter;
-    emitter.halfSize = kEmitterHalf;
-    emitter.baseColor = glm::vec3(0.0f);
-    emitter.emissive = glm::vec3(1.0f);
-    scene::Scene s = conformance::makeQuadScene({glass, emitter});
-    scene::Material& g = s.materials[0];
-    g.transmission = 1.0f;
-    g.thickness = 1.0f;  // a volume: the camera's rays refract into it
-    g.ior = kIor;
-    g.dispersion = dispersion;
-    g.doubleSided = true;
-    const glm::mat4 place = glm::translate(glm::mat4(1.0f), glm::vec3(float(emitterX()), 0.0f, kEmitterZ));
+    scene::Scene s = prismQuads(dispersion);
+    s.materials[0].thickness = 1.0f;  // a volume: the camera's rays refract into it
+    const glm::mat4 place = glm::translate(glm::mat4(1.0f), glm::vec3(float(emitterX()), 0.0f, kPrismEmitterZ));
     s.nodes[1].world = place;
     s.nodes[1].matrix = place;
     s.instances[1].world = place;
@@ -59,8 +42,8 @@ scene::Scene prismScene(float dispersion) {
 
 scene::CameraView camera() {
     scene::CameraView c;
-    c.position = glm::vec3(0.0f, 0.0f, kCameraZ);
-    c.yfov = kYfov;
+    c.position = glm::vec3(0.0f, 0.0f, kPrismCameraZ);
+    c.yfov = kPrismFov;
     return c;
 }
 
@@ -74,41 +57,19 @@ pathtrace::PtSettings settings() {
     return s;
 }
 
-// Where a camera ray of direction d meets the emitter's plane after refracting at the tilted interface (through
-// the origin) with IOR n: double precision, Snell's law in vector form.
-glm::dvec3 landing(glm::dvec3 d, double n) {
-    const glm::dvec3 o(0.0, 0.0, kCameraZ);
-    const glm::dvec3 normal = glm::dmat3(tilt()) * glm::dvec3(0.0, 0.0, 1.0);
-    const glm::dvec3 p = o + d * (-glm::dot(o, normal) / glm::dot(d, normal));
-    const double cosI = -glm::dot(d, normal);
-    const double eta = 1.0 / n;
-    const glm::dvec3 r = d * eta + normal * (eta * cosI - std::sqrt(1.0 - eta * eta * (1.0 - cosI * cosI)));
-    return p + r * ((kEmitterZ - p.z) / r.z);
-}
-
 // The emitter sits where the optical axis lands at the d line's IOR (the green channel's image centre).
-double emitterX() { return landing(glm::dvec3(0.0, 0.0, -1.0), kIor).x; }
+double emitterX() { return prismLanding(glm::dvec3(0.0, 0.0, -1.0), kPrismIor).x; }
 
 // Whether a pixel centre's ray, refracted at IOR n, meets the emitter.
 bool snellHitsEmitter(uint32_t px, uint32_t py, double n) {
-    const double t = std::tan(0.5 * kYfov);
+    const double t = std::tan(0.5 * kPrismFov);
     const glm::dvec3 d = glm::normalize(glm::dvec3((2.0 * (px + 0.5) / kSize - 1.0) * t,
                                                    (1.0 - 2.0 * (py + 0.5) / kSize) * t, -1.0));
-    const glm::dvec3 q = landing(d, n);
-    return std::abs(q.x - emitterX()) < kEmitterHalf && std::abs(q.y) < kEmitterHalf;
+    const glm::dvec3 q = prismLanding(d, n);
+    return std::abs(q.x - emitterX()) < kPrismEmitterHalf && std::abs(q.y) < kPrismEmitterHalf;
 }
 
-// The x centroid (pixels) of channel c over the image, weighted by its radiance.
-double centroidX(const core::ImageRgba32f& img, int c) {
-    double sum = 0.0, weighted = 0.0;
-    for (uint32_t y = 0; y < kSize; ++y)
-        for (uint32_t x = 0; x < kSize; ++x) {
-            const double v = img.pixels[4 * (size_t(y) * kSize + x) + c];
-            sum += v;
-            weighted += v * (x + 0.5);
-        }
-    return sum > 0.0 ? weighted / sum : -1.0;
-}
+double centroidX(const core::ImageRgba32f& img, int c) { return channelCentroidX(img, kSize, c); }
 
 TEST_F(PtDispersionTest, ChannelsSeparateAsSnellSaysAndGpuEqualsCpu) {
     const scene::Scene sc = prismScene(kDispersion);
@@ -117,7 +78,8 @@ TEST_F(PtDispersionTest, ChannelsSeparateAsSnellSaysAndGpuEqualsCpu) {
     double rendered[3], oracle[3];
     for (int c = 0; c < 3; ++c) {
         const double lambda[3] = {656.3, 587.6, 486.1};  // the Fraunhofer C, d, F lines (nm)
-        const double n = kIor + (kIor - 1.0) * kDispersion / 20.0 * (523655.0 / (lambda[c] * lambda[c]) - 1.5168);
+        const double n =
+            kPrismIor + (kPrismIor - 1.0) * kDispersion / 20.0 * (523655.0 / (lambda[c] * lambda[c]) - 1.5168);
         double sum = 0.0, count = 0.0;
         for (uint32_t y = 0; y < kSize; ++y)
             for (uint32_t x = 0; x < kSize; ++x)

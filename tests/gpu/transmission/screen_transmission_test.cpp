@@ -37,6 +37,7 @@
 #include "render/scene_textures.hpp"
 #include "scene/camera.hpp"
 #include "scene/gltf_loader.hpp"
+#include "support/dispersion_prism.hpp"
 #include "support/gpu_fixture.hpp"
 
 namespace idk::test {
@@ -341,54 +342,19 @@ TEST_F(ScreenTransmissionTest, VolumeSlabsTintLikeThePathTracerAndThickerIsDarke
 
 // ------------------------------------------------------------------------------------------------ dispersion
 constexpr uint32_t kPrismSize = 64;
-constexpr float kTilt = 0.6981317f;  // 40 degrees about +y
-constexpr float kEmitterZ = -1.0f, kEmitterHalf = 0.05f, kCameraZ = 3.0f, kPrismFov = 0.15f;
-constexpr float kIor = 1.5f;
-
-glm::mat3 tilt() { return glm::mat3(glm::rotate(glm::mat4(1.0f), kTilt, glm::vec3(0.0f, 1.0f, 0.0f))); }
-
-// The axis ray (from the camera along -z) refracted at the interface through the origin: its direction and its
-// length to the emitter's plane, and where it lands there.
-glm::dvec3 axisRefracted(double n) {
-    const glm::dvec3 normal = glm::dmat3(tilt()) * glm::dvec3(0.0, 0.0, 1.0), d(0.0, 0.0, -1.0);
-    const double cosI = -glm::dot(d, normal), eta = 1.0 / n;
-    return d * eta + normal * (eta * cosI - std::sqrt(1.0 - eta * eta * (1.0 - cosI * cosI)));
-}
 
 scene::Scene prism(float dispersion) {
-    conformance::QuadSpec glass;
-    glass.halfSize = 2.0f;
-    glass.basis = tilt();
-    glass.roughness = 0.0f;
-    conformance::QuadSpec emitter;
-    emitter.halfSize = kEmitterHalf;
-    emitter.baseColor = glm::vec3(0.0f);
-    emitter.emissive = glm::vec3(1.0f);
-    scene::Scene s = conformance::makeQuadScene({glass, emitter});
-    scene::Material& g = s.materials[0];
-    g.transmission = 1.0f;
-    const glm::dvec3 r = axisRefracted(kIor);
-    g.thickness = float(kEmitterZ / r.z);  // the raster leaves the volume on the emitter's plane
-    g.ior = kIor;
-    g.dispersion = dispersion;
-    g.doubleSided = true;
-    place(s, 1, glm::translate(glm::mat4(1.0f), glm::vec3(float(r.x * (kEmitterZ / r.z)), 0.0f, kEmitterZ)));
+    scene::Scene s = prismQuads(dispersion);
+    const glm::dvec3 r = prismRefracted(glm::dvec3(0.0, 0.0, -1.0), kPrismIor);  // the axis ray, from the origin
+    s.materials[0].thickness = float(kPrismEmitterZ / r.z);  // the raster leaves the volume on the emitter's plane
+    place(s, 1, glm::translate(glm::mat4(1.0f), glm::vec3(float(r.x * (kPrismEmitterZ / r.z)), 0.0f, kPrismEmitterZ)));
     return s;
 }
 
-double centroidX(const core::ImageRgba32f& img, int c) {
-    double sum = 0.0, weighted = 0.0;
-    for (uint32_t y = 0; y < kPrismSize; ++y)
-        for (uint32_t x = 0; x < kPrismSize; ++x) {
-            const double v = pixel(img, kPrismSize, x, y)[c];
-            sum += v;
-            weighted += v * (x + 0.5);
-        }
-    return sum > 0.0 ? weighted / sum : -1.0;
-}
+double centroidX(const core::ImageRgba32f& img, int c) { return channelCentroidX(img, kPrismSize, c); }
 
 TEST_F(ScreenTransmissionTest, DispersionSeparatesTheChannelsAsThePathTracer) {
-    const scene::CameraView camera = frontCamera(kCameraZ, kPrismFov);
+    const scene::CameraView camera = frontCamera(kPrismCameraZ, kPrismFov);
     const scene::Scene s = prism(4.0f);
     const core::ImageRgba32f r = raster(ctx(), shaders(), s, camera, kPrismSize, Env{});
     const core::ImageRgba32f p = pathTraced(ctx(), shaders(), s, camera, kPrismSize, Env{}, 24, 3);

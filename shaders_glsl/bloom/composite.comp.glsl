@@ -6,7 +6,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "bindless.glsl"
 #include "bloom_types.h"
-#include "bloom_common.glsl"
+#include "storage_bilinear.glsl"
 
 layout(local_size_x = kBloomGroupSize, local_size_y = kBloomGroupSize) in;
 layout(push_constant, scalar) uniform Push { BloomCompositePush p; };
@@ -16,6 +16,6 @@ void main() {
     if (any(greaterThanEqual(uvec2(pixel), p.dstSize))) return;
     vec4 hdr = imageLoad(gImagesRgba16f[p.hdr], pixel);
     vec2 position = (vec2(pixel) + 0.5) * vec2(p.bloomSize) / vec2(p.dstSize);
-    vec3 bloom = bilinear(p.bloom, position, p.bloomSize) / p.levels;
+    vec3 bloom = storageBilinear(p.bloom, position, p.bloomSize) / p.levels;
     imageStore(gImagesRgba16f[p.hdr], pixel, vec4(mix(hdr.rgb, bloom, p.strength), hdr.a));
 }

@@ -8,15 +8,15 @@
 #extension GL_GOOGLE_include_directive : require
 #include "bindless.glsl"
 #include "bloom_types.h"
-#include "bloom_common.glsl"
+#include "storage_bilinear.glsl"
 
 layout(local_size_x = kBloomGroupSize, local_size_y = kBloomGroupSize) in;
 layout(push_constant, scalar) uniform Push { BloomDownPush p; };
 
 // The bilinear tap at texel corner k (between texels k - 1 and k in each axis).
 vec3 cornerTap(ivec2 k) {
-    return 0.25 * (texel(p.source, k - 1, p.srcSize) + texel(p.source, ivec2(k.x, k.y - 1), p.srcSize) +
-                   texel(p.source, ivec2(k.x - 1, k.y), p.srcSize) + texel(p.source, k, p.srcSize));
+    return 0.25 * (storageTexel(p.source, k - 1, p.srcSize) + storageTexel(p.source, ivec2(k.x, k.y - 1), p.srcSize) +
+                   storageTexel(p.source, ivec2(k.x - 1, k.y), p.srcSize) + storageTexel(p.source, k, p.srcSize));
 }
 
 float luma(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }

@@ -5,7 +5,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "bindless.glsl"
 #include "bloom_types.h"
-#include "bloom_common.glsl"
+#include "storage_bilinear.glsl"
 
 layout(local_size_x = kBloomGroupSize, local_size_y = kBloomGroupSize) in;
 layout(push_constant, scalar) uniform Push { BloomUpPush p; };
@@ -17,7 +17,8 @@ void main() {
     vec3 tent = vec3(0.0);
     for (int y = -1; y <= 1; ++y)
         for (int x = -1; x <= 1; ++x)
-            tent += float((2 - abs(x)) * (2 - abs(y))) / 16.0 * bilinear(p.coarse, position + vec2(x, y), p.coarseSize);
+            tent += float((2 - abs(x)) * (2 - abs(y))) / 16.0 *
+                    storageBilinear(p.coarse, position + vec2(x, y), p.coarseSize);
     vec3 detail = imageLoad(gImagesRgba16f[p.detail], pixel).rgb;
     imageStore(gImagesRgba16f[p.target], pixel, vec4(tent + detail, 1.0));
 }

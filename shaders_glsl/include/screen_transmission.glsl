@@ -19,6 +19,7 @@
 #include "environment.glsl"
 #include "pt_dispersion.h"
 #include "transmission_types.h"
+#include "storage_bilinear.glsl"
 
 // The chain's level k: ceil-halved k times from the frame size.
 uvec2 transmissionLevelSize(uvec2 extent, uint level) {
@@ -27,28 +28,14 @@ uvec2 transmissionLevelSize(uvec2 extent, uint level) {
     return s;
 }
 
-// Texel q of a chain level, clamped to its edge. The level differs between fragments (roughness), hence nonuniformEXT.
-vec3 chainTexel(uint image, ivec2 q, uvec2 size) {
-    return imageLoad(gImagesRgba16f[nonuniformEXT(image)], clamp(q, ivec2(0), ivec2(size) - 1)).rgb;
-}
-
-// Bilinear in a chain level at `position` in its pixel units (pixel centres at +0.5).
-vec3 chainBilinear(uint image, vec2 position, uvec2 size) {
-    vec2 g = position - 0.5;
-    ivec2 base = ivec2(floor(g));
-    vec2 t = g - vec2(base);
-    return mix(mix(chainTexel(image, base, size), chainTexel(image, base + ivec2(1, 0), size), t.x),
-               mix(chainTexel(image, base + ivec2(0, 1), size), chainTexel(image, base + ivec2(1, 1), size), t.x), t.y);
-}
-
 // The opaque colour at screen uv, trilinear between the chain's levels around lod (bilinear in each with storage
 // loads, see passes/transmission.cpp for why; a real GPU would sample one mipmapped image through a linear sampler).
 vec3 opaqueColorAt(GpuFrame f, TransmissionPush tp, vec2 uv, float lod) {
     float l = clamp(lod, 0.0, float(tp.levelCount - 1u));
     uint l0 = uint(floor(l)), l1 = min(l0 + 1u, tp.levelCount - 1u);
     uvec2 s0 = transmissionLevelSize(f.extent, l0), s1 = transmissionLevelSize(f.extent, l1);
-    vec3 a = chainBilinear(tp.levels[l0], uv * vec2(s0), s0);
-    vec3 b = chainBilinear(tp.levels[l1], uv * vec2(s1), s1);
+    vec3 a = storageBilinear(tp.levels[l0], uv * vec2(s0), s0);
+    vec3 b = storageBilinear(tp.levels[l1], uv * vec2(s1), s1);
     return mix(a, b, l - float(l0));
 }
 

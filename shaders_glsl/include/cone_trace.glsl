@@ -14,11 +14,20 @@ vec4 sampleVolume(VxgiConeParams c, uint volume, vec3 uvw, float lod) {
     return textureLod(sampler3D(gTextures3D[nonuniformEXT(volume)], gSamplers[nonuniformEXT(c.gridSampler)]), uvw, lod);
 }
 
+// Directional volume k (0..5) at `uvw`, `lod`: premultiplied rgb from its colour volume (B10G11R11_UFLOAT), coverage
+// from its opacity volume (R8_UNORM), both filtered trilinearly; one RGBA16F volume holds both where the indices
+// are equal (ladder "vxgi-volume-format" fallback). The indices are the same for the whole dispatch or draw.
+vec4 sampleDirection(VxgiConeParams c, uint k, vec3 uvw, float lod) {
+    vec4 s = sampleVolume(c, c.directions[k], uvw, lod);
+    if (c.opacity[k] != c.directions[k]) s.a = sampleVolume(c, c.opacity[k], uvw, lod).r;
+    return s;
+}
+
 // The grid seen along `dir` at `lod` (grid levels: level L of the directional volumes).
 vec4 sampleVoxels(VxgiConeParams c, vec3 uvw, vec3 dir, float lod) {
-    vec4 sx = sampleVolume(c, c.directions[vxgiDirectionIndex(dir, 0u)], uvw, lod);
-    vec4 sy = sampleVolume(c, c.directions[vxgiDirectionIndex(dir, 1u)], uvw, lod);
-    vec4 sz = sampleVolume(c, c.directions[vxgiDirectionIndex(dir, 2u)], uvw, lod);
+    vec4 sx = sampleDirection(c, vxgiDirectionIndex(dir, 0u), uvw, lod);
+    vec4 sy = sampleDirection(c, vxgiDirectionIndex(dir, 1u), uvw, lod);
+    vec4 sz = sampleDirection(c, vxgiDirectionIndex(dir, 2u), uvw, lod);
     return vxgiCombine(dir, sx, sy, sz);
 }
 

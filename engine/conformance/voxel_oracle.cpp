@@ -5,7 +5,10 @@
 
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 
+#include "vk/resources.hpp"
 #include "vk/transfer.hpp"
 
 namespace idk::conformance {
@@ -137,13 +140,45 @@ std::vector<OracleVoxel> voxelizeOnCpu(const std::vector<PlacedQuad>& quads, con
     return grid;
 }
 
+glm::vec4 decodeVoxelTexel(VkFormat format, const uint8_t* texel) {
+    switch (format) {
+        case VK_FORMAT_R16G16B16A16_SFLOAT: {
+            uint16_t h[4];
+            std::memcpy(h, texel, sizeof(h));
+            return {glm::unpackHalf1x16(h[0]), glm::unpackHalf1x16(h[1]), glm::unpackHalf1x16(h[2]),
+                    glm::unpackHalf1x16(h[3])};
+        }
+        case VK_FORMAT_B10G11R11_UFLOAT_PACK32: {
+            uint32_t bits;
+            std::memcpy(&bits, texel, sizeof(bits));
+            return {glm::unpackF2x11_1x10(bits), 1.0f};  // r: bits 0..10, g: 11..21, b: 22..31
+        }
+        case VK_FORMAT_R8_UNORM: return glm::vec4(float(texel[0]) / 255.0f);
+        default: throw std::runtime_error("decodeVoxelTexel: not a VXGI volume format (" + std::to_string(format) + ")");
+    }
+}
+
+glm::vec4 directionStep(VkFormat colour, glm::vec4 value) {
+    const glm::vec4 v = glm::abs(value);
+    if (colour == VK_FORMAT_R16G16B16A16_SFLOAT) return v * 0x1p-10f + 0x1p-24f;  // 10 mantissa bits
+    // 6 mantissa bits for r and g, 5 for b, 5-bit exponent (smallest step 2^-20, 2^-19); coverage in 1/255 steps.
+    return {v.x * 0x1p-6f + 0x1p-20f, v.y * 0x1p-6f + 0x1p-20f, v.z * 0x1p-5f + 0x1p-19f, 1.0f / 255.0f};
+}
+
 std::vector<glm::vec4> readVoxelGrid(vk::Context& ctx, const vk::Image& grid, VkImageLayout layout) {
-    const std::vector<uint8_t> bytes = vk::readbackImage(ctx, grid, layout);  // RGBA16F level 0, x fastest
-    std::vector<uint16_t> halves(bytes.size() / sizeof(uint16_t));
-    std::memcpy(halves.data(), bytes.data(), halves.size() * sizeof(uint16_t));
-    std::vector<glm::vec4> out(halves.size() / 4);
-    for (size_t i = 0; i < out.size(); ++i)
-        for (int c = 0; c < 4; ++c) out[i][c] = glm::unpackHalf1x16(halves[i * 4 + c]);
+    const std::vector<uint8_t> bytes = vk::readbackImage(ctx, grid, layout);  // level 0, x fastest
+    const uint32_t texel = vk::bytesPerTexel(grid.format);
+    std::vector<glm::vec4> out(bytes.size() / texel);
+    for (size_t i = 0; i < out.size(); ++i) out[i] = decodeVoxelTexel(grid.format, bytes.data() + i * texel);
+    return out;
+}
+
+std::vector<glm::vec4> readDirectionGrid(vk::Context& ctx, const frame::DirectionVolume& direction,
+                                         VkImageLayout layout) {
+    std::vector<glm::vec4> out = readVoxelGrid(ctx, direction.colour.image, layout);
+    if (!direction.packed()) return out;
+    const std::vector<glm::vec4> opacity = readVoxelGrid(ctx, direction.opacity.image, layout);
+    for (size_t i = 0; i < out.size(); ++i) out[i].a = opacity[i].r;
     return out;
 }
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "conformance/placed_quads.hpp"
+#include "frame/voxel_volume.hpp"
 #include "passes/vxgi_passes.hpp"
 #include "vk/context.hpp"
 
@@ -39,7 +40,20 @@ std::vector<OracleVoxel> voxelizeOnCpu(const std::vector<PlacedQuad>& quads, con
 
 // The RGBA16F voxel grid a frame left in `layout` (GENERAL for the grid; level 0), as RGBA floats, x fastest; the
 // GPU side of every comparison with the oracle (the registry's vxgi checks and the gl-interop rung's tests).
+// Also reads level 0 of the directional volumes' images (decodeVoxelTexel's formats).
 std::vector<glm::vec4> readVoxelGrid(vk::Context& ctx, const vk::Image& grid,
                                      VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL);
+// Level 0 of a directional volume as the cone tracer sees it: rgb from its colour image, alpha from its opacity
+// image (or the colour image's alpha on the RGBA16F rung of "vxgi-volume-format").
+std::vector<glm::vec4> readDirectionGrid(vk::Context& ctx, const frame::DirectionVolume& direction,
+                                         VkImageLayout layout);
+
+// One texel of VXGI's volume formats as floats: RGBA16F; B10G11R11_UFLOAT_PACK32 (alpha 1, as sampling returns);
+// R8_UNORM (in every channel). Throws on another format.
+glm::vec4 decodeVoxelTexel(VkFormat format, const uint8_t* texel);
+// One storage step of a directional voxel `value` (premultiplied rgb, coverage) in `colour`'s format (RGBA16F, or
+// B10G11R11_UFLOAT with coverage in R8_UNORM), per channel: the rounding a GPU's store may add (round to nearest or
+// toward zero), which a comparison with a CPU value computed in float must allow.
+glm::vec4 directionStep(VkFormat colour, glm::vec4 value);
 
 }  // namespace idk::conformance

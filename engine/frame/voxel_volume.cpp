@@ -1,14 +1,16 @@
 // voxel_volume.cpp: creation, release and per-frame import of a VXGI volume.
 #include "frame/voxel_volume.hpp"
 
+#include <string>
+
 #include "vk/check.hpp"
 
 namespace idk::frame {
 
-vk::ImageDesc voxelVolumeDesc(const char* name, uint32_t size, uint32_t levels) {
+vk::ImageDesc voxelVolumeDesc(const char* name, uint32_t size, uint32_t levels, VkFormat format) {
     vk::ImageDesc desc;
     desc.type = VK_IMAGE_TYPE_3D;
-    desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    desc.format = format;
     desc.extent = {size, size, size};
     desc.mipLevels = levels;
     desc.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
@@ -17,14 +19,19 @@ vk::ImageDesc voxelVolumeDesc(const char* name, uint32_t size, uint32_t levels) 
     return desc;
 }
 
+VoxelDirectionFormat voxelDirectionFormat(vk::Rung rung) {
+    if (rung == vk::Rung::Native) return {VK_FORMAT_B10G11R11_UFLOAT_PACK32, VK_FORMAT_R8_UNORM};
+    return {};
+}
+
 uint32_t voxelMipLevels(uint32_t size) {
     uint32_t levels = 1;
     while ((size >> levels) > 0) ++levels;
     return levels;
 }
 
-void VoxelVolume::create(vk::Context& ctx, const char* name, uint32_t size, uint32_t levels) {
-    const vk::ImageDesc desc = voxelVolumeDesc(name, size, levels);
+void VoxelVolume::create(vk::Context& ctx, const char* name, uint32_t size, uint32_t levels, VkFormat format) {
+    const vk::ImageDesc desc = voxelVolumeDesc(name, size, levels, format);
     image = ctx.createImage(desc);
     for (uint32_t level = 0; level < levels; ++level) {
         VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
@@ -71,6 +78,18 @@ graph::TextureHandle VoxelVolume::import(graph::RenderGraph& graph, const char* 
     if (written) state = graph::stateAfterAccess(finalUse.access, graph::ResourceKind::Image, finalUse.stages);
     written = true;
     return graph.importTexture(name, p, state, finalUse);
+}
+
+void DirectionVolume::create(vk::Context& ctx, const char* name, uint32_t size, uint32_t levels,
+                             VoxelDirectionFormat format) {
+    colour.create(ctx, name, size, levels, format.colour);
+    if (format.opacity != VK_FORMAT_UNDEFINED)
+        opacity.create(ctx, (std::string(name) + " opacity").c_str(), size, levels, format.opacity);
+}
+
+void DirectionVolume::release(vk::Context& ctx) {
+    colour.release(ctx);
+    opacity.release(ctx);
 }
 
 }  // namespace idk::frame

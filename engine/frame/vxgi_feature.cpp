@@ -47,13 +47,13 @@ void VxgiFeature::release() {
     coneParams_.clear();
     if (!grid_.image.image) return;
     grid_.release(ctx_);
-    for (VoxelVolume& d : directions_) d.release(ctx_);
+    for (DirectionVolume& d : directions_) d.release(ctx_);
     ctx_.bindless().release(sampler_);
 }
 
 VkDeviceSize VxgiFeature::heldBytes() const noexcept {
     VkDeviceSize bytes = grid_.image.allocation.size;
-    for (const VoxelVolume& d : directions_) bytes += d.image.allocation.size;
+    for (const DirectionVolume& d : directions_) bytes += d.bytes();
     return bytes;
 }
 
@@ -68,6 +68,7 @@ void VxgiFeature::addPasses(FrameContext& f, const std::optional<passes::VoxelSh
         return;
     }
     const vk::Rung atomics = f.ctx.ladder("vxgi-atomics").chosen;
+    const VoxelDirectionFormat format = voxelDirectionFormat(f.ctx.ladder("vxgi-volume-format").chosen);
     if (!grid_.image.image || grid_.image.extent.width != s.voxels) {
         // Refused before the old grid is released: the frame fails with the message, nothing is lost.
         checkVxgiMemory(ctx_, s.voxels, atomics, heldBytes());
@@ -76,12 +77,12 @@ void VxgiFeature::addPasses(FrameContext& f, const std::optional<passes::VoxelSh
     if (!grid_.image.image) {
         grid_.create(ctx_, "vxgi voxel grid", s.voxels, 1);
         // Directional volumes of the grid's size: level 0 is the voxels seen along each direction (anisotropic
-        // from the start, by the surfaces' facing), levels up to 1^3. 6 x 8 bytes x 8/7 per voxel: 512^3 takes
-        // 7.4 GB on a real GPU, where an implementation would keep level 0 sparse or drop to half precision.
+        // from the start, by the surfaces' facing), levels up to 1^3. 6 x 5 bytes x 8/7 per voxel packed (6 x 8 in
+        // RGBA16F): 512^3 takes 4.3 GiB (6.9 GiB).
         const uint32_t levels = voxelMipLevels(s.voxels);
         const char* names[6] = {"vxgi mips +x", "vxgi mips -x", "vxgi mips +y", "vxgi mips -y", "vxgi mips +z",
                                 "vxgi mips -z"};
-        for (uint32_t d = 0; d < 6; ++d) directions_[d].create(ctx_, names[d], s.voxels, levels);
+        for (uint32_t d = 0; d < 6; ++d) directions_[d].create(ctx_, names[d], s.voxels, levels, format);
         vk::SamplerDesc sampler;
         // Clamp to edge: a coarse cell holding a wall on the grid's bounds reads as that wall up to the march's end
         // (one cell outside), where a transparent border would blend it away by up to half.
@@ -98,10 +99,17 @@ void VxgiFeature::addPasses(FrameContext& f, const std::optional<passes::VoxelSh
     // skip the voxels that stay empty (their zeros are already there).
     const bool fullMerge = !grid_.written;
     graph::TextureHandle grid = grid_.import(f.graph, "vxgi voxel grid", {graph::Access::StorageRead, kCs});
-    const char* names[6] = {"vxgi mips +x", "vxgi mips -x", "vxgi mips +y", "vxgi mips -y", "vxgi mips +z",
-                            "vxgi mips -z"};
-    for (uint32_t d = 0; d < 6; ++d)
-        directionHandles_[d] = directions_[d].import(f.graph, names[d], {graph::Access::SampledRead, kCs});
+    const char* names[12] = {"vxgi mips +x",         "vxgi mips -x",         "vxgi mips +y",
+                             "vxgi mips -y",         "vxgi mips +z",         "vxgi mips -z",
+                             "vxgi mips +x opacity", "vxgi mips -x opacity", "vxgi mips +y opacity",
+                             "vxgi mips -y opacity", "vxgi mips +z opacity", "vxgi mips -z opacity"};
+    for (uint32_t d = 0; d < 6; ++d) {
+        directionHandles_[d] = directions_[d].colour.import(f.graph, names[d], {graph::Access::SampledRead, kCs});
+        directionHandles_[6 + d] =
+            directions_[d].packed()
+                ? directions_[d].opacity.import(f.graph, names[6 + d], {graph::Access::SampledRead, kCs})
+                : graph::TextureHandle{};
+    }
 
     passes::VoxelizeInputs in{f.scene, f.frameConstants, f.pointShadows, box_, atomics};
     if (in.atomics == vk::Rung::GlInterop) {  // the GL pass's shared buffers live across frames
@@ -117,7 +125,10 @@ void VxgiFeature::addPasses(FrameContext& f, const std::optional<passes::VoxelSh
     }
     if (f.settings.vxgi.raster == VoxelRaster::Conservative)
         in.conservative = f.ctx.ladder("conservative-raster").chosen;
-    for (uint32_t d = 0; d < 6; ++d) in.directionLevel0[d] = directions_[d].levelStorage[0].value;
+    for (uint32_t d = 0; d < 6; ++d) {
+        in.directionLevel0[d] = directions_[d].colourStorage(0);
+        in.directionLevel0[6 + d] = directions_[d].opacityStorage(0);
+    }
     in.fullMerge = fullMerge;
     in.shadowRays = rays;
     // The single draw's projection follows "voxel-single-draw", except under the dilation fallback, whose geometry
@@ -125,10 +136,7 @@ void VxgiFeature::addPasses(FrameContext& f, const std::optional<passes::VoxelSh
     if (s.draws == VoxelDraws::Single)
         in.singleDraw = in.conservative == vk::Rung::Fallback ? vk::Rung::Fallback
                                                               : f.ctx.ladder("voxel-single-draw").chosen;
-    std::array<graph::TextureHandle, 6> handles;
-    for (uint32_t d = 0; d < 6; ++d) handles[d] = directionHandles_[d];
-    f.voxelGrid = passes::addVoxelizePasses(f.graph, f.ctx, f.shaders, in, grid, handles, cells_, &f.log);
-    for (uint32_t d = 0; d < 6; ++d) directionHandles_[d] = handles[d];
+    f.voxelGrid = passes::addVoxelizePasses(f.graph, f.ctx, f.shaders, in, grid, directionHandles_, cells_, &f.log);
     f.voxelBox = box_;
 }
 
@@ -139,15 +147,19 @@ void VxgiFeature::addConeTracing(FrameContext& f) {
     in.frame = f.frameConstants;
     in.environment = f.environment;
     in.grid = f.voxelGrid;
+    in.directions = directionHandles_;
     for (uint32_t d = 0; d < 6; ++d) {
-        in.directions[d] = directionHandles_[d];
-        in.directionSampled[d] = directions_[d].sampled.value;
+        in.directionSampled[d] = directions_[d].colourSampled();
+        in.directionSampled[6 + d] = directions_[d].opacitySampled();
     }
     in.gridStorage = grid_.levelStorage[0].value;
     in.gridSampled = grid_.sampled.value;
-    for (uint32_t level = 0; level < directions_[0].levelStorage.size(); ++level) {
-        std::array<uint32_t, 6> views{};
-        for (uint32_t d = 0; d < 6; ++d) views[d] = directions_[d].levelStorage[level].value;
+    for (uint32_t level = 0; level < directions_[0].levels(); ++level) {
+        passes::VxgiDirectionIndices views{};
+        for (uint32_t d = 0; d < 6; ++d) {
+            views[d] = directions_[d].colourStorage(level);
+            views[6 + d] = directions_[d].opacityStorage(level);
+        }
         in.directionLevels.push_back(views);
     }
     in.gridSampler = sampler_.value;
@@ -177,10 +189,13 @@ void VxgiFeature::addConeTracing(FrameContext& f) {
     c.gridMin = box_.gridMin;
     c.voxelSize = box_.voxelSize;
     c.gridSize = box_.size;
-    c.maxLod = float(directions_[0].levelStorage.size() - 1);
+    c.maxLod = float(directions_[0].levels() - 1);
     c.stepFactor = in.stepFactor;
     c.ringCones = in.ringCones;
-    for (uint32_t d = 0; d < 6; ++d) c.directions[d] = in.directionSampled[d];
+    for (uint32_t d = 0; d < 6; ++d) {
+        c.directions[d] = in.directionSampled[d];
+        c.opacity[d] = in.directionSampled[6 + d];
+    }
     c.gridSampler = in.gridSampler;
     const uint32_t slot = f.slot % uint32_t(coneParams_.size());
     vk::uploadBuffer(ctx_, coneParams_[slot], &c, sizeof(c));
@@ -199,11 +214,14 @@ void VxgiFeature::addDebugView(FrameContext& f) {
     in.directions = mipped_;
     // The viewer can ask for a level past the chain's end (the CLI refuses one): show the coarsest instead.
     // The directional volumes hold levels 0 .. log2(voxels) (level L: cells of 2^L voxels, as the grid's).
-    const uint32_t levels = uint32_t(directions_[0].levelStorage.size());
+    const uint32_t levels = directions_[0].levels();
     in.level = std::min(f.settings.vxgi.debugLevel, levels - 1);
     if (in.level == 0) in.volumeStorage[0] = grid_.levelStorage[0].value;
     else
-        for (uint32_t d = 0; d < 6; ++d) in.volumeStorage[d] = directions_[d].levelStorage[in.level].value;
+        for (uint32_t d = 0; d < 6; ++d) {
+            in.volumeStorage[d] = directions_[d].colourStorage(in.level);
+            in.volumeStorage[6 + d] = directions_[d].opacityStorage(in.level);
+        }
     in.box = box_;
     f.hdr = passes::addVxgiDebugViewPass(f.graph, f.ctx, f.shaders, in);
 }

@@ -55,9 +55,10 @@ public:
     VkDeviceSize heldBytes() const noexcept;
     // The gl-interop rung's state (record capacity, last frame's overflow) or nullptr on the other rungs.
     passes::VxgiGlAccumulator* glAccumulator() const noexcept { return gl_.get(); }
-    // The six directional volumes (+x -x +y -y +z -z, level 0 the voxels seen along each; left where the cone
-    // tracer sampled them): tests read them back for the CPU cone tracer.
-    const std::array<VoxelVolume, 6>& directions() const noexcept { return directions_; }
+    // The six directional volumes (+x -x +y -y +z -z, level 0 the voxels seen along each; colour and opacity in the
+    // formats of ladder "vxgi-volume-format"; left where the cone tracer sampled them): tests read them back for the
+    // CPU cone tracer.
+    const std::array<DirectionVolume, 6>& directions() const noexcept { return directions_; }
 
 private:
     void release();
@@ -65,11 +66,11 @@ private:
     scene::Aabb bounds_;
     passes::VoxelGridBox box_;
     VoxelVolume grid_;                      // level 0: the voxelized radiance and coverage
-    std::array<VoxelVolume, 6> directions_; // anisotropic volumes (+x -x +y -y +z -z), levels 0 .. log2(size)
+    std::array<DirectionVolume, 6> directions_;  // anisotropic volumes (+x -x +y -y +z -z), levels 0 .. log2(size)
     vk::SamplerIndex sampler_;
-    graph::TextureHandle directionHandles_[6];  // this frame's imports
+    passes::VxgiDirectionHandles directionHandles_;  // this frame's imports
     graph::TextureHandle cells_;                // this frame's cell mask (the merge's, for the level-1 mip)
-    std::array<graph::TextureHandle, 6> mipped_;  // this frame's directional volumes after the mip passes
+    passes::VxgiDirectionHandles mipped_;  // this frame's directional volumes after the mip passes
     std::unique_ptr<passes::VxgiGlAccumulator> gl_;  // "vxgi-atomics" gl-interop rung only
     // The cone parameters for forward passes (gpu::VxgiConeParams), one host-visible buffer per frame in flight.
     std::vector<vk::Buffer> coneParams_;

@@ -12,9 +12,14 @@ namespace idk::frame {
 
 VxgiMemory vxgiMemory(vk::Context& ctx, uint32_t voxels, vk::Rung atomics) {
     VxgiMemory m;
-    // The grid (one level) and the six directional volumes (full chains), as VxgiFeature::addPasses creates them.
-    m.volumes = vk::imageBytes(ctx, voxelVolumeDesc("vxgi voxel grid", voxels, 1)) +
-                6 * vk::imageBytes(ctx, voxelVolumeDesc("vxgi mips", voxels, voxelMipLevels(voxels)));
+    // The grid (one level) and the six directional volumes (full chains: colour, and opacity where the
+    // "vxgi-volume-format" rung keeps it apart), as VxgiFeature::addPasses creates them.
+    const VoxelDirectionFormat format = voxelDirectionFormat(ctx.ladder("vxgi-volume-format").chosen);
+    const uint32_t levels = voxelMipLevels(voxels);
+    VkDeviceSize direction = vk::imageBytes(ctx, voxelVolumeDesc("vxgi mips", voxels, levels, format.colour));
+    if (format.opacity != VK_FORMAT_UNDEFINED)
+        direction += vk::imageBytes(ctx, voxelVolumeDesc("vxgi mips opacity", voxels, levels, format.opacity));
+    m.volumes = vk::imageBytes(ctx, voxelVolumeDesc("vxgi voxel grid", voxels, 1)) + 6 * direction;
     // The merge's cell mask (transient, every rung).
     vk::ImageDesc cells;
     cells.type = VK_IMAGE_TYPE_3D;

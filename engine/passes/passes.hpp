@@ -194,10 +194,19 @@ graph::TextureHandle addSkyPass(graph::RenderGraph& graph, vk::Context& ctx, vk:
 // the HDR `target` after sky, depth-tested against the G-buffer depth; returns the target's new version.
 // --gi vxgi in the forward pass: the cone parameters' buffer (one gpu::VxgiConeParams, written by
 // frame/vxgi_feature.cpp) and the directional volumes its cones sample; `params` invalid: GI off (the SH ambient).
+// VXGI's six directional volumes as the graph sees them: [0..5] their colour images (+x -x +y -y +z -z), [6..11]
+// their opacity images (invalid handles on the RGBA16F rung of "vxgi-volume-format", where the colour image holds
+// the coverage too: frame/voxel_volume.hpp). Passes declare the valid ones.
+inline constexpr uint32_t kVxgiDirectionImages = 12;
+using VxgiDirectionHandles = std::array<graph::TextureHandle, kVxgiDirectionImages>;
+// Bindless indices of the same twelve (views of one level, or the sampled views): an opacity index equal to its
+// colour index means one RGBA16F image holds both (include/voxel_images.glsl).
+using VxgiDirectionIndices = std::array<uint32_t, kVxgiDirectionImages>;
+
 struct ForwardVxgiInputs {
     graph::BufferHandle params;
     uint32_t paramsIndex = 0xFFFFFFFFu;  // its bindless storage-buffer index
-    std::array<graph::TextureHandle, 6> volumes;
+    VxgiDirectionHandles volumes;
     // The grid itself: the cones do not sample it, but a draw that uses the bindless 3D array counts for the
     // synchronization validation layer as reading every 3D image in it, so its next write must wait for this pass.
     graph::TextureHandle grid;

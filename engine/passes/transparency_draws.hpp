@@ -32,7 +32,8 @@ inline void readTransparencyInputs(graph::PassBuilder& b, const TransparencyInpu
     }
     if (t.vxgi.params.valid()) {  // --gi vxgi: the fragments trace cones through the directional volumes
         b.read(t.vxgi.params, graph::Access::StorageRead, kFs);
-        for (graph::TextureHandle v : t.vxgi.volumes) b.read(v, graph::Access::SampledRead, kFs);
+        for (graph::TextureHandle v : t.vxgi.volumes)
+            if (v.valid()) b.read(v, graph::Access::SampledRead, kFs);
         b.read(t.vxgi.grid, graph::Access::SampledRead, kFs);
     }
 }

@@ -18,7 +18,7 @@ namespace {
 // "vxgi_cone_trace_fixup", the pixels of `fix` (render resolution) whose diffuse alpha the upsample set to -1.
 IndirectLightImages addTracePass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                  const ConeTraceInputs& in, const gpu::ConeTracePush& base,
-                                 const std::array<graph::TextureHandle, 7>& volumes, const IndirectLightImages* fix) {
+                                 const std::vector<graph::TextureHandle>& volumes, const IndirectLightImages* fix) {
     constexpr VkPipelineStageFlags2 kCs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
     auto out = std::make_shared<IndirectLightImages>();
     const GBufferOutputs g = in.gbuffer;
@@ -78,12 +78,14 @@ IndirectLightImages addConeTracePasses(graph::RenderGraph& graph, vk::Context& c
                                        const ConeTraceInputs& in) {
     constexpr VkPipelineStageFlags2 kCs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
     graph::TextureHandle grid = in.grid;
-    std::array<graph::TextureHandle, 6> dirs = in.directions;
+    VxgiDirectionHandles dirs = in.directions;
     for (uint32_t level = 1; level < in.directionLevels.size(); ++level) {
         gpu::VoxelMipPush push{};
         for (uint32_t d = 0; d < 6; ++d) {
             push.src[d] = in.directionLevels[level - 1][d];
             push.dst[d] = in.directionLevels[level][d];
+            push.srcOpacity[d] = in.directionLevels[level - 1][6 + d];
+            push.dstOpacity[d] = in.directionLevels[level][6 + d];
         }
         push.dstSize = std::max(1u, in.box.size >> level);
         push.cells = gpu::kVoxelNoCells;  // level 1: the mask's index, known when the pass runs
@@ -94,7 +96,8 @@ IndirectLightImages addConeTracePasses(graph::RenderGraph& graph, vk::Context& c
             // read-write resource, so consecutive levels get a full barrier between them.
             [&](graph::PassBuilder& b) {
                 if (cells.valid()) b.read(cells, graph::Access::StorageRead, kCs);
-                for (graph::TextureHandle& d : dirs) d = b.write(d, graph::Access::StorageReadWrite, kCs);
+                for (graph::TextureHandle& d : dirs)
+                    if (d.valid()) d = b.write(d, graph::Access::StorageReadWrite, kCs);
             },
             [&ctx, &shaders, push, cells](graph::PassContext& pc) mutable {
                 VkCommandBuffer cmd = pc.commandBuffer();
@@ -119,11 +122,15 @@ IndirectLightImages addConeTracePasses(graph::RenderGraph& graph, vk::Context& c
     base.voxelSize = in.box.voxelSize;
     base.gridSize = in.box.size;
     base.maxLod = float(in.directionLevels.size() - 1);
-    for (uint32_t d = 0; d < 6; ++d) base.directions[d] = in.directionSampled[d];
+    for (uint32_t d = 0; d < 6; ++d) {
+        base.directions[d] = in.directionSampled[d];
+        base.opacity[d] = in.directionSampled[6 + d];
+    }
     base.grid = in.gridSampled;
     base.stepFactor = in.stepFactor;
-    const std::array<graph::TextureHandle, 7> volumes = {grid,    dirs[0], dirs[1], dirs[2],
-                                                         dirs[3], dirs[4], dirs[5]};
+    std::vector<graph::TextureHandle> volumes = {grid};
+    for (graph::TextureHandle d : dirs)
+        if (d.valid()) volumes.push_back(d);
     IndirectLightImages traced = addTracePass(graph, ctx, shaders, in, base, volumes, nullptr);
     if (!in.halfResolution) return traced;
     // Half resolution: the edge-aware upsample, then full-resolution traces of the pixels it found no sample of

@@ -16,7 +16,10 @@ graph::TextureHandle addVxgiDebugViewPass(graph::RenderGraph& graph, vk::Context
     constexpr VkPipelineStageFlags2 kCs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
     gpu::VxgiDebugPush base{};
     base.level = in.level;
-    for (uint32_t d = 0; d < 6; ++d) base.volumes[d] = in.volumeStorage[d];
+    for (uint32_t d = 0; d < 6; ++d) {
+        base.volumes[d] = in.volumeStorage[d];
+        base.opacity[d] = in.volumeStorage[6 + d];
+    }
     base.gridMin = in.box.gridMin;
     base.voxelSize = in.box.voxelSize;
     base.gridSize = in.box.size;
@@ -25,7 +28,9 @@ graph::TextureHandle addVxgiDebugViewPass(graph::RenderGraph& graph, vk::Context
     // image is declared.
     std::vector<graph::TextureHandle> volumes;
     if (in.level == 0) volumes.push_back(in.grid);
-    else volumes.assign(in.directions.begin(), in.directions.end());
+    else
+        for (graph::TextureHandle d : in.directions)
+            if (d.valid()) volumes.push_back(d);
     auto out = std::make_shared<graph::TextureHandle>(in.target);  // the execute callback runs after this returns
     const graph::BufferHandle frame = in.frame;
     graph.addPass(

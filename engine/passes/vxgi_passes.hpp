@@ -47,7 +47,7 @@ struct VoxelizeInputs {
     // Ladder "conservative-raster": Native VK_EXT_conservative_rasterization, Fallback geometry-shader dilation;
     // none: pixel-centre rasterization (thin voxelization).
     std::optional<vk::Rung> conservative;
-    std::array<uint32_t, 6> directionLevel0{};  // storage indices of the directional volumes' level-0 views
+    VxgiDirectionIndices directionLevel0{};  // storage indices of the directional volumes' level-0 views
     // The grid and the directional volumes are new (contents undefined): the merge stores every voxel. Otherwise it
     // skips the empty voxels the previous frames left zero (merge.comp.glsl), and reads the grid to know which.
     bool fullMerge = true;
@@ -72,7 +72,7 @@ inline uint32_t voxelCellMaskSize(uint32_t n) { return n > 1 ? n / 2 : 1; }
 
 graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                        const VoxelizeInputs& inputs, graph::TextureHandle grid,
-                                       std::array<graph::TextureHandle, 6>& directions, graph::TextureHandle& cells,
+                                       VxgiDirectionHandles& directions, graph::TextureHandle& cells,
                                        IndirectDrawLog* log);
 
 // vxgi_cone_trace.cpp: "vxgi_mip L" (one pass per level L >= 1 of the six directional volumes, each from the
@@ -87,18 +87,19 @@ struct ConeTraceInputs {
     graph::TextureHandle environment;
     graph::TextureHandle grid;           // after the voxelization (level 0 only)
     uint32_t gridStorage = 0, gridSampled = 0;
-    // Anisotropic volumes, one per direction (+x -x +y -y +z -z), levels 0 (the merge's) to log2(size):
-    // the frame's handles, their sampled indices, and the storage index of each level's view per direction.
-    std::array<graph::TextureHandle, 6> directions;
-    std::array<uint32_t, 6> directionSampled{};
-    std::vector<std::array<uint32_t, 6>> directionLevels;
+    // Anisotropic volumes, one per direction (+x -x +y -y +z -z; colour then opacity, VxgiDirectionHandles),
+    // levels 0 (the merge's) to log2(size): the frame's handles, their sampled indices, and the storage index of
+    // each level's view per image.
+    VxgiDirectionHandles directions;
+    VxgiDirectionIndices directionSampled{};
+    std::vector<VxgiDirectionIndices> directionLevels;
     uint32_t gridSampler = 0;            // bindless sampler: trilinear, clamp to edge
     graph::TextureHandle cells;          // the merge's cell mask (addVoxelizePasses): the level-1 mip skips its zeros
     VoxelGridBox box;
     uint32_t ringCones = 5;
     float stepFactor = 0.5f;
     bool halfResolution = false;
-    std::array<graph::TextureHandle, 6>* mipped = nullptr;  // if set: the directional volumes after the mip passes
+    VxgiDirectionHandles* mipped = nullptr;  // if set: the directional volumes after the mip passes
 };
 IndirectLightImages addConeTracePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                        const ConeTraceInputs& inputs);
@@ -123,8 +124,8 @@ struct VxgiDebugViewInputs {
     graph::BufferHandle frame;
     graph::TextureHandle target;
     graph::TextureHandle grid;                        // level 0 (read when level == 0)
-    std::array<graph::TextureHandle, 6> directions;   // after the mips (read when level >= 1)
-    std::array<uint32_t, 6> volumeStorage{};          // storage indices of `level`: [0] the grid's for level 0
+    VxgiDirectionHandles directions;                  // after the mips (read when level >= 1)
+    VxgiDirectionIndices volumeStorage{};             // storage indices of `level`: [0] the grid's for level 0
     uint32_t level = 0;
     VoxelGridBox box;
 };

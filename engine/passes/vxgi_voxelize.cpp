@@ -60,7 +60,7 @@ VoxelAccumulatorImages voxelAccumulatorImages(vk::Rung atomics) {
 
 graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                        const VoxelizeInputs& in, graph::TextureHandle grid,
-                                       std::array<graph::TextureHandle, 6>& directions, graph::TextureHandle& cells,
+                                       VxgiDirectionHandles& directions, graph::TextureHandle& cells,
                                        IndirectDrawLog* log) {
     const uint32_t mode = modeOf(in.atomics);
     const uint32_t n = in.box.size;
@@ -224,7 +224,7 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
     if (gl) acc->sums = gl->addPass(graph, acc->records, acc->sums);
 
     auto written = std::make_shared<graph::TextureHandle>();
-    const std::array<uint32_t, 6> level0 = in.directionLevel0;
+    const VxgiDirectionIndices level0 = in.directionLevel0;
     const bool full = in.fullMerge;
     graph.addPass(
         "vxgi_merge",
@@ -236,7 +236,8 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             *written = b.write(grid, full ? graph::Access::StorageWrite : graph::Access::StorageReadWrite, kCs);
             acc->cells = b.write(acc->cells, graph::Access::StorageWrite, kCs);
             // Level 0 through its own view; the graph tracks each volume whole (the mips read it next).
-            for (graph::TextureHandle& d : directions) d = b.write(d, graph::Access::StorageReadWrite, kCs);
+            for (graph::TextureHandle& d : directions)
+                if (d.valid()) d = b.write(d, graph::Access::StorageReadWrite, kCs);
             b.sideEffect();  // the grid is persistent state: later frames and readers outside the graph use it
         },
         [&ctx, &shaders, acc, written, n, mode, gl, level0, full](graph::PassContext& pc) {
@@ -251,7 +252,10 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             for (uint32_t i = 0; i < acc->count; ++i) push.accum[i] = pc.texture(acc->images[i]).storageIndex;
             if (gl) push.accum[0] = gl->sumsIndex();
             push.grid = pc.texture(*written).storageIndex;
-            for (uint32_t d = 0; d < 6; ++d) push.directions[d] = level0[d];
+            for (uint32_t d = 0; d < 6; ++d) {
+                push.directions[d] = level0[d];
+                push.opacity[d] = level0[6 + d];
+            }
             push.gridSize = n;
             push.mode = mode;
             push.full = full ? 1u : 0u;

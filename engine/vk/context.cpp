@@ -445,6 +445,23 @@ void Context::createDevice() {
         caps_.samplerFilterMinmax = supported.v12.samplerFilterMinmax &&
                                     (r32f.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_MINMAX_BIT);
     }
+    {  // VXGI's packed directional volumes (frame/voxel_volume.hpp): written by compute, sampled trilinearly
+        const VkFormatFeatureFlags need = VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT |
+                                          VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+        bool packed = supported.core.features.shaderStorageImageExtendedFormats;
+        for (VkFormat format : {VK_FORMAT_B10G11R11_UFLOAT_PACK32, VK_FORMAT_R8_UNORM}) {
+            VkFormatProperties props{};
+            vkGetPhysicalDeviceFormatProperties(physical_, format, &props);
+            VkImageFormatProperties image{};
+            packed = packed && (props.optimalTilingFeatures & need) == need &&
+                     vkGetPhysicalDeviceImageFormatProperties(
+                         physical_, format, VK_IMAGE_TYPE_3D, VK_IMAGE_TILING_OPTIMAL,
+                         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                             VK_IMAGE_USAGE_TRANSFER_DST_BIT, 0,
+                         &image) == VK_SUCCESS;
+        }
+        caps_.packedVoxelFormats = packed;
+    }
     caps_.meshShaderNv = contains(exts, "VK_NV_mesh_shader");
     caps_.fragmentShadingRate = supported.shadingRate.attachmentFragmentShadingRate;
     caps_.shadingRateImageNv = supported.shadingRateNv.shadingRateImage;
@@ -497,6 +514,7 @@ void Context::createDevice() {
     c.fragmentStoresAndAtomics = VK_TRUE;
     c.shaderStorageImageWriteWithoutFormat = VK_TRUE;
     c.shaderStorageImageReadWithoutFormat = s.shaderStorageImageReadWithoutFormat;
+    c.shaderStorageImageExtendedFormats = s.shaderStorageImageExtendedFormats;  // VXGI's packed volumes
     c.vertexPipelineStoresAndAtomics = s.vertexPipelineStoresAndAtomics;
     c.geometryShader = s.geometryShader;
     c.samplerAnisotropy = s.samplerAnisotropy;

@@ -87,6 +87,11 @@ std::vector<Ladder> ladderTable(const DeviceCapabilities& c) {
          {Rung::GlInterop, "fragment records + GL_NV_shader_atomic_float adds via GL_EXT_memory_object_fd",
           glAtomicFloat, glNote(c, c.glAtomicFloat, "GL_NV_shader_atomic_float")},
          {Rung::Fallback, "three r32ui images + merge", true, ""}}));
+    ladders.push_back(ladder("vxgi-volume-format", "directional voxel volume formats (VXGI)",
+        // The six directional mip chains (frame/voxel_volume.hpp): 5 instead of 8 bytes per voxel and level.
+        {{Rung::Native, "B10G11R11_UFLOAT colour + R8_UNORM opacity", c.packedVoxelFormats,
+          missing(c.packedVoxelFormats, "storage + filtered sampling of 3D B10G11R11_UFLOAT and R8_UNORM images")},
+         {Rung::Fallback, "RGBA16F", true, ""}}));
     ladders.push_back(ladder("vxgi-gl-accumulate", "GL-interop voxel sums (VXGI)",
         // Consulted on vxgi-atomics' gl-interop rung (passes/vxgi_gl_accumulate.cpp): the GL program that adds the
         // fragments' records. Native: two f16vec4 atomics per record into RGBA16F images, then a resolve to the

@@ -33,6 +33,9 @@ struct DeviceCapabilities {
     bool externalMemoryFd = false;        // VK_KHR_external_memory_fd: share memory with OpenGL
     bool bufferFloat32AtomicAdd = false;  // VK_EXT_shader_atomic_float: shaderBufferFloat32AtomicAdd
     bool samplerFilterMinmax = false;     // VK_EXT_sampler_filter_minmax (core 1.2) with MAX filtering of R32F
+    // B10G11R11_UFLOAT_PACK32 and R8_UNORM 3D images with storage, sampling and linear filtering (VXGI's packed
+    // directional volumes; storage of both is one of Vulkan's optional "extended" storage formats).
+    bool packedVoxelFormats = false;
     // The GL-interop rung (gl/interop_probe.hpp), filled only when the context probed it (ContextDesc).
     bool glInterop = false;               // a GL context imports this device's memory; round trip passed
     bool glAtomicFloat = false;           // ... and has GL_NV_shader_atomic_float

@@ -14,12 +14,26 @@ vec4 sampleVolume(VxgiConeParams c, uint volume, vec3 uvw, float lod) {
     return textureLod(sampler3D(gTextures3D[nonuniformEXT(volume)], gSamplers[nonuniformEXT(c.gridSampler)]), uvw, lod);
 }
 
-// The grid seen along `dir` at `lod` (grid levels: level L of the directional volumes).
+// The grid seen along `dir` at `lod` (grid levels: level L of the directional volumes): the directional volume
+// facing the travel on each axis (0..5: +x -x +y -y +z -z), combined by vxgiCombine. Packed volumes (ladder
+// "vxgi-volume-format" native) keep premultiplied rgb in a B10G11R11_UFLOAT volume and coverage in an R8_UNORM one,
+// both filtered trilinearly; the fallback keeps both in one RGBA16F volume (opacity index == colour index). The
+// indices are the same for the whole dispatch or draw.
+// Packed, the three coverages are fetched first: where they combine to zero the march takes nothing from the
+// sample whatever its rgb (vxgiMarchTake), so the colour fetches are skipped; in the air that most cones cross
+// that keeps the fetches at three per sample, as with RGBA16F (lavapipe pays per fetch; a GPU diverges only
+// where a warp's samples straddle a surface).
 vec4 sampleVoxels(VxgiConeParams c, vec3 uvw, vec3 dir, float lod) {
-    vec4 sx = sampleVolume(c, c.directions[vxgiDirectionIndex(dir, 0u)], uvw, lod);
-    vec4 sy = sampleVolume(c, c.directions[vxgiDirectionIndex(dir, 1u)], uvw, lod);
-    vec4 sz = sampleVolume(c, c.directions[vxgiDirectionIndex(dir, 2u)], uvw, lod);
-    return vxgiCombine(dir, sx, sy, sz);
+    uint kx = vxgiDirectionIndex(dir, 0u), ky = vxgiDirectionIndex(dir, 1u), kz = vxgiDirectionIndex(dir, 2u);
+    if (c.opacity[kx] == c.directions[kx])
+        return vxgiCombine(dir, sampleVolume(c, c.directions[kx], uvw, lod),
+                           sampleVolume(c, c.directions[ky], uvw, lod), sampleVolume(c, c.directions[kz], uvw, lod));
+    vec3 a = vec3(sampleVolume(c, c.opacity[kx], uvw, lod).r, sampleVolume(c, c.opacity[ky], uvw, lod).r,
+                  sampleVolume(c, c.opacity[kz], uvw, lod).r);
+    if (dot(abs(dir), a) <= 0.0) return vec4(0.0);
+    return vxgiCombine(dir, vec4(sampleVolume(c, c.directions[kx], uvw, lod).rgb, a.x),
+                       vec4(sampleVolume(c, c.directions[ky], uvw, lod).rgb, a.y),
+                       vec4(sampleVolume(c, c.directions[kz], uvw, lod).rgb, a.z));
 }
 
 // Radiance arriving at the receiver `origin` (geometric normal `plane`) through the cone (unit axis `dir`, tangent

@@ -20,8 +20,9 @@ struct VxgiDebugPush {
     float voxelSize;      // of level 0
     uint gridSize;        // level 0 cells per side
     uint pad;
+    uint opacity[6];      // L >= 1: storage indices of the directions' opacity images (== volumes[k]: RGBA16F)
 };
-IDK_GPU_SIZE(VxgiDebugPush, 64);
+IDK_GPU_SIZE(VxgiDebugPush, 88);
 
 IDK_GPU_END
 #endif

@@ -77,8 +77,10 @@ struct VoxelMergePush {
                          // voxels whose grid voxel is already all-zero bits (merge.comp.glsl says why that is exact)
     uint cells;          // storage index of the frame's cell mask (R32UI, (size / 2)^3, cleared to 0): the merge
                          // sets 1 in the level-1 cell of every occupied voxel, the level-1 mip skips the others
+    uint opacity[6];     // storage indices of the directions' opacity images' level 0 (R8), or directions[k] where
+                         // one RGBA16F image holds both (ladder "vxgi-volume-format": include/voxel_images.glsl)
 };
-IDK_GPU_SIZE(VoxelMergePush, 76);
+IDK_GPU_SIZE(VoxelMergePush, 100);
 
 // mip.comp: one level of the anisotropic mip chain (Crassin et al. 2011): for each direction d of +x -x +y -y +z
 // -z, a voxel of level L >= 1 is its 2x2x2 children of level L - 1 of direction d (level 0: the merge's)
@@ -90,8 +92,10 @@ struct VoxelMipPush {
     uint dstSize;  // voxels per side of level L
     uint cells;    // L = 1: storage index of the merge's cell mask (VoxelMergePush::cells), 0 where none of the
                    // cell's eight voxels is occupied (mip.comp.glsl); kVoxelNoCells for L >= 2
+    uint srcOpacity[6];  // the opacity images of src and dst (== src / dst: one RGBA16F image holds both)
+    uint dstOpacity[6];
 };
-IDK_GPU_SIZE(VoxelMipPush, 56);
+IDK_GPU_SIZE(VoxelMipPush, 104);
 IDK_CONST(uint, kVoxelNoCells, 0xFFFFFFFFu);
 
 // The cone tracer's parameters (include/cone_trace.glsl). The G-buffer pass has them in its push block
@@ -108,8 +112,9 @@ struct VxgiConeParams {
     uint directions[6];    // sampled indices of the directional volumes (+x -x +y -y +z -z), levels 0..maxLod
     uint gridSampler;      // trilinear, clamp to edge
     uint pad;
+    uint opacity[6];       // sampled indices of their opacity volumes (== directions[k]: one RGBA16F image)
 };
-IDK_GPU_SIZE(VxgiConeParams, 64);
+IDK_GPU_SIZE(VxgiConeParams, 88);
 
 IDK_CONST(uint, kConeGroupSize, 8u);   // cone_trace: 8x8 pixels
 IDK_CONST(uint, kNoVxgi, 0xFFFFFFFFu); // LightingPush::vxgiDiffuse when GI is off
@@ -133,8 +138,9 @@ struct ConeTracePush {
     float maxLod;          // the directional volumes' top level (log2 gridSize)
     float stepFactor;      // march step = sample diameter * stepFactor
     uint unmatchedOnly;    // 1: render resolution, only pixels whose diffuse alpha the upsample left at -1
+    uint opacity[6];       // sampled indices of the directions' opacity volumes (VxgiConeParams::opacity)
 };
-IDK_GPU_SIZE(ConeTracePush, 96);
+IDK_GPU_SIZE(ConeTracePush, 120);
 
 IDK_GPU_END
 #endif

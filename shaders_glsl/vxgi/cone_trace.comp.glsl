@@ -31,6 +31,7 @@ VxgiConeParams coneParams(ConeTracePush q) {
     c.stepFactor = q.stepFactor;
     c.ringCones = q.ringCones;
     c.directions = q.directions;
+    c.opacity = q.opacity;
     c.gridSampler = q.gridSampler;
     c.pad = 0u;
     return c;

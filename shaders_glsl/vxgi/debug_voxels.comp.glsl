@@ -21,9 +21,10 @@ layout(push_constant, scalar) uniform Push { VxgiDebugPush p; };
 
 vec4 cellValue(ivec3 cell, vec3 dir) {
     if (p.level == 0u) return imageLoad(gVoxelsRgba16f[p.volumes[0]], cell);
-    vec4 sx = imageLoad(gVoxelsRgba16f[p.volumes[vxgiDirectionIndex(dir, 0u)]], cell);
-    vec4 sy = imageLoad(gVoxelsRgba16f[p.volumes[vxgiDirectionIndex(dir, 1u)]], cell);
-    vec4 sz = imageLoad(gVoxelsRgba16f[p.volumes[vxgiDirectionIndex(dir, 2u)]], cell);
+    uint kx = vxgiDirectionIndex(dir, 0u), ky = vxgiDirectionIndex(dir, 1u), kz = vxgiDirectionIndex(dir, 2u);
+    vec4 sx = loadDirectionVoxel(p.volumes[kx], p.opacity[kx], cell);
+    vec4 sy = loadDirectionVoxel(p.volumes[ky], p.opacity[ky], cell);
+    vec4 sz = loadDirectionVoxel(p.volumes[kz], p.opacity[kz], cell);
     return vxgiCombine(dir, sx, sy, sz);
 }
 

@@ -8,7 +8,8 @@
 // composite is zero: the cell is stored zero without the 48 directional loads. Levels >= 2 read their children (1/8
 // of level 1's work each). On a GPU the saving is bandwidth (4 instead of 384 bytes read per empty cell); a warp
 // straddling a surface runs both paths, at the cost of one extra 4-byte load. Lavapipe pays per load and store
-// alike, so there the saving is the count of loads (49 -> 1 per empty cell).
+// alike, so there the saving is the count of loads (49 -> 1 per empty cell). Each level is read and written in the
+// directions' formats (voxel_images.glsl): packed, a voxel is 5 bytes instead of 8, which a GPU's bandwidth sees.
 #extension GL_GOOGLE_include_directive : require
 #include "vxgi_types.h"
 #include "voxel_images.glsl"
@@ -23,7 +24,7 @@ void main() {
     if (any(greaterThanEqual(voxel, ivec3(p.dstSize)))) return;
     ivec3 base = voxel * 2;
     if (p.cells != kVoxelNoCells && imageLoad(gVoxelsR32ui[p.cells], voxel).r == 0u) {
-        for (uint d = 0; d < 6; ++d) imageStore(gVoxelsRgba16f[p.dst[d]], voxel, vec4(0.0));
+        for (uint d = 0; d < 6; ++d) storeDirectionVoxel(p.dst[d], p.dstOpacity[d], voxel, vec4(0.0));
         return;
     }
     for (uint d = 0; d < 6; ++d) {
@@ -37,10 +38,10 @@ void main() {
         vec4 sum = vec4(0.0);
         for (int i = 0; i < 4; ++i) {
             ivec3 c = base + u * (i & 1) + w * (i >> 1);
-            vec4 lo = imageLoad(gVoxelsRgba16f[p.src[d]], c);
-            vec4 hi = imageLoad(gVoxelsRgba16f[p.src[d]], c + step);
+            vec4 lo = loadDirectionVoxel(p.src[d], p.srcOpacity[d], c);
+            vec4 hi = loadDirectionVoxel(p.src[d], p.srcOpacity[d], c + step);
             sum += positive ? over(lo, hi) : over(hi, lo);
         }
-        imageStore(gVoxelsRgba16f[p.dst[d]], voxel, sum * 0.25);
+        storeDirectionVoxel(p.dst[d], p.dstOpacity[d], voxel, sum * 0.25);
     }
 }

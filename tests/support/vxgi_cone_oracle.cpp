@@ -1,11 +1,10 @@
 // vxgi_cone_oracle.cpp: the CPU cone tracer (vxgi_cone_oracle.hpp).
 #include "vxgi_cone_oracle.hpp"
 
-#include <glm/gtc/packing.hpp>
-
 #include <algorithm>
 #include <cmath>
 
+#include "conformance/voxel_oracle.hpp"
 #include "graph/barrier_planner.hpp"
 #include "shared/pt_common.h"
 #include "shared/vxgi_cone.h"
@@ -16,11 +15,12 @@ namespace idk::test {
 VoxelVolumeData readVoxelVolume(vk::Context& ctx, const vk::Image& image, uint32_t levels, VkImageLayout layout) {
     VoxelVolumeData out;
     out.size = image.extent.width;
+    const uint32_t texel = vk::bytesPerTexel(image.format);
     size_t total = 0;
     for (uint32_t l = 0; l < levels; ++l) total += size_t(std::max(1u, out.size >> l)) * std::max(1u, out.size >> l) *
                                                    std::max(1u, out.size >> l);
     vk::BufferDesc desc;
-    desc.size = total * 8;
+    desc.size = total * texel;
     desc.memory = vk::MemoryUsage::Readback;
     desc.name = "voxel volume readback";
     vk::Buffer staging = ctx.createBuffer(desc);
@@ -30,27 +30,33 @@ VoxelVolumeData readVoxelVolume(vk::Context& ctx, const vk::Image& image, uint32
         for (uint32_t l = 0; l < levels; ++l) {
             const uint32_t s = std::max(1u, out.size >> l);
             VkBufferImageCopy copy{};
-            copy.bufferOffset = offset;
+            copy.bufferOffset = offset;  // a multiple of the texel size, as Vulkan requires
             copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, l, 0, 1};
             copy.imageExtent = {s, s, s};
             vkCmdCopyImageToBuffer(cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.buffer, 1, &copy);
-            offset += VkDeviceSize(s) * s * s * 8;
+            offset += VkDeviceSize(s) * s * s * texel;
         }
         vk::transitionImage(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, layout);
     });
-    std::vector<uint16_t> halves(total * 4);
-    vk::downloadBuffer(ctx, staging, halves.data(), desc.size);
+    std::vector<uint8_t> bytes(desc.size);
+    vk::downloadBuffer(ctx, staging, bytes.data(), desc.size);
     ctx.destroy(staging);
     size_t at = 0;
     for (uint32_t l = 0; l < levels; ++l) {
         const size_t s = std::max(1u, out.size >> l);
         std::vector<glm::vec4> level(s * s * s);
-        for (glm::vec4& v : level) {
-            for (int c = 0; c < 4; ++c) v[c] = glm::unpackHalf1x16(halves[at * 4 + c]);
-            ++at;
-        }
+        for (glm::vec4& v : level) v = conformance::decodeVoxelTexel(image.format, bytes.data() + texel * at++);
         out.levels.push_back(std::move(level));
     }
+    return out;
+}
+
+VoxelVolumeData readDirectionVolume(vk::Context& ctx, const frame::DirectionVolume& direction, VkImageLayout layout) {
+    VoxelVolumeData out = readVoxelVolume(ctx, direction.colour.image, direction.levels(), layout);
+    if (!direction.packed()) return out;
+    const VoxelVolumeData opacity = readVoxelVolume(ctx, direction.opacity.image, direction.levels(), layout);
+    for (size_t l = 0; l < out.levels.size(); ++l)
+        for (size_t i = 0; i < out.levels[l].size(); ++i) out.levels[l][i].a = opacity.levels[l][i].r;
     return out;
 }
 
@@ -121,8 +127,8 @@ ConeGridData readConeGrid(vk::Context& ctx, const frame::VxgiFeature& vxgi) {
     const VkImageLayout sampled = graph::stateAfterAccess(graph::Access::SampledRead, graph::ResourceKind::Image,
                                                           VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT)
                                       .layout;
-    const auto levels = uint32_t(vxgi.directions()[0].levelViews.size());
-    for (uint32_t d = 0; d < 6; ++d) grid.directions[d] = readVoxelVolume(ctx, vxgi.directions()[d].image, levels, sampled);
+    for (uint32_t d = 0; d < 6; ++d) grid.directions[d] = readDirectionVolume(ctx, vxgi.directions()[d], sampled);
+    grid.directionFormat = vxgi.directions()[0].colour.image.format;
     return grid;
 }
 
@@ -131,7 +137,7 @@ gpu::ConeTracePush conePush(const frame::VxgiFeature& vxgi, const frame::VxgiSet
     c.gridMin = vxgi.box().gridMin;
     c.voxelSize = vxgi.box().voxelSize;
     c.gridSize = vxgi.box().size;
-    c.maxLod = float(vxgi.directions()[0].levelViews.size() - 1);
+    c.maxLod = float(vxgi.directions()[0].levels() - 1);
     c.stepFactor = settings.stepFactor;
     c.ringCones = settings.ringCones;
     return c;

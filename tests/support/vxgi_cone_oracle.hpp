@@ -29,10 +29,15 @@ struct VoxelVolumeData {
 struct ConeGridData {
     VoxelVolumeData grid;
     std::array<VoxelVolumeData, 6> directions;
+    VkFormat directionFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  // their colour images' (conformance::directionStep)
 };
 
-// Reads `levels` mip levels of an RGBA16F 3D image left in `layout` (it is left there again).
+// Reads `levels` mip levels of a 3D image of VXGI's formats (conformance::decodeVoxelTexel) left in `layout` (it
+// is left there again).
 VoxelVolumeData readVoxelVolume(vk::Context& ctx, const vk::Image& image, uint32_t levels, VkImageLayout layout);
+// All levels of a directional volume: rgb from its colour image, alpha from its opacity image (RGBA16F rung: the
+// colour image's), the values the cone tracer's fetch filters.
+VoxelVolumeData readDirectionVolume(vk::Context& ctx, const frame::DirectionVolume& direction, VkImageLayout layout);
 
 // Vulkan's linear-mipmap trilinear fetch at normalized `uvw`, level `lod`, clamp to edge.
 glm::vec4 sampleVolumeOnCpu(const VoxelVolumeData& v, glm::vec3 uvw, float lod);

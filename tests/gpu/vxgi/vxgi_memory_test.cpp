@@ -1,6 +1,8 @@
 // vxgi_memory_test.cpp: the VXGI grid's memory check (frame/vxgi_memory.hpp) inside a renderer that already holds a
-// 64^3 grid, with a forced budget of 100 MiB free (IDK_TEST_MEMORY_BUDGET_MIB; 128^3 needs 189.7 MiB):
-//  * the grid it holds is the computed volumes' size, to the byte (the allocator's sizes of the seven images);
+// 64^3 grid, with a forced budget of 100 MiB free (IDK_TEST_MEMORY_BUDGET_MIB; 128^3 needs 149.9 MiB with packed
+// directional volumes):
+//  * the grid it holds is the computed volumes' size, to the byte (the allocator's sizes of the grid's and the
+//    directions' images);
 //  * the viewer's guard (refuseVxgiChange) reverts a change to 128 and names 64 as the largest that fits; a change
 //    that fits, or turning VXGI off, passes untouched;
 //  * a frame asked for 128 directly throws VxgiMemoryError and keeps the old grid (same image, 64^3); the next

@@ -8,12 +8,13 @@
 // skip rests on an invariant, checked on the read-back volumes: a voxel whose grid bits are all zero has all-zero bits
 // in every direction. And the mip chain, skips included, is checked against a CPU mip of the read-back levels
 // (mip.comp.glsl's composite: each level from the GPU's level below; zero exactly where the CPU's is zero, else within
-// one fp16 step).
+// one storage step of the directions' format: fp16, or 10/11-bit floats and 1/255 for packed volumes).
 #include <gtest/gtest.h>
 
 #include <cstring>
 #include <memory>
 
+#include "conformance/voxel_oracle.hpp"
 #include "frame/vxgi_feature.hpp"
 #include "render/renderer.hpp"
 #include "support/gpu_fixture.hpp"
@@ -93,8 +94,10 @@ size_t mipMismatches(const ConeGridData& g, size_t& zeros) {
                             bad += gpu != glm::vec4(0.0f);
                             continue;
                         }
+                        // One storage step of the directions' format (the GPU rounds its float composite).
+                        const glm::vec4 ulp = conformance::directionStep(g.directionFormat, cpu);
                         for (int k = 0; k < 4; ++k)
-                            if (std::abs(gpu[k] - cpu[k]) > 1e-3f * std::abs(cpu[k]) + 1e-7f) {
+                            if (std::abs(gpu[k] - cpu[k]) > ulp[k] + 1e-7f) {
                                 ++bad;
                                 break;
                             }
@@ -182,17 +185,18 @@ class VxgiMergeTest : public GpuTest {};
 
 TEST_F(VxgiMergeTest, SkippingEmptyVoxelsGivesTheFullMergeBitForBit) {
     ASSERT_EQ(ctx().ladder("vxgi-atomics").chosen, vk::Rung::Native) << "lavapipe has float image atomic add";
+    ASSERT_EQ(ctx().ladder("vxgi-volume-format").chosen, vk::Rung::Native) << "lavapipe stores B10G11R11 and R8";
     expectIncrementalEqualsFull(ctx(), shaders(), "float-add rung");
 }
 
-// A context of its own with "vxgi-atomics" forced to `rung`.
-void expectIncrementalEqualsFullOn(vk::Rung rung, const char* what) {
+// A context of its own with `ladder` ("vxgi-atomics" unless named) forced to `rung`.
+void expectIncrementalEqualsFullOn(vk::Rung rung, const char* what, const char* ladder = "vxgi-atomics") {
     vk::ContextDesc desc = sharedContext().desc();
     desc.validation = true;
     desc.probeGlInterop = rung == vk::Rung::GlInterop;
-    desc.forcedRungs = {vk::RungForce{"vxgi-atomics", rung}};
+    desc.forcedRungs = {vk::RungForce{ladder, rung}};
     auto ctx = std::make_unique<vk::Context>(desc);
-    ASSERT_EQ(ctx->ladder("vxgi-atomics").chosen, rung) << what << " must be forcible on lavapipe + llvmpipe";
+    ASSERT_EQ(ctx->ladder(ladder).chosen, rung) << what << " must be forcible on lavapipe + llvmpipe";
     {
         vk::ShaderLibrary shaders(*ctx);
         expectIncrementalEqualsFull(*ctx, shaders, what);
@@ -204,6 +208,11 @@ void expectIncrementalEqualsFullOn(vk::Rung rung, const char* what) {
 
 TEST_F(VxgiMergeTest, SkippingEmptyVoxelsGivesTheFullMergeBitForBitOnTheUintRung) {
     expectIncrementalEqualsFullOn(vk::Rung::Fallback, "r32ui rung");
+}
+
+// The RGBA16F directional volumes ("vxgi-volume-format" fallback: one image per direction, coverage in alpha).
+TEST_F(VxgiMergeTest, SkippingEmptyVoxelsGivesTheFullMergeBitForBitWithRgba16fDirections) {
+    expectIncrementalEqualsFullOn(vk::Rung::Fallback, "RGBA16F directions", "vxgi-volume-format");
 }
 
 TEST_F(VxgiMergeTest, SkippingEmptyVoxelsGivesTheFullMergeBitForBitOnTheGlRung) {

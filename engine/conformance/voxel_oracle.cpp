@@ -3,11 +3,14 @@
 
 #include <glm/gtc/packing.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <stdexcept>
 #include <string>
 
+#include "shared/vxgi_depth_key.h"
 #include "vk/resources.hpp"
 #include "vk/transfer.hpp"
 
@@ -87,6 +90,14 @@ std::vector<OracleVoxel> voxelizeOnCpu(const std::vector<PlacedQuad>& quads, con
     const double v = box.voxelSize;
     const glm::dvec3 gmin(box.gridMin);
     std::vector<OracleVoxel> grid(size_t(n) * n * n);
+    // Every fragment first: the front-most rule needs each voxel's largest key per class before any is kept.
+    struct Fragment {
+        size_t voxel;
+        uint32_t facingClass, key;
+        glm::dvec3 value;
+        glm::dvec4 facing;
+    };
+    std::vector<Fragment> fragments;
     for (size_t qi = 0; qi < quads.size(); ++qi) {
         const PlacedQuad& q = quads[qi];
         const glm::dvec3 nrm = glm::normalize(glm::dvec3(q.normal));
@@ -117,7 +128,8 @@ std::vector<OracleVoxel> voxelizeOnCpu(const std::vector<PlacedQuad>& quads, con
                 voxel[a] = k;
                 voxel[u] = i;
                 voxel[w] = j;
-                OracleVoxel& o = grid[(size_t(voxel.z) * n + voxel.y) * n + voxel.x];
+                const size_t index = (size_t(voxel.z) * n + voxel.y) * n + voxel.x;
+                OracleVoxel& o = grid[index];
                 if (tie) {
                     o.ambiguous = true;
                     continue;
@@ -130,12 +142,28 @@ std::vector<OracleVoxel> voxelizeOnCpu(const std::vector<PlacedQuad>& quads, con
                     o.ambiguous = true;
                     continue;
                 }
-                o.sum += value;
-                o.facing += facing;
-                o.max = glm::max(o.max, value);
-                ++o.count;
+                // The class from the quad's front normal, the key from its position in the voxel along the axis.
+                const uint32_t facingClass = gpu::voxelFacingClass(glm::vec3(nrm));
+                fragments.push_back({index, facingClass, gpu::voxelDepthKey(float(t), k, facingClass), value, facing});
             }
         }
+    }
+    std::vector<uint32_t> keys(grid.size() * 6, 0u);
+    for (const Fragment& f : fragments)
+        keys[f.voxel * 6 + f.facingClass] = std::max(keys[f.voxel * 6 + f.facingClass], f.key);
+    for (const Fragment& f : fragments) {
+        OracleVoxel& o = grid[f.voxel];
+        const int64_t margin = int64_t(f.key) + gpu::kVoxelKeyTolerance - int64_t(keys[f.voxel * 6 + f.facingClass]);
+        if (margin >= -2 && margin <= 2) o.ambiguous = true;  // on the threshold: float rounding decides
+        if (margin < 0) {
+            ++o.hidden;
+            continue;
+        }
+        o.sum += f.value;
+        o.facing += f.facing;
+        o.max = glm::max(o.max, f.value);
+        o.classes |= 1u << f.facingClass;
+        ++o.count;
     }
     return grid;
 }

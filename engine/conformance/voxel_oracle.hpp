@@ -6,6 +6,10 @@
 // the brighter side's) and its facing (shared/vxgi_types.h, as the voxelization shader computes it). Samples
 // within 1e-4 voxel of a quad edge or of a voxel face along the axis are "ambiguous" (the GPU's tie rules decide
 // them) and mark their voxels so the comparison leaves them out. Unshadowed unless asked (see voxelizeOnCpu).
+// The front-most rule as the voxelization's key pass applies it (shared/vxgi_depth_key.h, the same functions): per
+// voxel and facing class (the quad's front normal's dominant axis and sign) only the fragments whose depth key lies
+// within kVoxelKeyTolerance of the largest are kept; the others count as hidden. A voxel where a fragment's key
+// lies within 2 steps of that threshold is ambiguous (the GPU's float position decides it).
 #pragma once
 #include <glm/glm.hpp>
 
@@ -22,7 +26,9 @@ struct OracleVoxel {
     glm::dvec3 sum{0.0};
     glm::dvec3 max{0.0};
     glm::dvec4 facing{0.0};  // sum of the fragments' facings
-    uint32_t count = 0;
+    uint32_t count = 0;   // the kept (front-most) fragments
+    uint32_t hidden = 0;  // fragments behind a surface of their class in the voxel, dropped
+    uint32_t classes = 0; // bit c: a kept fragment of facing class c (voxelFacingClass)
     bool ambiguous = false;
 };
 

@@ -1,11 +1,14 @@
 // vxgi_checks.cpp: the VXGI voxelization passes (passes/vxgi_voxelize.cpp through the Renderer's VXGI feature)
 // against the CPU voxelizer (voxel_oracle.hpp) on a 64^3 grid over a scene of quads: an open box of six walls (gaps
-// at the edges so no two walls share a voxel), an emissive ceiling, a tilted double-sided quad inside, and two
-// parallel quads 0.01 apart that land in the same voxels (two fragments per voxel: the mean and the max differ
-// there). One unshadowed point light. With --gi-raster centre, the oracle's thin voxelization:
+// at the edges so no two walls share a voxel), an emissive ceiling, a tilted double-sided quad inside, a stack of
+// three parallel quads in one voxel layer (0.30 facing down, 0.305 and 0.31 facing up: the front-most rule of
+// shared/vxgi_depth_key.h hides the middle one behind the top one, while the bottom one, of the other facing, stays:
+// two fragments per voxel, whose mean and max differ), and a floor and a wall meeting in a row of corner voxels
+// (two facings, both kept). One unshadowed point light. With --gi-raster centre, the oracle's thin voxelization
+// (which applies the same front-most rule):
 //  * "vxgi/voxelize" on each rung of "vxgi-atomics": occupancy agrees with the oracle on >= 99.5% of the voxels
 //    either marks (the oracle's tie-free design makes it 100% here); each occupied voxel's rgb is the oracle's MEAN
-//    of its fragments (native: float atomic add + count; gl-interop: fragment records added by GL float atomics,
+//    of its front-most fragments (native: float atomic add + count; gl-interop: fragment records added by GL float atomics,
 //    merged by Vulkan) or MAX (fallback: r32ui + max) within 0.2% (+1e-5); on one-fragment voxels the six
 //    directional level-0 voxels are the oracle's radiance seen by its quad's facing (one-sided ceiling: dark from
 //    above) within the same tolerance; empty voxels are all-zero in the grid and the directional volumes.
@@ -53,8 +56,14 @@ VoxelScene makeVoxelScene() {
     t.quads.push_back(placedQuad({0.01f, 0.02f, -1.0f}, {0, 0, 1}, {0.79f, 0.72f}, {0.7f, 0.7f, 0.6f}));   // back
     t.quads.push_back(placedQuad({-0.02f, 0.04f, 1.0f}, {0, 0, -1}, {0.76f, 0.7f}, {0.5f, 0.6f, 0.7f}));   // front
     t.quads.push_back(placedQuad({0.1f, -0.2f, 0.15f}, {0.3f, 0.8f, 0.45f}, {0.4f, 0.3f}, {0.2f, 0.7f, 0.3f}, true));
-    t.quads.push_back(placedQuad({-0.3f, 0.30f, -0.2f}, {0, 1, 0}, {0.23f, 0.21f}, {0.9f, 0.2f, 0.2f}));   // thin pair
+    // The stack, all in the voxel layer y in [0.2857, 0.3175): the bottom faces down, the middle is hidden by the top.
+    t.quads.push_back(placedQuad({-0.3f, 0.30f, -0.2f}, {0, -1, 0}, {0.23f, 0.21f}, {0.9f, 0.2f, 0.2f}));
     t.quads.push_back(placedQuad({-0.3f, 0.31f, -0.2f}, {0, 1, 0}, {0.23f, 0.21f}, {0.1f, 0.3f, 0.9f}));
+    t.quads.push_back(placedQuad({-0.3f, 0.305f, -0.2f}, {0, 1, 0}, {0.23f, 0.21f}, {0.2f, 0.9f, 0.4f}));
+    // The corner: a floor (x in [0.36, 0.66], y = -0.5) and a wall facing -x at its far edge, sharing the voxels
+    // (52, 16, 37..45) (the wall at x = 0.66 lies in voxel 52, the floor's last column's centre x = 0.651 too).
+    t.quads.push_back(placedQuad({0.51f, -0.5f, 0.3f}, {0, 1, 0}, {0.15f, 0.15f}, {0.6f, 0.5f, 0.3f}));
+    t.quads.push_back(placedQuad({0.66f, -0.35f, 0.3f}, {-1, 0, 0}, {0.15f, 0.15f}, {0.3f, 0.4f, 0.8f}));
     t.emissive.assign(t.quads.size(), glm::vec3(0.0f));
     t.emissive[1] = {1.5f, 1.2f, 0.9f};  // the ceiling glows
     return t;
@@ -112,7 +121,7 @@ void expectMatchesOracle(Verdict& v, const Grid& g, const VoxelScene& t, bool us
     const std::vector<OracleVoxel> oracle = voxelizeOnCpu(t.quads, t.emissive, {t.light}, g.box, shadowed);
     if (!v.expectEq(g.voxels.size(), oracle.size(), "voxel count")) return;
     size_t either = 0, agree = 0, compared = 0, multi = 0, ambiguous = 0, nonZeroEmpty = 0, partial = 0,
-           directional = 0;
+           directional = 0, hidden = 0, corners = 0;
     for (size_t i = 0; i < oracle.size(); ++i) {
         const OracleVoxel& o = oracle[i];
         const glm::vec4& c = g.voxels[i];
@@ -131,6 +140,9 @@ void expectMatchesOracle(Verdict& v, const Grid& g, const VoxelScene& t, bool us
         ++agree;
         partial += c.a != 1.0f;
         multi += o.count > 1;
+        hidden += o.hidden > 0;
+        // Kept fragments of two axes' facings (the floor and the wall in a corner voxel).
+        corners += ((o.classes & 3u) != 0) + ((o.classes & 12u) != 0) + ((o.classes & 48u) != 0) >= 2;
         const glm::dvec3 want = useMax ? o.max : o.sum / double(o.count);
         for (int k = 0; k < 3; ++k) {
             const double err = std::abs(double(c[k]) - want[k]);
@@ -165,7 +177,9 @@ void expectMatchesOracle(Verdict& v, const Grid& g, const VoxelScene& t, bool us
     v.expectEq(nonZeroEmpty, size_t(0), "empty voxels that are not zero");
     v.expectEq(partial, size_t(0), "occupied voxels whose coverage is not 1");
     v.expect(compared > 10000, "the scene should cover many voxels (" + std::to_string(compared) + ")");
-    v.expect(multi > 50, "the thin pair should put two fragments in some voxels (" + std::to_string(multi) + ")");
+    v.expect(multi > 50, "the stack should put two fragments in some voxels (" + std::to_string(multi) + ")");
+    v.expect(hidden > 50, "the stack's middle quad should be hidden in many voxels (" + std::to_string(hidden) + ")");
+    v.expect(corners >= 8, "the corner should keep a floor and a wall in >= 8 voxels (" + std::to_string(corners) + ")");
     v.expect(ambiguous < either / 100, "the scene is meant to avoid ties (" + std::to_string(ambiguous) + ")");
 }
 

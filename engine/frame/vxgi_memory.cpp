@@ -28,6 +28,10 @@ VxgiMemory vxgiMemory(vk::Context& ctx, uint32_t voxels, vk::Rung atomics) {
     cells.extent = {c, c, c};
     cells.usage = VK_IMAGE_USAGE_STORAGE_BIT;
     m.accumulators = vk::imageBytes(ctx, cells);
+    vk::ImageDesc keys = cells;  // the front-most rule's depth keys (transient, every rung)
+    keys.format = passes::kVoxelDepthKeyFormat;
+    keys.extent = passes::voxelDepthKeyExtent(voxels);
+    m.accumulators += vk::imageBytes(ctx, keys);
     const passes::VoxelAccumulatorImages acc = passes::voxelAccumulatorImages(atomics);
     if (acc.count == 0) {
         m.accumulators += passes::VxgiGlAccumulator::firstFrameBytes(voxels);

@@ -17,7 +17,8 @@ namespace idk::frame {
 struct VxgiMemory {
     VkDeviceSize volumes = 0;       // the grid and the six directional mip chains (persistent; "vxgi" in --stats)
     VkDeviceSize accumulators = 0;  // the rung's write-conflict accumulators (transient images, or GL's buffers)
-                                    // and the merge's cell mask (transient, (n / 2)^3 x 4 bytes)
+                                    // the merge's cell mask (transient, (n / 2)^3 x 4 bytes) and the front-most
+                                    // rule's depth keys (transient, 2 n^3 x 4 bytes)
     VkDeviceSize total() const noexcept { return volumes + accumulators; }
 };
 VxgiMemory vxgiMemory(vk::Context& ctx, uint32_t voxels, vk::Rung atomics);

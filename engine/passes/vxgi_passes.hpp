@@ -30,8 +30,10 @@ struct VoxelShadowRays {
 };
 
 // vxgi_voxelize.cpp: "vxgi_clear" zeroes the write-conflict accumulators (transient 3D images of the atomic rung's
-// formats), "vxgi_voxelize" rasterizes the scene three times (one orthographic projection per axis; each triangle
-// keeps the fragments of its dominant axis) and adds every fragment's outgoing diffuse radiance to its voxel,
+// formats) and the depth keys, "vxgi_voxel_keys" rasterizes the scene three times (one orthographic projection per
+// axis; each triangle keeps the fragments of its dominant axis) and raises each voxel's depth key per facing class
+// (its front-most surface: shared/vxgi_depth_key.h), "vxgi_voxelize" rasterizes it again and adds the outgoing
+// diffuse radiance of every fragment within tolerance of its key to its voxel,
 // "vxgi_merge" resolves them into `grid` (RGBA16F, size^3, mip 0) and into level 0 of the six directional volumes
 // (`directions`, updated to their new versions), storing only the voxels that changed from or to empty unless
 // `fullMerge`, and marks the level-1 cells holding an occupied voxel in `cells` (a transient R32UI mask the level-1
@@ -69,6 +71,10 @@ VoxelAccumulatorImages voxelAccumulatorImages(vk::Rung atomics);
 // (R32UI rather than R8UI: storage images of 8-bit formats need shaderStorageImageExtendedFormats.)
 inline constexpr VkFormat kVoxelCellMaskFormat = VK_FORMAT_R32_UINT;
 inline uint32_t voxelCellMaskSize(uint32_t n) { return n > 1 ? n / 2 : 1; }
+// The front-most rule's depth keys of a grid of n^3 voxels (shared/vxgi_depth_key.h, include/voxelize_key.glsl):
+// R32UI, (2 n) x n x n (two words per voxel: facing sign + and -), transient, on every rung; 8 bytes per voxel.
+inline constexpr VkFormat kVoxelDepthKeyFormat = VK_FORMAT_R32_UINT;
+VkExtent3D voxelDepthKeyExtent(uint32_t n);
 
 graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                        const VoxelizeInputs& inputs, graph::TextureHandle grid,

@@ -1,7 +1,8 @@
 // vxgi_voxelize.cpp: voxelization of the scene's direct diffuse light into a 3D grid: clear the accumulators, draw
-// the scene once per projection axis into an attachment-less N x N render pass whose fragments write their voxel
-// with image atomics (radiance and facing), and merge the accumulators into the RGBA16F grid and the directional
-// volumes' level 0. Ports IDKEngine's Voxelizer.cs (its
+// the scene once per projection axis into an attachment-less N x N render pass whose fragments raise their voxel's
+// depth key ("vxgi_voxel_keys": the front-most rule, shared/vxgi_depth_key.h), draw it again so that the fragments
+// in front write their voxel with image atomics (radiance and facing), and merge the accumulators into the RGBA16F
+// grid and the directional volumes' level 0. Ports IDKEngine's Voxelizer.cs (its
 // 3-draw fallback; the rung of write conflicts follows the "vxgi-atomics" ladder). On its gl-interop rung the
 // fragments append records instead, "vxgi_gl_accumulate" (vxgi_gl_accumulate.cpp) adds them with GL float atomics
 // into a shared sums buffer, and the merge averages those.
@@ -30,6 +31,7 @@ namespace {
 struct Accumulators {
     graph::TextureHandle images[8];
     graph::TextureHandle cells;  // the merge's cell mask (kVoxelCellMaskFormat), cleared here
+    graph::TextureHandle keys;   // the front-most rule's depth keys (voxelDepthKeyExtent), cleared here
     uint32_t count = 0;
     graph::BufferHandle records, sums;  // gl-interop rung: the shared buffers instead of images
 };
@@ -48,7 +50,117 @@ vk::ShaderId fragmentShader(uint32_t mode, bool dilated) {
     return dilated ? vk::ShaderId::vxgi_voxelize_record_dilated_frag : vk::ShaderId::vxgi_voxelize_record_frag;
 }
 
+// What both voxelization draws share: the scene, the raster rungs and the push block's scene part.
+struct VoxelDraws {
+    SceneBuffers scene;
+    graph::BufferHandle frame, table;
+    VoxelGridBox box;
+    std::optional<vk::Rung> conservative, singleDraw;
+    std::optional<VoxelShadowRays> rays;
+};
+
+// Records the scene's draws into the attachment-less N x N rendering (one per projection axis, or one whose
+// geometry shader picks each triangle's axis) with fragment shader `plain` (`dilated` behind the dilation
+// fallback) and `push` completed with the scene's addresses (and with `lit` the shadows'). Both passes rasterise
+// alike, so a fragment of the key pass is the same fragment in the accumulating pass.
+void recordVoxelDraws(graph::PassContext& pc, vk::Context& ctx, vk::ShaderLibrary& shaders, const VoxelDraws& d,
+                      vk::ShaderId plain, vk::ShaderId dilated, gpu::VoxelizePush push, bool lit,
+                      IndirectDrawLog* log) {
+    const SceneBuffers& s = d.scene;
+    const uint32_t n = d.box.size;
+    VkCommandBuffer cmd = pc.commandBuffer();
+    // No attachments: the fragments' only output is their atomics (the render area sets the raster grid).
+    beginRendering(cmd, {n, n}, {});
+    vk::GraphicsPipelineDesc desc;
+    desc.vertex = vk::ShaderId::vxgi_voxelize_vert;
+    desc.fragment = plain;
+    if (d.conservative == vk::Rung::Native) {
+        desc.conservative = true;
+    } else if (d.conservative == vk::Rung::Fallback) {
+        desc.geometry = vk::ShaderId::vxgi_voxelize_geom;
+        desc.fragment = dilated;
+    }
+    const bool swizzled = d.singleDraw == vk::Rung::Native && !desc.geometry;
+    if (swizzled) {  // the passthrough shader picks the viewport, the viewport's swizzle projects
+        desc.geometry = vk::ShaderId::vxgi_voxelize_passthrough_geom;
+        const std::array<VkViewportSwizzleNV, 3> swizzles = voxelAxisSwizzles();
+        desc.viewportSwizzles.assign(swizzles.begin(), swizzles.end());
+    } else if (d.singleDraw && !desc.geometry) {
+        desc.geometry = vk::ShaderId::vxgi_voxelize_axis_geom;
+    }
+    desc.depthTest = false;
+    desc.depthWrite = false;
+    desc.cull = VK_CULL_MODE_NONE;  // both faces: a wall seen from behind in the projection still fills
+    desc.pushBytes = sizeof(gpu::VoxelizePush);
+    if (d.rays)
+        desc.spec = {{gpu::kSpecPtHasAlpha, d.rays->hasAlpha ? 1u : 0u},
+                     {gpu::kSpecPtStackSize, std::max(d.rays->blasStack, 1u)},
+                     {gpu::kSpecPtTlasStackSize, std::max(d.rays->tlasStack, 1u)}};
+    vk::bindPipeline(cmd, shaders.graphics(desc));
+    if (swizzled) {  // three viewports [-N, N)^2 (one per axis), the grid's N x N square kept by the scissor
+        const VkViewport viewport = voxelSwizzleViewport(n);
+        const std::array<VkViewport, 3> viewports{viewport, viewport, viewport};
+        const VkRect2D square{{0, 0}, {n, n}};
+        const std::array<VkRect2D, 3> scissors{square, square, square};
+        vkCmdSetViewport(cmd, 0, 3, viewports.data());
+        vkCmdSetScissor(cmd, 0, 3, scissors.data());
+    }
+    ctx.bindless().bind(cmd);
+    push.frame = pc.buffer(d.frame).address;
+    push.vertices = pc.buffer(s.vertices).address;
+    push.instances = pc.buffer(s.instances).address;
+    push.meshes = pc.buffer(s.meshes).address;
+    push.materials = pc.buffer(s.materials).address;
+    push.colors = s.colors.valid() ? pc.buffer(s.colors).address : 0;
+    push.uv1 = s.uv1.valid() ? pc.buffer(s.uv1).address : 0;
+    push.pointShadows = lit && d.table.valid() ? pc.buffer(d.table).address : 0;
+    if (lit && d.rays && d.rays->casters > 0) {  // the BVH and its scene are static buffers, read by address
+        push.pointShadows = d.rays->sceneDesc;
+        push.rayShadows = d.rays->casters;
+    }
+    push.gridMin = d.box.gridMin;
+    push.voxelSize = d.box.voxelSize;
+    push.gridSize = n;
+    vkCmdBindIndexBuffer(cmd, pc.vkBuffer(s.indices), 0, VK_INDEX_TYPE_UINT32);
+    // Three draws, one per projection axis (IDKEngine's measured-fastest fallback), or one whose geometry
+    // shader picks each triangle's axis: by re-emitting it projected, or (native rung) by passing it
+    // through to the viewport whose swizzle projects it.
+    const uint32_t draws = d.singleDraw ? 1 : 3;
+    for (uint32_t axis = 0; axis < draws; ++axis) {
+        push.axis = swizzled ? gpu::kVoxelAxisSwizzled : (d.singleDraw ? gpu::kVoxelAxisDominant : axis);
+        vk::pushConstants(cmd, ctx, push);
+        drawAllIndexedIndirect(cmd, pc.vkBuffer(s.drawCommands), s.drawCount);  // see indirect_draw.hpp
+        if (log) log->record(pc.passName(), s.drawCount);
+    }
+    vkCmdEndRendering(cmd);
+}
+
+// The scene reads of a voxelization draw (the key pass needs no lights: it evaluates no lighting).
+void readScene(graph::PassBuilder& b, const VoxelDraws& d, bool lights, const PointShadowOutputs& shadows) {
+    constexpr VkPipelineStageFlags2 kVs = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT;
+    constexpr VkPipelineStageFlags2 kFs = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+    const SceneBuffers& s = d.scene;
+    // (voxelize.geom reads only its inputs: no buffer access, so no geometry-stage dependency.)
+    b.read(d.frame, graph::Access::StorageRead, lights ? kVs | kFs : kVs);
+    if (lights && s.lights.valid()) b.read(s.lights, graph::Access::StorageRead, kFs);
+    if (lights && d.table.valid()) {
+        b.read(d.table, graph::Access::StorageRead, kFs);
+        for (graph::TextureHandle cube : shadows.cubes) b.read(cube, graph::Access::SampledRead, kFs);
+    }
+    if (s.drawCount == 0) return;
+    b.read(s.vertices, graph::Access::StorageRead, kVs);
+    b.read(s.indices, graph::Access::VertexRead);
+    b.read(s.instances, graph::Access::StorageRead, kVs | kFs);
+    b.read(s.meshes, graph::Access::StorageRead, kFs);
+    b.read(s.materials, graph::Access::StorageRead, kFs);
+    b.read(s.drawCommands, graph::Access::IndirectRead);
+    if (s.colors.valid()) b.read(s.colors, graph::Access::StorageRead, kVs);
+    if (s.uv1.valid()) b.read(s.uv1, graph::Access::StorageRead, kVs);
+}
+
 }  // namespace
+
+VkExtent3D voxelDepthKeyExtent(uint32_t n) { return {2 * n, n, n}; }
 
 VoxelAccumulatorImages voxelAccumulatorImages(vk::Rung atomics) {
     const uint32_t mode = modeOf(atomics);
@@ -81,6 +193,11 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             const uint32_t c = voxelCellMaskSize(n);
             cellDesc.extent = {c, c, c};
             acc->cells = b.write(b.create("vxgi cell mask", cellDesc), graph::Access::TransferDst);
+            graph::TextureDesc keyDesc;
+            keyDesc.format = kVoxelDepthKeyFormat;
+            keyDesc.sizeMode = graph::SizeMode::Absolute;
+            keyDesc.extent = voxelDepthKeyExtent(n);
+            acc->keys = b.write(b.create("vxgi depth keys", keyDesc), graph::Access::TransferDst);
             if (gl) {  // the record counter (the header) and the sums start at zero
                 acc->records = b.write(acc->records, graph::Access::TransferDst);
                 acc->sums = b.write(acc->sums, graph::Access::TransferDst);
@@ -103,6 +220,8 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
             VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
             vkCmdClearColorImage(pc.commandBuffer(), pc.image(acc->cells), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero,
                                  1, &range);
+            vkCmdClearColorImage(pc.commandBuffer(), pc.image(acc->keys), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero,
+                                 1, &range);
             if (acc->records.valid()) {
                 vkCmdFillBuffer(pc.commandBuffer(), pc.vkBuffer(acc->records), 0, gpu::kVoxelRecordHeaderWords * 4, 0);
                 vkCmdFillBuffer(pc.commandBuffer(), pc.vkBuffer(acc->sums), 0, VK_WHOLE_SIZE, 0);
@@ -113,112 +232,47 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
                                      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
         });
 
-    const SceneBuffers s = in.scene;
-    const graph::BufferHandle frame = in.frame;
-    const graph::BufferHandle table = in.shadows.table;
-    const VoxelGridBox box = in.box;
-    const std::optional<vk::Rung> conservative = in.conservative;
-    const std::optional<VoxelShadowRays> rays = in.shadowRays;
-    const std::optional<vk::Rung> singleDraw = in.singleDraw;
+    const VoxelDraws draws{in.scene, in.frame, in.shadows.table, in.box, in.conservative, in.singleDraw, in.shadowRays};
+    const PointShadowOutputs shadows = in.shadows;
+    constexpr VkPipelineStageFlags2 kFs = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+    // The key pass rasterises the scene a second time, with a fragment shader that evaluates no light (the alpha
+    // test only) and does one compare-and-swap. On a GPU that is a depth-prepass-like cost (vertex and raster work
+    // again, cheap fragments, atomics in L2), and the accumulating draw then skips the shadow lookups of hidden
+    // fragments; lavapipe runs vertex, geometry and fragment work on the same CPU cores, so the second raster costs
+    // it about as much as the scene's vertex and setup work (measured in pass_ms.vxgi_voxel_keys).
+    graph.addPass(
+        "vxgi_voxel_keys",
+        [&](graph::PassBuilder& b) {
+            acc->keys = b.write(acc->keys, graph::Access::StorageReadWrite, kFs);
+            readScene(b, draws, false, shadows);
+        },
+        [&ctx, &shaders, draws, acc, log](graph::PassContext& pc) {
+            if (draws.scene.drawCount == 0) return;
+            gpu::VoxelizePush push{};
+            push.depthKeys = pc.texture(acc->keys).storageIndex;
+            recordVoxelDraws(pc, ctx, shaders, draws, vk::ShaderId::vxgi_voxelize_key_frag,
+                             vk::ShaderId::vxgi_voxelize_key_dilated_frag, push, false, log);
+        });
     graph.addPass(
         "vxgi_voxelize",
         [&](graph::PassBuilder& b) {
-            constexpr VkPipelineStageFlags2 kVs = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT;
-            constexpr VkPipelineStageFlags2 kFs = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
-            // (voxelize.geom reads only its inputs: no buffer access, so no geometry-stage dependency.)
             for (uint32_t i = 0; i < acc->count; ++i)
                 acc->images[i] = b.write(acc->images[i], graph::Access::StorageReadWrite, kFs);
             if (acc->records.valid()) acc->records = b.write(acc->records, graph::Access::StorageReadWrite, kFs);
-            b.read(frame, graph::Access::StorageRead, kVs | kFs);
-            if (s.lights.valid()) b.read(s.lights, graph::Access::StorageRead, kFs);
-            if (table.valid()) {
-                b.read(table, graph::Access::StorageRead, kFs);
-                for (graph::TextureHandle cube : in.shadows.cubes) b.read(cube, graph::Access::SampledRead, kFs);
-            }
-            if (s.drawCount == 0) return;
-            b.read(s.vertices, graph::Access::StorageRead, kVs);
-            b.read(s.indices, graph::Access::VertexRead);
-            b.read(s.instances, graph::Access::StorageRead, kVs | kFs);
-            b.read(s.meshes, graph::Access::StorageRead, kFs);
-            b.read(s.materials, graph::Access::StorageRead, kFs);
-            b.read(s.drawCommands, graph::Access::IndirectRead);
-            if (s.colors.valid()) b.read(s.colors, graph::Access::StorageRead, kVs);
-            if (s.uv1.valid()) b.read(s.uv1, graph::Access::StorageRead, kVs);
+            b.read(acc->keys, graph::Access::StorageRead, kFs);
+            readScene(b, draws, true, shadows);
         },
-        [&ctx, &shaders, s, frame, table, box, acc, mode, conservative, rays, singleDraw, log,
-         gl](graph::PassContext& pc) {
-            if (s.drawCount == 0) return;
-            VkCommandBuffer cmd = pc.commandBuffer();
-            // No attachments: the fragments' only output is their atomics (the render area sets the raster grid).
-            beginRendering(cmd, {box.size, box.size}, {});
-            vk::GraphicsPipelineDesc desc;
-            desc.vertex = vk::ShaderId::vxgi_voxelize_vert;
-            desc.fragment = fragmentShader(mode, false);
-            if (conservative == vk::Rung::Native) {
-                desc.conservative = true;
-            } else if (conservative == vk::Rung::Fallback) {
-                desc.geometry = vk::ShaderId::vxgi_voxelize_geom;
-                desc.fragment = fragmentShader(mode, true);
-            }
-            const bool swizzled = singleDraw == vk::Rung::Native && !desc.geometry;
-            if (swizzled) {  // the passthrough shader picks the viewport, the viewport's swizzle projects
-                desc.geometry = vk::ShaderId::vxgi_voxelize_passthrough_geom;
-                const std::array<VkViewportSwizzleNV, 3> swizzles = voxelAxisSwizzles();
-                desc.viewportSwizzles.assign(swizzles.begin(), swizzles.end());
-            } else if (singleDraw && !desc.geometry) {
-                desc.geometry = vk::ShaderId::vxgi_voxelize_axis_geom;
-            }
-            desc.depthTest = false;
-            desc.depthWrite = false;
-            desc.cull = VK_CULL_MODE_NONE;  // both faces: a wall seen from behind in the projection still fills
-            desc.pushBytes = sizeof(gpu::VoxelizePush);
-            if (rays)
-                desc.spec = {{gpu::kSpecPtHasAlpha, rays->hasAlpha ? 1u : 0u},
-                             {gpu::kSpecPtStackSize, std::max(rays->blasStack, 1u)},
-                             {gpu::kSpecPtTlasStackSize, std::max(rays->tlasStack, 1u)}};
-            vk::bindPipeline(cmd, shaders.graphics(desc));
-            if (swizzled) {  // three viewports [-N, N)^2 (one per axis), the grid's N x N square kept by the scissor
-                const VkViewport viewport = voxelSwizzleViewport(box.size);
-                const std::array<VkViewport, 3> viewports{viewport, viewport, viewport};
-                const VkRect2D square{{0, 0}, {box.size, box.size}};
-                const std::array<VkRect2D, 3> scissors{square, square, square};
-                vkCmdSetViewport(cmd, 0, 3, viewports.data());
-                vkCmdSetScissor(cmd, 0, 3, scissors.data());
-            }
-            ctx.bindless().bind(cmd);
+        [&ctx, &shaders, draws, acc, mode, log, gl](graph::PassContext& pc) {
+            if (draws.scene.drawCount == 0) return;
             gpu::VoxelizePush push{};
-            push.frame = pc.buffer(frame).address;
-            push.vertices = pc.buffer(s.vertices).address;
-            push.instances = pc.buffer(s.instances).address;
-            push.meshes = pc.buffer(s.meshes).address;
-            push.materials = pc.buffer(s.materials).address;
-            push.colors = s.colors.valid() ? pc.buffer(s.colors).address : 0;
-            push.uv1 = s.uv1.valid() ? pc.buffer(s.uv1).address : 0;
-            push.pointShadows = table.valid() ? pc.buffer(table).address : 0;
-            if (rays && rays->casters > 0) {  // the BVH and its scene are static buffers, read by address
-                push.pointShadows = rays->sceneDesc;
-                push.rayShadows = rays->casters;
-            }
-            push.gridMin = box.gridMin;
-            push.voxelSize = box.voxelSize;
-            push.gridSize = box.size;
             for (uint32_t i = 0; i < acc->count; ++i) push.accum[i] = pc.texture(acc->images[i]).storageIndex;
             if (gl) {
                 push.accum[0] = gl->recordsIndex();
                 push.accum[1] = gl->capacity();
             }
-            vkCmdBindIndexBuffer(cmd, pc.vkBuffer(s.indices), 0, VK_INDEX_TYPE_UINT32);
-            // Three draws, one per projection axis (IDKEngine's measured-fastest fallback), or one whose geometry
-            // shader picks each triangle's axis: by re-emitting it projected, or (native rung) by passing it
-            // through to the viewport whose swizzle projects it.
-            const uint32_t draws = singleDraw ? 1 : 3;
-            for (uint32_t axis = 0; axis < draws; ++axis) {
-                push.axis = swizzled ? gpu::kVoxelAxisSwizzled : (singleDraw ? gpu::kVoxelAxisDominant : axis);
-                vk::pushConstants(cmd, ctx, push);
-                drawAllIndexedIndirect(cmd, pc.vkBuffer(s.drawCommands), s.drawCount);  // see indirect_draw.hpp
-                if (log) log->record(pc.passName(), s.drawCount);
-            }
-            vkCmdEndRendering(cmd);
+            push.depthKeys = pc.texture(acc->keys).storageIndex;
+            recordVoxelDraws(pc, ctx, shaders, draws, fragmentShader(mode, false), fragmentShader(mode, true), push,
+                             true, log);
         });
 
     if (gl) acc->sums = gl->addPass(graph, acc->records, acc->sums);

@@ -1,6 +1,9 @@
 // voxelize_fragment.glsl: the fragment side of voxelization shared by the atomic rungs (voxelize_float.frag,
-// voxelize_uint.frag): keeps a fragment only in the draw of its triangle's dominant axis (so each triangle is
-// rasterized once, in the projection where it covers the most voxels), evaluates the material and the radiance
+// voxelize_uint.frag, voxelize_record.frag) and the key pass before them (voxelize_key.frag, IDK_VOXELIZE_KEY_PASS):
+// keeps a fragment only in the draw of its triangle's dominant axis (so each triangle is
+// rasterized once, in the projection where it covers the most voxels), keeps only the front-most surface of each
+// facing class in a voxel (shared/vxgi_depth_key.h: the key pass raises the voxel's key, the accumulating passes
+// drop the fragments behind it before lighting them), evaluates the material and the radiance
 // the surface leaves diffusely (every punctual light times its shadow: cube, cascades, spot map or a shadow ray; times
 // albedo / pi, plus emission) on each side it radiates from, and finds its voxel. Ports IDKEngine's VXGI/Voxelize fragment shader, without its fudge terms (0.02 albedo ambient):
 // the voxel holds exactly the outgoing diffuse radiance of first-bounce light, which the cone tracer gathers.
@@ -17,6 +20,7 @@
 #include "vxgi_types.h"
 #include "voxel_images.glsl"
 #include "voxelize_projection.glsl"
+#include "voxelize_key.glsl"
 // --shadows raytraced: shadow rays through the path tracer's BVH (the mask pass's traversal; our BVH on every
 // rung: a GPU with VK_KHR_ray_query would trace these with it, as rt_shadows/mask_rq does).
 #define WF_CUSTOM_PUSH
@@ -65,6 +69,20 @@ bool voxelFragment(out ivec3 voxel, out vec3 radiance, out vec4 facing) {
     vec3 n = normalize(inNormal);
     vec3 g = normalize(geometric);
     if (dot(g, n) < 0.0) g = -g;  // the front's geometric normal
+    vec3 t = (inWorldPosition - p.gridMin) / p.voxelSize;  // grid coordinates in voxels
+    voxel = ivec3(floor(t));
+    if (any(lessThan(voxel, ivec3(0))) || any(greaterThanEqual(voxel, ivec3(p.gridSize)))) return false;
+    // The front-most rule's class and key, from the front side's normal: the same in the key pass and here without
+    // any lighting (a double-sided surface's radiating side is known only after it).
+    uint facingClass = voxelFacingClass(g);
+    uint key = voxelDepthKey(t[facingClass >> 1u], voxel[facingClass >> 1u], facingClass);
+#ifdef IDK_VOXELIZE_KEY_PASS
+    raiseVoxelKey(p.depthKeys, voxel, facingClass, key);
+    return false;  // the key pass only raises keys
+#else
+    // Hidden behind a surface of its class in its voxel: dropped before its lights are evaluated (on a GPU this saves
+    // the shadow lookups of hidden layers; lavapipe pays the same per fragment either way).
+    if (!voxelFrontMost(p.depthKeys, voxel, facingClass, key)) return false;
     bool doubleSided = (m.flags & kMaterialDoubleSided) != 0u;
     vec3 diffuseAlbedo = baseColor.rgb * (1.0 - clamp(m.metallicFactor * mr.b, 0.0, 1.0)) / kPi;
     // The radiance leaving the front (normal n) and, for a double-sided surface, the back.
@@ -123,9 +141,8 @@ bool voxelFragment(out ivec3 voxel, out vec3 radiance, out vec4 facing) {
         radiance = front;
         facing = vec4(g, lf > 0.0 ? lb / lf : (doubleSided ? 1.0 : 0.0));
     }
-    voxel = ivec3(floor((inWorldPosition - p.gridMin) / p.voxelSize));
-    if (any(lessThan(voxel, ivec3(0))) || any(greaterThanEqual(voxel, ivec3(p.gridSize)))) return false;
     return true;
+#endif
 }
 
 #endif

@@ -61,7 +61,7 @@ struct VoxelizePush {
                                  // [0] the record buffer's storage-buffer index, [1] its capacity in records
     uint rayShadows;             // --shadows raytraced: the first rayShadows lights of nonzero intensity (the
                                  // mask pass's casters) are shadowed by a ray through the BVH; 0: by the table
-    uint pad;
+    uint depthKeys;              // bindless storage index of the front-most rule's key image (voxelize_key.glsl)
 };
 IDK_GPU_SIZE(VoxelizePush, 128);  // Vulkan's guaranteed push-constant size: nothing more fits
 

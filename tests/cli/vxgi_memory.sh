@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # vxgi_memory.sh IDK: the VXGI grid's memory check (frame/vxgi_memory.hpp, issue 11) with a forced small budget
-# (IDK_TEST_MEMORY_BUDGET_MIB, vk/memory_budget.hpp). 100 MiB free: --voxels 128 (149.9 MiB with the packed
-# directional volumes of lavapipe's "vxgi-volume-format" rung, the merge's 1 MiB cell mask included) is refused with
-# exit 1 and one line naming the size, the bytes, the budget and the largest size that fits (64), writing nothing;
-# --voxels 64 (19.0 MiB) renders. The bytes the check computes equal what
+# (IDK_TEST_MEMORY_BUDGET_MIB, vk/memory_budget.hpp). 100 MiB free: --voxels 128 (165.9 MiB with the packed
+# directional volumes of lavapipe's "vxgi-volume-format" rung, the merge's 1 MiB cell mask and the 16 MiB of depth
+# keys included) is refused with exit 1 and one line naming the size, the bytes, the budget and the largest size that
+# fits (64), writing nothing; --voxels 64 (21.0 MiB) renders. The bytes the check computes equal what
 # --json reports: the "vxgi" category exactly at 64^3 and 128^3, and the graph's transient heap holds at least the
 # accumulators.
 set -u
@@ -17,7 +17,7 @@ IDK_TEST_MEMORY_BUDGET_MIB=100 render --voxels 128 --out "$tmp/refused.png" >/de
 rc=$?
 [ "$rc" -eq 1 ] || fail "--voxels 128 over the budget: exit $rc, expected 1: $(cat "$tmp/err")"
 [ "$(wc -l <"$tmp/err")" -eq 1 ] || fail "expected one line on stderr, got: $(cat "$tmp/err")"
-for pattern in "--voxels 128: the 128^3 VXGI grid needs 149.9 MiB" "budget has 100.0 MiB (104857600 bytes) free" \
+for pattern in "--voxels 128: the 128^3 VXGI grid needs 165.9 MiB" "budget has 100.0 MiB (104857600 bytes) free" \
     "IDK_TEST_MEMORY_BUDGET_MIB" "the largest --voxels that fits is 64"; do
   grep -qF -- "$pattern" "$tmp/err" || fail "message lacks '$pattern': $(cat "$tmp/err")"
 done

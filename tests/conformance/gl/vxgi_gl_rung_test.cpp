@@ -1,7 +1,8 @@
 // vxgi_gl_rung_test.cpp: the GL-interop rung of "vxgi-atomics" (passes/vxgi_gl_accumulate.hpp), forced with
 // --rung vxgi-atomics=gl-interop on llvmpipe, against the device's other rungs on the same scene (64^3 voxels): an
-// open box of quads, a tilted quad and three parallel quads 0.005 apart (three fragments in the same voxels: their
-// sum depends on the order), lit by an emissive ceiling and a point light.
+// open box of quads, a tilted quad and three parallel quads 0.0002 apart (three fragments in the same voxels, all
+// within the front-most rule's tolerance of 1/64 voxel, so all kept: their sum depends on the order), lit by an
+// emissive ceiling and a point light.
 //  * Grid: the same occupied voxels as the native float-atomics rung, each voxel's rgba within one fp16 step
 //    (relative 2^-10, + 1e-6): both are the mean of the same fragments, summed in another order. On voxels holding
 //    one fragment (count 1 in the GL sums) the same within one fp16 step as the portable r32ui rung (max = mean).
@@ -46,8 +47,8 @@ scene::Scene testScene() {
     q.push_back(placedQuad({0.01f, 0.02f, -1.0f}, {0, 0, 1}, {0.79f, 0.72f}, {0.7f, 0.7f, 0.6f}));
     q.push_back(placedQuad({0.1f, -0.2f, 0.15f}, {0.3f, 0.8f, 0.45f}, {0.4f, 0.3f}, {0.2f, 0.7f, 0.3f}, true));
     q.push_back(placedQuad({-0.3f, 0.30f, -0.2f}, {0, 1, 0}, {0.23f, 0.21f}, {0.9f, 0.2f, 0.2f}));
-    q.push_back(placedQuad({-0.3f, 0.31f, -0.2f}, {0, 1, 0}, {0.23f, 0.21f}, {0.1f, 0.3f, 0.9f}));
-    q.push_back(placedQuad({-0.3f, 0.305f, -0.2f}, {0, 1, 0}, {0.23f, 0.21f}, {0.2f, 0.9f, 0.4f}));
+    q.push_back(placedQuad({-0.3f, 0.3004f, -0.2f}, {0, 1, 0}, {0.23f, 0.21f}, {0.1f, 0.3f, 0.9f}));
+    q.push_back(placedQuad({-0.3f, 0.3002f, -0.2f}, {0, 1, 0}, {0.23f, 0.21f}, {0.2f, 0.9f, 0.4f}));
     scene::Scene s = makePlacedQuadScene(q);
     for (auto& m : s.materials) m.metallic = 0.0f;
     s.materials[1].emissive = {1.5f, 1.2f, 0.9f};

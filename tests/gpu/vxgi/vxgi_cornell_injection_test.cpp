@@ -7,10 +7,11 @@
 // exact luminance within 4% of 1 (measured 0.993, 0.980, 0.983, 0.983: the walls are injected right; the few
 // percent low are corner voxels shared by two walls, which average them, and the cube shadow's soft edge).
 // This rules out, for the Cornell box's indirect deficit (issue 11: VXGI indirect 0.69 of the path tracer's),
-// the voxel pass's self-shadowing, coverage, fp16 range and attenuation. What the same read-back found instead,
-// printed here and left as measured: the light panel's voxels hold 0.53 of the panel's exact radiance (its
-// emission plus the point light reflected 1 cm below it): the panel lies 0.5 mm under the ceiling, in the same
-// voxel layer, and the count-averaging rung averages it with the ceiling behind it, which the panel shadows.
+// the voxel pass's self-shadowing, coverage, fp16 range and attenuation.
+// The light panel (the same sums over its columns): its voxels hold the panel's exact radiance (its emission plus
+// the point light reflected 1 cm below it) within 2%. The panel lies 0.5 mm under the ceiling, in the same voxel
+// layer, both facing down; before the front-most rule (shared/vxgi_depth_key.h) the count-averaging rung mixed it
+// with the ceiling behind it, which the panel shadows, and the panel's voxels held 0.53 of its radiance.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -136,6 +137,10 @@ TEST_F(VxgiCornellInjectionTest, WallVoxelsHoldTheExactReflectedRadiance) {
         // panel, the blocks stand on the floor's layer).
         if (mesh == 0 || mesh == 2 || mesh == 3 || mesh == 4) {
             EXPECT_NEAR(ratio, 1.0, 0.04) << names[mesh];
+        }
+        // The panel is the front-most surface facing down in its voxels: the ceiling it hides must not dilute it.
+        if (mesh == 7) {
+            EXPECT_NEAR(ratio, 1.0, 0.02) << names[mesh];
         }
     }
 }

@@ -4,9 +4,10 @@
 //  * Closed room lit by an emissive ceiling panel (environment off) and the embedded Cornell box (default camera,
 //    environment on): 99% of the pixels' half-resolution indirect term within the range of their 3x3 neighbourhood's
 //    full-resolution values (2% slack; every traced sample is its pixel's full trace and the upsample's weights are
-//    convex), and the relative L1 over the frame below 0.10 (room, measured 0.083) and 0.08 (Cornell box, measured
-//    0.0635 with the directional level 0 of shared/vxgi_cone.h; 0.031 while level 0 was isotropic: the
-//    directional grid gives the indirect term more detail near edges, which the 2x2 sampling smooths).
+//    convex), and the relative L1 over the frame below 0.10 (room, measured 0.072) and 0.11 (Cornell box, measured
+//    0.094 since the light panel's voxels hold its whole radiance (the front-most rule, shared/vxgi_depth_key.h; 0.0635
+//    before, when they held 0.53 of it): the cones' thin sample tubes meet or miss the now brighter panel from pixel
+//    to pixel, detail the 2x2 sampling smooths; 0.031 while level 0 was isotropic).
 //  * Depth edges: a box in front of the back wall of a room whose panel hangs over the back half, so the box's
 //    front face sees no emitter (its indirect light is ~0) while the wall behind it is lit. On every pixel next to
 //    the box's silhouette (a 3x3 neighbour on the other side, per a CPU ray cast) with a contrast |O - F| of at least
@@ -155,7 +156,7 @@ TEST_F(VxgiHalfResTest, ClosedRoomHalfResolutionMatchesFull) {
 
 TEST_F(VxgiHalfResTest, CornellBoxHalfResolutionMatchesFull) {
     const scene::Scene s = app::loadDefaultScene();
-    expectHalfNearFull(ctx(), shaders(), "Cornell box", s, scene::defaultCamera(s), true, 0.08);
+    expectHalfNearFull(ctx(), shaders(), "Cornell box", s, scene::defaultCamera(s), true, 0.11);
 }
 
 TEST_F(VxgiHalfResTest, NoIndirectLightCrossesADepthEdge) {

@@ -15,6 +15,12 @@
 //  * rel_error_indirect: the indirect term: the frame minus the direct frame (--gi none with the environment off:
 //    emission and punctual lights with their shadows), against the reference minus the path tracer's direct frame
 //    (the same two parts one segment shorter, environment off, 1024 spp).
+//  * indirect_error.emission_sky, indirect_error.punctual (VXGI rows of scenes with punctual lights): the indirect
+//    term split by source: the frame rendered with only that source (punctual lights removed, environment on; or
+//    emission zeroed, environment off) minus its own direct frame, against that part of the reference (its two
+//    path traces, kept apart). Each is the part's relative L1 against its own reference; indirect_error_share.*
+//    is the part's absolute L1 over the whole reference indirect sum (the shares add up to at least
+//    rel_error_indirect: the parts' errors may cancel in the sum).
 //  * pt_ms_same_error (VXGI rows): the (two-part) path tracer's time to reach the frame's indirect error, interpolated
 //    log-log between runs at 1, 2, 4, ... 64 spp (beyond 64: extrapolated as error ~ 1/sqrt(spp),
 //    pt_extrapolated = 1); pt_time_ratio = that time / the frame's time.
@@ -120,9 +126,10 @@ SourceSplit splitSources(const scene::Scene& scene) {
     return split;
 }
 
-// The depth-matched image (`direct`: each part one segment shorter, environment off) at `spp`, and its time.
+// The depth-matched image (`direct`: each part one segment shorter, environment off) at `spp`, and its time;
+// `punctualPart` (if given) receives the punctual lights' part alone (the rest is the returned image minus it).
 core::ImageRgba32f matchedTrace(const SourceSplit& split, uint32_t spp, uint32_t seed, bool direct,
-                                double* ms = nullptr) {
+                                double* ms = nullptr, core::ImageRgba32f* punctualPart = nullptr) {
     double restMs = 0.0, punctualMs = 0.0;
     core::ImageRgba32f image = pathTrace(split.rest, spp, direct ? 1u : 2u, seed, !direct, ms ? &restMs : nullptr);
     if (split.punctual) {
@@ -130,6 +137,7 @@ core::ImageRgba32f matchedTrace(const SourceSplit& split, uint32_t spp, uint32_t
             pathTrace(*split.punctual, spp, direct ? 2u : 3u, seed, false, ms ? &punctualMs : nullptr);
         for (size_t i = 0; i < image.pixels.size(); ++i)
             if (i % 4 != 3) image.pixels[i] += lit.pixels[i];
+        if (punctualPart) *punctualPart = lit;
     }
     if (ms) *ms = restMs + punctualMs;
     return image;
@@ -137,6 +145,7 @@ core::ImageRgba32f matchedTrace(const SourceSplit& split, uint32_t spp, uint32_t
 
 struct Reference {
     core::ImageRgba32f full, direct;  // depth-matched frame; its direct part (one segment less, environment off)
+    core::ImageRgba32f punctualFull, punctualDirect;  // the punctual lights' parts of those (scenes with lights)
     uint32_t depth = 2;               // the punctual lights' depth (3 where there are any)
     std::vector<std::pair<double, double>> ptCurve;  // (ms, indirect error) of the path tracer at 1..64 spp
 };
@@ -148,8 +157,8 @@ const Reference& reference(int k, const scene::Scene& scene) {
     Reference r;
     r.depth = matchedDepth(scene);
     const SourceSplit split = splitSources(scene);
-    r.full = matchedTrace(split, 1024, 7, false);
-    r.direct = matchedTrace(split, 1024, 7, true);
+    r.full = matchedTrace(split, 1024, 7, false, nullptr, &r.punctualFull);
+    r.direct = matchedTrace(split, 1024, 7, true, nullptr, &r.punctualDirect);
     for (uint32_t spp = 1; spp <= 64; spp *= 2) {
         double ms = 0.0;
         const core::ImageRgba32f img = matchedTrace(split, spp, 1, false, &ms);
@@ -184,6 +193,45 @@ core::ImageRgba32f rasterDirect(const scene::Scene& scene) {
     return renderer.renderOffscreen(scene::defaultCamera(scene), kSize, kSize).image;
 }
 
+core::ImageRgba32f minus(core::ImageRgba32f a, const core::ImageRgba32f& b) {
+    for (size_t i = 0; i < a.pixels.size(); ++i) a.pixels[i] -= b.pixels[i];
+    return a;
+}
+
+// The indirect error split by source (see the header): one VXGI frame per source with `settings`, each against
+// its part of the reference. Untimed, before the row's timed frames.
+void sourceSplitCounters(benchmark::State& state, const scene::Scene& scene, const Reference& ref,
+                         const render::RenderSettings& settings) {
+    const SourceSplit split = splitSources(scene);
+    if (!split.punctual) return;
+    double totalRef = 0.0;
+    for (size_t i = 0; i < ref.full.pixels.size(); ++i)
+        if (i % 4 != 3) totalRef += std::abs(double(ref.full.pixels[i]) - ref.direct.pixels[i]);
+    const core::ImageRgba32f restFull = minus(ref.full, ref.punctualFull);
+    const core::ImageRgba32f restDirect = minus(ref.direct, ref.punctualDirect);
+    struct Part {
+        const char* name;
+        const scene::Scene& scene;
+        bool environment;
+        const core::ImageRgba32f &full, &direct;
+    };
+    for (const Part& part : {Part{"emission_sky", split.rest, true, restFull, restDirect},
+                             Part{"punctual", *split.punctual, false, ref.punctualFull, ref.punctualDirect}}) {
+        render::RenderSettings s = settings;
+        s.environmentIntensity = part.environment ? 1.0f : 0.0f;
+        render::Renderer renderer(*context(), *shaders(), s);
+        renderer.setScene(part.scene);
+        const core::ImageRgba32f frame = renderer.renderOffscreen(scene::defaultCamera(part.scene), kSize, kSize).image;
+        const core::ImageRgba32f direct = rasterDirect(part.scene);
+        const double relative = indirectL1(frame, direct, part.full, part.direct);
+        double partRef = 0.0;
+        for (size_t i = 0; i < part.full.pixels.size(); ++i)
+            if (i % 4 != 3) partRef += std::abs(double(part.full.pixels[i]) - part.direct.pixels[i]);
+        state.counters[std::string("indirect_error.") + part.name] = relative;
+        state.counters[std::string("indirect_error_share.") + part.name] = relative * partRef / totalRef;
+    }
+}
+
 void rasterFrames(benchmark::State& state, int k, frame::GiMode gi, uint32_t voxels, const char* settingsText,
                   const std::string& peer, frame::VoxelDraws draws = frame::VoxelDraws::Three,
                   frame::GiResolution resolution = frame::VxgiSettings{}.resolution,
@@ -199,6 +247,7 @@ void rasterFrames(benchmark::State& state, int k, frame::GiMode gi, uint32_t vox
     settings.vxgi.draws = draws;
     settings.vxgi.resolution = resolution;
     settings.vxgi.raster = raster;
+    if (gi == frame::GiMode::Vxgi) sourceSplitCounters(state, scene, ref, settings);
     context()->clearConsultedLadders();
     double gpuMs = 0.0, error = 0.0, indirect = 0.0, wallMs = 0.0;
     std::map<std::string, double> passMs;

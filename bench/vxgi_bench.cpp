@@ -32,6 +32,9 @@
 // the voxel-single-draw fallback; its native rung, VK_NV_geometry_shader_passthrough + VK_NV_viewport_swizzle, is
 // absent here); R = 2 three draws with the conservative-raster fallback (geometry-shader dilation, the default
 // here); R = 3 one draw of that dilation shader (it projects each triangle itself). Peers: 0 <-> 1, 2 <-> 3.
+// BM_VxgiCornellCones/R/F/N: BM_VxgiCornell (the default 1 + 5 cones, 4 footprint cones each) with R ring cones
+// (--gi-cones) and each diffuse cone traced as F footprint cones (--gi-footprint 1, 4, 7): the cone set's error
+// against its cone-trace time (pass_ms.vxgi_cone_trace).
 // BM_VxgiPathTraced/S: the two-part path tracer at S spp (the peer: the time for its own error).
 // BM_VxgiCornellResolution/R: BM_VxgiCornell at 128^3 with the cones traced at full (R = 0) or half (R = 1)
 // resolution (--gi-resolution; half adds the edge-aware upsample, pass_ms.vxgi_upsample).
@@ -235,7 +238,9 @@ void sourceSplitCounters(benchmark::State& state, const scene::Scene& scene, con
 void rasterFrames(benchmark::State& state, int k, frame::GiMode gi, uint32_t voxels, const char* settingsText,
                   const std::string& peer, frame::VoxelDraws draws = frame::VoxelDraws::Three,
                   frame::GiResolution resolution = frame::VxgiSettings{}.resolution,
-                  frame::VoxelRaster raster = frame::VoxelRaster::Conservative) {
+                  frame::VoxelRaster raster = frame::VoxelRaster::Conservative,
+                  uint32_t ringCones = frame::VxgiSettings{}.ringCones,
+                  uint32_t footprintCones = frame::VxgiSettings{}.footprintCones) {
     if (!requireDevice(state)) return;
     scene::Scene scene = loadScene(k);
     const Reference& ref = reference(k, scene);
@@ -247,6 +252,8 @@ void rasterFrames(benchmark::State& state, int k, frame::GiMode gi, uint32_t vox
     settings.vxgi.draws = draws;
     settings.vxgi.resolution = resolution;
     settings.vxgi.raster = raster;
+    settings.vxgi.ringCones = ringCones;
+    settings.vxgi.footprintCones = footprintCones;
     if (gi == frame::GiMode::Vxgi) sourceSplitCounters(state, scene, ref, settings);
     context()->clearConsultedLadders();
     double gpuMs = 0.0, error = 0.0, indirect = 0.0, wallMs = 0.0;
@@ -288,7 +295,7 @@ void rasterFrames(benchmark::State& state, int k, frame::GiMode gi, uint32_t vox
 void BM_VxgiCornell(benchmark::State& state) {
     const auto voxels = uint32_t(state.range(0));
     const std::string text = "--gi vxgi --voxels " + std::to_string(voxels) +
-                             " (--gi-resolution half, the default), 1 + 5 cones, 1 frame, warm";
+                             " (--gi-resolution half, the default), 1 + 5 cones x 4 footprint cones, 1 frame, warm";
     rasterFrames(state, -1, frame::GiMode::Vxgi, voxels, text.c_str(), "BM_VxgiPathTraced/4");
 }
 BENCHMARK(BM_VxgiCornell)->Arg(64)->Arg(128)->Arg(256)->UseRealTime()->MinTime(0.5)->Unit(benchmark::kMillisecond);
@@ -314,11 +321,28 @@ BENCHMARK(BM_VxgiVoxelizeDraws)
 void BM_VxgiCornellResolution(benchmark::State& state) {
     const bool half = state.range(0) != 0;
     const std::string text = std::string("--gi vxgi --voxels 128 --gi-resolution ") + (half ? "half" : "full") +
-                             ", 1 + 5 cones, 1 frame, warm";
+                             ", 1 + 5 cones x 4 footprint cones, 1 frame, warm";
     rasterFrames(state, -1, frame::GiMode::Vxgi, 128, text.c_str(), "BM_VxgiPathTraced/4", frame::VoxelDraws::Three,
                  half ? frame::GiResolution::Half : frame::GiResolution::Full);
 }
 BENCHMARK(BM_VxgiCornellResolution)->Arg(0)->Arg(1)->UseRealTime()->MinTime(0.5)->Unit(benchmark::kMillisecond);
+
+// The cone set's options side by side: ring cones R and footprint cones F (each cone traced as F narrower ones).
+void BM_VxgiCornellCones(benchmark::State& state) {
+    const auto ring = uint32_t(state.range(0)), footprint = uint32_t(state.range(1));
+    const auto voxels = uint32_t(state.range(2));
+    const std::string text = "--gi vxgi --voxels " + std::to_string(voxels) + " --gi-cones " + std::to_string(ring) +
+                             " --gi-footprint " + std::to_string(footprint) + ", 1 frame, warm";
+    rasterFrames(state, -1, frame::GiMode::Vxgi, voxels, text.c_str(), "BM_VxgiPathTraced/4", frame::VoxelDraws::Three,
+                 frame::VxgiSettings{}.resolution, frame::VoxelRaster::Conservative, ring, footprint);
+}
+BENCHMARK(BM_VxgiCornellCones)
+    ->Args({12, 1, 64})->Args({16, 1, 64})->Args({5, 1, 64})->Args({3, 4, 64})->Args({5, 7, 64})
+    ->Args({12, 1, 128})->Args({16, 1, 128})->Args({5, 1, 128})->Args({3, 4, 128})->Args({5, 7, 128})
+    ->Args({12, 1, 256})->Args({5, 1, 256})
+    ->UseRealTime()
+    ->MinTime(0.5)
+    ->Unit(benchmark::kMillisecond);
 
 void BM_VxgiCornellOff(benchmark::State& state) {
     rasterFrames(state, -1, frame::GiMode::None, 64, "--gi none (SH9 + split-sum ambient), 1 frame, warm",
@@ -355,7 +379,7 @@ void BM_VxgiShared(benchmark::State& state) {
     const auto k = int(state.range(0));
     const auto voxels = uint32_t(state.range(1));
     const std::string text = "--gi vxgi --voxels " + std::to_string(voxels) +
-                             " (--gi-resolution half, the default), 1 + 5 cones, 1 frame, warm";
+                             " (--gi-resolution half, the default), 1 + 5 cones x 4 footprint cones, 1 frame, warm";
     rasterFrames(state, k, frame::GiMode::Vxgi, voxels, text.c_str(),
                  "BM_VxgiSharedPathTraced/" + std::to_string(k) + "/4");
 }

@@ -107,7 +107,7 @@ struct VxgiConeParams {
     uint ringCones;        // diffuse cones around the normal's cap cone
     uint directions[6];    // sampled indices of the directional volumes (+x -x +y -y +z -z), levels 0..maxLod
     uint gridSampler;      // trilinear, clamp to edge
-    uint pad;
+    uint footprintCones;   // narrower cones each diffuse cone is traced as (1, 4, 7; vxgiFootprintCone)
 };
 IDK_GPU_SIZE(VxgiConeParams, 64);
 
@@ -133,8 +133,10 @@ struct ConeTracePush {
     float maxLod;          // the directional volumes' top level (log2 gridSize)
     float stepFactor;      // march step = sample diameter * stepFactor
     uint unmatchedOnly;    // 1: render resolution, only pixels whose diffuse alpha the upsample left at -1
+    uint footprintCones;   // narrower cones each diffuse cone is traced as (1, 4, 7; vxgiFootprintCone)
+    uint pad;              // the size a multiple of the frame address' 8 bytes
 };
-IDK_GPU_SIZE(ConeTracePush, 96);
+IDK_GPU_SIZE(ConeTracePush, 104);
 
 IDK_GPU_END
 #endif

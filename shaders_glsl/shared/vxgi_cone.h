@@ -230,7 +230,8 @@ IDK_INLINE vec4 vxgiCombine(vec3 dir, vec4 sx, vec4 sy, vec4 sz) {
 // the small bright panel is either hit (too bright) or missed (floor and block-top points at 0.05..0.1 of the
 // exact irradiance, where the same 1 + 5 cone set integrated exactly is within -31%..+17%). Indirect rel. L1 at
 // 64^3 against the bench's per-source reference: 0.440; panel voxels holding the panel alone (experiment): 0.497;
-// 16 samples across each cone's footprint: 0.399 (cone trace 20x slower); both: 0.346.
+// 16 samples across each cone's footprint: 0.399 (cone trace 20x slower); both: 0.346. Footprint cones (each cone
+// traced as 4 narrower ones with their own transmittance, the default): 0.330/0.328/0.294 at 64/128/256^3.
 IDK_INLINE vec4 vxgiVoxelTowards(vec4 voxel, vec4 facing, uint k) {
     uint axis = k / 2u;
     float s = axis == 0u ? facing.x : (axis == 1u ? facing.y : facing.z);

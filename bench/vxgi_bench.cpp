@@ -15,6 +15,12 @@
 //  * rel_error_indirect: the indirect term: the frame minus the direct frame (--gi none with the environment off:
 //    emission and punctual lights with their shadows), against the reference minus the path tracer's direct frame
 //    (the same two parts one segment shorter, environment off, 1024 spp).
+//  * indirect_error.emission_sky, indirect_error.punctual (VXGI rows of scenes with punctual lights): the indirect
+//    term split by source: the frame rendered with only that source (punctual lights removed, environment on; or
+//    emission zeroed, environment off) minus its own direct frame, against that part of the reference (its two
+//    path traces, kept apart). Each is the part's relative L1 against its own reference; indirect_error_share.*
+//    is the part's absolute L1 over the whole reference indirect sum (the shares add up to at least
+//    rel_error_indirect: the parts' errors may cancel in the sum).
 //  * pt_ms_same_error (VXGI rows): the (two-part) path tracer's time to reach the frame's indirect error, interpolated
 //    log-log between runs at 1, 2, 4, ... 64 spp (beyond 64: extrapolated as error ~ 1/sqrt(spp),
 //    pt_extrapolated = 1); pt_time_ratio = that time / the frame's time.
@@ -26,6 +32,9 @@
 // the voxel-single-draw fallback; its native rung, VK_NV_geometry_shader_passthrough + VK_NV_viewport_swizzle, is
 // absent here); R = 2 three draws with the conservative-raster fallback (geometry-shader dilation, the default
 // here); R = 3 one draw of that dilation shader (it projects each triangle itself). Peers: 0 <-> 1, 2 <-> 3.
+// BM_VxgiCornellCones/R/F/N: BM_VxgiCornell (the default 1 + 5 cones, 4 footprint cones each) with R ring cones
+// (--gi-cones) and each diffuse cone traced as F footprint cones (--gi-footprint 1, 4, 7): the cone set's error
+// against its cone-trace time (pass_ms.vxgi_cone_trace).
 // BM_VxgiPathTraced/S: the two-part path tracer at S spp (the peer: the time for its own error).
 // BM_VxgiCornellResolution/R: BM_VxgiCornell at 128^3 with the cones traced at full (R = 0) or half (R = 1)
 // resolution (--gi-resolution; half adds the edge-aware upsample, pass_ms.vxgi_upsample).
@@ -120,9 +129,10 @@ SourceSplit splitSources(const scene::Scene& scene) {
     return split;
 }
 
-// The depth-matched image (`direct`: each part one segment shorter, environment off) at `spp`, and its time.
+// The depth-matched image (`direct`: each part one segment shorter, environment off) at `spp`, and its time;
+// `punctualPart` (if given) receives the punctual lights' part alone (the rest is the returned image minus it).
 core::ImageRgba32f matchedTrace(const SourceSplit& split, uint32_t spp, uint32_t seed, bool direct,
-                                double* ms = nullptr) {
+                                double* ms = nullptr, core::ImageRgba32f* punctualPart = nullptr) {
     double restMs = 0.0, punctualMs = 0.0;
     core::ImageRgba32f image = pathTrace(split.rest, spp, direct ? 1u : 2u, seed, !direct, ms ? &restMs : nullptr);
     if (split.punctual) {
@@ -130,6 +140,7 @@ core::ImageRgba32f matchedTrace(const SourceSplit& split, uint32_t spp, uint32_t
             pathTrace(*split.punctual, spp, direct ? 2u : 3u, seed, false, ms ? &punctualMs : nullptr);
         for (size_t i = 0; i < image.pixels.size(); ++i)
             if (i % 4 != 3) image.pixels[i] += lit.pixels[i];
+        if (punctualPart) *punctualPart = lit;
     }
     if (ms) *ms = restMs + punctualMs;
     return image;
@@ -137,6 +148,7 @@ core::ImageRgba32f matchedTrace(const SourceSplit& split, uint32_t spp, uint32_t
 
 struct Reference {
     core::ImageRgba32f full, direct;  // depth-matched frame; its direct part (one segment less, environment off)
+    core::ImageRgba32f punctualFull, punctualDirect;  // the punctual lights' parts of those (scenes with lights)
     uint32_t depth = 2;               // the punctual lights' depth (3 where there are any)
     std::vector<std::pair<double, double>> ptCurve;  // (ms, indirect error) of the path tracer at 1..64 spp
 };
@@ -148,8 +160,8 @@ const Reference& reference(int k, const scene::Scene& scene) {
     Reference r;
     r.depth = matchedDepth(scene);
     const SourceSplit split = splitSources(scene);
-    r.full = matchedTrace(split, 1024, 7, false);
-    r.direct = matchedTrace(split, 1024, 7, true);
+    r.full = matchedTrace(split, 1024, 7, false, nullptr, &r.punctualFull);
+    r.direct = matchedTrace(split, 1024, 7, true, nullptr, &r.punctualDirect);
     for (uint32_t spp = 1; spp <= 64; spp *= 2) {
         double ms = 0.0;
         const core::ImageRgba32f img = matchedTrace(split, spp, 1, false, &ms);
@@ -184,10 +196,51 @@ core::ImageRgba32f rasterDirect(const scene::Scene& scene) {
     return renderer.renderOffscreen(scene::defaultCamera(scene), kSize, kSize).image;
 }
 
+core::ImageRgba32f minus(core::ImageRgba32f a, const core::ImageRgba32f& b) {
+    for (size_t i = 0; i < a.pixels.size(); ++i) a.pixels[i] -= b.pixels[i];
+    return a;
+}
+
+// The indirect error split by source (see the header): one VXGI frame per source with `settings`, each against
+// its part of the reference. Untimed, before the row's timed frames.
+void sourceSplitCounters(benchmark::State& state, const scene::Scene& scene, const Reference& ref,
+                         const render::RenderSettings& settings) {
+    const SourceSplit split = splitSources(scene);
+    if (!split.punctual) return;
+    double totalRef = 0.0;
+    for (size_t i = 0; i < ref.full.pixels.size(); ++i)
+        if (i % 4 != 3) totalRef += std::abs(double(ref.full.pixels[i]) - ref.direct.pixels[i]);
+    const core::ImageRgba32f restFull = minus(ref.full, ref.punctualFull);
+    const core::ImageRgba32f restDirect = minus(ref.direct, ref.punctualDirect);
+    struct Part {
+        const char* name;
+        const scene::Scene& scene;
+        bool environment;
+        const core::ImageRgba32f &full, &direct;
+    };
+    for (const Part& part : {Part{"emission_sky", split.rest, true, restFull, restDirect},
+                             Part{"punctual", *split.punctual, false, ref.punctualFull, ref.punctualDirect}}) {
+        render::RenderSettings s = settings;
+        s.environmentIntensity = part.environment ? 1.0f : 0.0f;
+        render::Renderer renderer(*context(), *shaders(), s);
+        renderer.setScene(part.scene);
+        const core::ImageRgba32f frame = renderer.renderOffscreen(scene::defaultCamera(part.scene), kSize, kSize).image;
+        const core::ImageRgba32f direct = rasterDirect(part.scene);
+        const double relative = indirectL1(frame, direct, part.full, part.direct);
+        double partRef = 0.0;
+        for (size_t i = 0; i < part.full.pixels.size(); ++i)
+            if (i % 4 != 3) partRef += std::abs(double(part.full.pixels[i]) - part.direct.pixels[i]);
+        state.counters[std::string("indirect_error.") + part.name] = relative;
+        state.counters[std::string("indirect_error_share.") + part.name] = relative * partRef / totalRef;
+    }
+}
+
 void rasterFrames(benchmark::State& state, int k, frame::GiMode gi, uint32_t voxels, const char* settingsText,
                   const std::string& peer, frame::VoxelDraws draws = frame::VoxelDraws::Three,
                   frame::GiResolution resolution = frame::VxgiSettings{}.resolution,
-                  frame::VoxelRaster raster = frame::VoxelRaster::Conservative) {
+                  frame::VoxelRaster raster = frame::VoxelRaster::Conservative,
+                  uint32_t ringCones = frame::VxgiSettings{}.ringCones,
+                  uint32_t footprintCones = frame::VxgiSettings{}.footprintCones) {
     if (!requireDevice(state)) return;
     scene::Scene scene = loadScene(k);
     const Reference& ref = reference(k, scene);
@@ -199,6 +252,9 @@ void rasterFrames(benchmark::State& state, int k, frame::GiMode gi, uint32_t vox
     settings.vxgi.draws = draws;
     settings.vxgi.resolution = resolution;
     settings.vxgi.raster = raster;
+    settings.vxgi.ringCones = ringCones;
+    settings.vxgi.footprintCones = footprintCones;
+    if (gi == frame::GiMode::Vxgi) sourceSplitCounters(state, scene, ref, settings);
     context()->clearConsultedLadders();
     double gpuMs = 0.0, error = 0.0, indirect = 0.0, wallMs = 0.0;
     std::map<std::string, double> passMs;
@@ -239,7 +295,7 @@ void rasterFrames(benchmark::State& state, int k, frame::GiMode gi, uint32_t vox
 void BM_VxgiCornell(benchmark::State& state) {
     const auto voxels = uint32_t(state.range(0));
     const std::string text = "--gi vxgi --voxels " + std::to_string(voxels) +
-                             " (--gi-resolution half, the default), 1 + 5 cones, 1 frame, warm";
+                             " (--gi-resolution half, the default), 1 + 5 cones x 4 footprint cones, 1 frame, warm";
     rasterFrames(state, -1, frame::GiMode::Vxgi, voxels, text.c_str(), "BM_VxgiPathTraced/4");
 }
 BENCHMARK(BM_VxgiCornell)->Arg(64)->Arg(128)->Arg(256)->UseRealTime()->MinTime(0.5)->Unit(benchmark::kMillisecond);
@@ -265,11 +321,28 @@ BENCHMARK(BM_VxgiVoxelizeDraws)
 void BM_VxgiCornellResolution(benchmark::State& state) {
     const bool half = state.range(0) != 0;
     const std::string text = std::string("--gi vxgi --voxels 128 --gi-resolution ") + (half ? "half" : "full") +
-                             ", 1 + 5 cones, 1 frame, warm";
+                             ", 1 + 5 cones x 4 footprint cones, 1 frame, warm";
     rasterFrames(state, -1, frame::GiMode::Vxgi, 128, text.c_str(), "BM_VxgiPathTraced/4", frame::VoxelDraws::Three,
                  half ? frame::GiResolution::Half : frame::GiResolution::Full);
 }
 BENCHMARK(BM_VxgiCornellResolution)->Arg(0)->Arg(1)->UseRealTime()->MinTime(0.5)->Unit(benchmark::kMillisecond);
+
+// The cone set's options side by side: ring cones R and footprint cones F (each cone traced as F narrower ones).
+void BM_VxgiCornellCones(benchmark::State& state) {
+    const auto ring = uint32_t(state.range(0)), footprint = uint32_t(state.range(1));
+    const auto voxels = uint32_t(state.range(2));
+    const std::string text = "--gi vxgi --voxels " + std::to_string(voxels) + " --gi-cones " + std::to_string(ring) +
+                             " --gi-footprint " + std::to_string(footprint) + ", 1 frame, warm";
+    rasterFrames(state, -1, frame::GiMode::Vxgi, voxels, text.c_str(), "BM_VxgiPathTraced/4", frame::VoxelDraws::Three,
+                 frame::VxgiSettings{}.resolution, frame::VoxelRaster::Conservative, ring, footprint);
+}
+BENCHMARK(BM_VxgiCornellCones)
+    ->Args({12, 1, 64})->Args({16, 1, 64})->Args({5, 1, 64})->Args({3, 4, 64})->Args({5, 7, 64})
+    ->Args({12, 1, 128})->Args({16, 1, 128})->Args({5, 1, 128})->Args({3, 4, 128})->Args({5, 7, 128})
+    ->Args({12, 1, 256})->Args({5, 1, 256})
+    ->UseRealTime()
+    ->MinTime(0.5)
+    ->Unit(benchmark::kMillisecond);
 
 void BM_VxgiCornellOff(benchmark::State& state) {
     rasterFrames(state, -1, frame::GiMode::None, 64, "--gi none (SH9 + split-sum ambient), 1 frame, warm",
@@ -306,7 +379,7 @@ void BM_VxgiShared(benchmark::State& state) {
     const auto k = int(state.range(0));
     const auto voxels = uint32_t(state.range(1));
     const std::string text = "--gi vxgi --voxels " + std::to_string(voxels) +
-                             " (--gi-resolution half, the default), 1 + 5 cones, 1 frame, warm";
+                             " (--gi-resolution half, the default), 1 + 5 cones x 4 footprint cones, 1 frame, warm";
     rasterFrames(state, k, frame::GiMode::Vxgi, voxels, text.c_str(),
                  "BM_VxgiSharedPathTraced/" + std::to_string(k) + "/4");
 }

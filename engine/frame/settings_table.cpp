@@ -123,6 +123,13 @@ std::vector<SettingOption> buildTable() {
                  "VXGI diffuse cones around the normal's cone (cosine-weighted set of 1 + N)", OptionKind::Integer,
                  3.0, 16.0, {}, [](const RenderSettings& s) { return double(s.vxgi.ringCones); },
                  [](RenderSettings& s, double v) { s.vxgi.ringCones = uint32_t(v); }});
+    t.push_back({"--gi-footprint", "Global illumination", "footprint cones",
+                 "VXGI: each diffuse cone traced as 1, 4 or 7 narrower cones across its footprint", OptionKind::Choice,
+                 0.0, 0.0, {"1", "4", "7"},
+                 [](const RenderSettings& s) {
+                     return s.vxgi.footprintCones >= 7 ? 2.0 : (s.vxgi.footprintCones >= 4 ? 1.0 : 0.0);
+                 },
+                 [](RenderSettings& s, double v) { s.vxgi.footprintCones = v >= 2.0 ? 7u : (v >= 1.0 ? 4u : 1u); }});
     t.push_back({"--gi-step", "Global illumination", "cone step", "VXGI cone march step in sampled cells",
                  OptionKind::Number, 0.1, 1.0, {}, [](const RenderSettings& s) { return double(s.vxgi.stepFactor); },
                  [](RenderSettings& s, double v) { s.vxgi.stepFactor = float(v); }});

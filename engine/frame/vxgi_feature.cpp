@@ -166,6 +166,7 @@ void VxgiFeature::addConeTracing(FrameContext& f) {
     in.cells = cells_;
     in.box = box_;
     in.ringCones = f.settings.vxgi.ringCones;
+    in.footprintCones = f.settings.vxgi.footprintCones;
     in.stepFactor = f.settings.vxgi.stepFactor;
     in.halfResolution = f.settings.vxgi.resolution == GiResolution::Half;
     in.mipped = &mipped_;
@@ -192,6 +193,7 @@ void VxgiFeature::addConeTracing(FrameContext& f) {
     c.maxLod = float(directions_[0].levels() - 1);
     c.stepFactor = in.stepFactor;
     c.ringCones = in.ringCones;
+    c.footprintCones = in.footprintCones;
     for (uint32_t d = 0; d < 6; ++d) {
         c.directions[d] = in.directionSampled[d];
         c.opacity[d] = in.directionSampled[6 + d];

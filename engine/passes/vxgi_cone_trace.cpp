@@ -118,6 +118,7 @@ IndirectLightImages addConeTracePasses(graph::RenderGraph& graph, vk::Context& c
     gpu::ConeTracePush base{};
     base.gridSampler = in.gridSampler;
     base.ringCones = in.ringCones;
+    base.footprintCones = in.footprintCones;
     base.gridMin = in.box.gridMin;
     base.voxelSize = in.box.voxelSize;
     base.gridSize = in.box.size;

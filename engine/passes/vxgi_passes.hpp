@@ -103,6 +103,7 @@ struct ConeTraceInputs {
     graph::TextureHandle cells;          // the merge's cell mask (addVoxelizePasses): the level-1 mip skips its zeros
     VoxelGridBox box;
     uint32_t ringCones = 5;
+    uint32_t footprintCones = 4;  // narrower cones per diffuse cone (frame::VxgiSettings::footprintCones)
     float stepFactor = 0.5f;
     bool halfResolution = false;
     VxgiDirectionHandles* mipped = nullptr;  // if set: the directional volumes after the mip passes

@@ -56,16 +56,20 @@ bool insideVoxelGrid(VxgiConeParams c, vec3 position) {
 
 // Irradiance E at `position` (geometric normal `plane`, shading normal `n`) from the cosine-weighted cone set: one
 // cap cone along n (polar angles 0..30 degrees, 1/4 of the cosine-weighted hemisphere) and c.ringCones cones evenly
-// in azimuth at 52.2 degrees (the cosine-weighted median of the 30..90 degree ring, which holds the other 3/4);
-// returns E / pi = sum(w_i L_i), the cosine-weighted mean radiance.
+// in azimuth at 52.2 degrees (the cosine-weighted median of the 30..90 degree ring, which holds the other 3/4), each
+// traced as c.footprintCones narrower cones across its footprint (vxgiDiffuseCone); returns E / pi = sum(w_i L_i),
+// the cosine-weighted mean radiance.
 vec3 traceMeanRadiance(GpuFrame f, VxgiConeParams c, vec3 position, vec3 plane, vec3 n) {
     vec3 t, b;
     vxgiTangents(n, t, b);
-    vec3 e = 0.25 * traceCone(f, c, position, plane, n, kVxgiCapTan);
-    float ringTan = vxgiRingTan(c.ringCones);
-    for (uint i = 0; i < c.ringCones; ++i)
-        e += (0.75 / float(c.ringCones)) *
-             traceCone(f, c, position, plane, vxgiRingDirection(i, c.ringCones, n, t, b), ringTan);
+    vec3 e = vec3(0.0);
+    uint count = vxgiDiffuseConeCount(c.ringCones, c.footprintCones);
+    for (uint k = 0u; k < count; ++k) {
+        vec3 dir;
+        float tanHalf;
+        float w = vxgiDiffuseCone(k, c.ringCones, c.footprintCones, n, t, b, dir, tanHalf);
+        e += w * traceCone(f, c, position, plane, dir, tanHalf);
+    }
     return e;
 }
 

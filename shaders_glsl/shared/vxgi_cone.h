@@ -18,6 +18,8 @@
 //  * a sample's alpha is the coverage of one cell of size c along the march, so a step of length s takes
 //    1 - (1 - alpha)^(s / c) (Beer-Lambert over the cell), with s = c * stepFactor;
 //  * the march ends when opacity reaches 0.99 or the sample's cell leaves the grid; the sky fills the rest.
+// The clamp and the cap keep a cone's sampled cell at 0.2..0.3 of its width, so the diffuse set traces each of its
+// cones as footprint cones (vxgiFootprintCone): narrower cones tiling it, whose cells come closer to their width.
 //
 // Common-subset rules as pt_sampling.h: no swizzles longer than one component, IDK_OUT / IDK_INOUT, float
 // literals with f, no overloading.
@@ -72,6 +74,49 @@ IDK_INLINE float vxgiRingTan(uint ringCones) {
 IDK_INLINE vec3 vxgiRingDirection(uint i, uint ringCones, vec3 n, vec3 t, vec3 b) {
     float phi = 6.28318530717959f * (float(i) + 0.5f) / float(ringCones);
     return kVxgiRingSin * (cos(phi) * t + sin(phi) * b) + kVxgiRingCos * n;
+}
+
+// Footprint cones: each cone of the diffuse set is traced as `split` (1, 4 or 7) narrower cones that tile its
+// solid angle, each with its own march and transmittance, averaged: a sample's cell is held to h / 3 by the
+// receiver-plane clamp (and to the level cap), so one wide cone samples a tube 0.2..0.3 of its width and hits or
+// misses a small bright source as a whole; narrower cones keep their cell near their own width and together cover
+// the footprint, while each one's opacity still composites front to back along its own axis, so a sample never
+// sees past an occluder the way one cell spread across the footprint with a shared transmittance would.
+// Layout (angles as fractions of the parent half-angle a, equal solid angles): 4: half-angle a / 2, axes at
+// 0.60 a (the centroids of four 90 degree sectors); 7: half-angle a / sqrt(7), one along the axis and six at
+// 0.70 a (the centroids of the annulus' six sectors around the central disc).
+IDK_INLINE vec3 vxgiFootprintCone(vec3 dir, float tanHalf, uint j, uint split, IDK_OUT(float) subTan) {
+    float a = atan(tanHalf);
+    if (split <= 1u) {
+        subTan = tanHalf;
+        return dir;
+    }
+    float offset = split == 4u ? 0.6f * a : 0.7f * a;
+    subTan = tan(split == 4u ? 0.5f * a : 0.37796447f * a);
+    if (split != 4u) {
+        if (j == 0u) return dir;
+        j = j - 1u;
+    }
+    float around = split == 4u ? 4.0f : 6.0f;
+    float phi = 6.28318530717959f * (float(j) + 0.5f) / around;
+    vec3 u, v;
+    vxgiTangents(dir, u, v);
+    return cos(offset) * dir + sin(offset) * (cos(phi) * u + sin(phi) * v);
+}
+
+// Number of cones the diffuse set traces: (1 cap + ringCones) * split.
+IDK_INLINE uint vxgiDiffuseConeCount(uint ringCones, uint split) { return (1u + ringCones) * max(split, 1u); }
+
+// Cone k of the diffuse set (0 <= k < vxgiDiffuseConeCount): its axis, half-angle tangent and weight in
+// E / pi = sum(w_k L_k) (the cap 0.25, each ring cone 0.75 / ringCones, shared equally by its footprint cones).
+IDK_INLINE float vxgiDiffuseCone(uint k, uint ringCones, uint split, vec3 n, vec3 t, vec3 b, IDK_OUT(vec3) dir,
+                                 IDK_OUT(float) tanHalf) {
+    uint s = max(split, 1u);
+    uint parent = k / s;
+    vec3 axis = parent == 0u ? n : vxgiRingDirection(parent - 1u, ringCones, n, t, b);
+    float parentTan = parent == 0u ? kVxgiCapTan : vxgiRingTan(ringCones);
+    dir = vxgiFootprintCone(axis, parentTan, k - parent * s, s, tanHalf);
+    return (parent == 0u ? 0.25f : 0.75f / float(ringCones)) / float(s);
 }
 
 // The specular cone of a GGX lobe of roughness r (alpha = r^2): half-angle 2 atan(0.64 alpha) as environmentLod,
@@ -185,7 +230,8 @@ IDK_INLINE vec4 vxgiCombine(vec3 dir, vec4 sx, vec4 sy, vec4 sz) {
 // the small bright panel is either hit (too bright) or missed (floor and block-top points at 0.05..0.1 of the
 // exact irradiance, where the same 1 + 5 cone set integrated exactly is within -31%..+17%). Indirect rel. L1 at
 // 64^3 against the bench's per-source reference: 0.440; panel voxels holding the panel alone (experiment): 0.497;
-// 16 samples across each cone's footprint: 0.399 (cone trace 20x slower); both: 0.346.
+// 16 samples across each cone's footprint: 0.399 (cone trace 20x slower); both: 0.346. Footprint cones (each cone
+// traced as 4 narrower ones with their own transmittance, the default): 0.330/0.328/0.294 at 64/128/256^3.
 IDK_INLINE vec4 vxgiVoxelTowards(vec4 voxel, vec4 facing, uint k) {
     uint axis = k / 2u;
     float s = axis == 0u ? facing.x : (axis == 1u ? facing.y : facing.z);

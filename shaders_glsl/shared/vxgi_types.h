@@ -111,7 +111,7 @@ struct VxgiConeParams {
     uint ringCones;        // diffuse cones around the normal's cap cone
     uint directions[6];    // sampled indices of the directional volumes (+x -x +y -y +z -z), levels 0..maxLod
     uint gridSampler;      // trilinear, clamp to edge
-    uint pad;
+    uint footprintCones;   // narrower cones each diffuse cone is traced as (1, 4, 7; vxgiFootprintCone)
     uint opacity[6];       // sampled indices of their opacity volumes (== directions[k]: one RGBA16F image)
 };
 IDK_GPU_SIZE(VxgiConeParams, 88);
@@ -139,8 +139,10 @@ struct ConeTracePush {
     float stepFactor;      // march step = sample diameter * stepFactor
     uint unmatchedOnly;    // 1: render resolution, only pixels whose diffuse alpha the upsample left at -1
     uint opacity[6];       // sampled indices of the directions' opacity volumes (VxgiConeParams::opacity)
+    uint footprintCones;   // narrower cones each diffuse cone is traced as (1, 4, 7; vxgiFootprintCone)
+    uint pad;              // the size a multiple of the frame address' 8 bytes
 };
-IDK_GPU_SIZE(ConeTracePush, 120);
+IDK_GPU_SIZE(ConeTracePush, 128);  // the whole of Vulkan's guaranteed push-constant range
 
 IDK_GPU_END
 #endif

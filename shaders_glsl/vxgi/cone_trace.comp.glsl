@@ -2,7 +2,8 @@
 // cone_trace.comp.glsl: voxel cone tracing per G-buffer pixel inside the grid (cone set and march:
 // shared/vxgi_cone.h). Diffuse: a cosine-weighted cone set: one cap cone along the normal (polar angles 0..30
 // degrees, 1/4 of the cosine-weighted hemisphere) and `ringCones` cones evenly in azimuth at 52.2 degrees (the
-// cosine-weighted median of the 30..90 degree ring, which holds the other 3/4); irradiance E = pi * sum(w_i L_i).
+// cosine-weighted median of the 30..90 degree ring, which holds the other 3/4), each traced as `footprintCones`
+// narrower cones tiling it (vxgiDiffuseCone); irradiance E = pi * sum(w_i L_i).
 // Specular: one cone along the reflection, its half-angle the GGX lobe's up to 0.5 rad, blended towards E / pi for
 // wider lobes. The cones start from the surface point and clamp their level by the height above the surface's
 // geometric plane (from the depth buffer: the shading normal may tilt off it). Ports IDKEngine's ConeTraceGI
@@ -33,7 +34,7 @@ VxgiConeParams coneParams(ConeTracePush q) {
     c.directions = q.directions;
     c.opacity = q.opacity;
     c.gridSampler = q.gridSampler;
-    c.pad = 0u;
+    c.footprintCones = q.footprintCones;
     return c;
 }
 

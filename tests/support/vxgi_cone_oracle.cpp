@@ -112,11 +112,14 @@ glm::vec3 diffuseIrradianceOnCpu(const ConeGridData& grid, const gpu::ConeTraceP
                                  glm::vec3 plane, glm::vec3 n, glm::vec3 sky) {
     glm::vec3 t, b;
     gpu::vxgiTangents(n, t, b);
-    glm::vec3 e = 0.25f * traceConeOnCpu(grid, c, origin, plane, n, gpu::kVxgiCapTan, sky);
-    const float ringTan = gpu::vxgiRingTan(c.ringCones);
-    for (uint32_t i = 0; i < c.ringCones; ++i)
-        e += (0.75f / float(c.ringCones)) *
-             traceConeOnCpu(grid, c, origin, plane, gpu::vxgiRingDirection(i, c.ringCones, n, t, b), ringTan, sky);
+    glm::vec3 e(0.0f);
+    const uint32_t count = gpu::vxgiDiffuseConeCount(c.ringCones, c.footprintCones);
+    for (uint32_t k = 0; k < count; ++k) {
+        glm::vec3 dir;
+        float tanHalf = 0.0f;
+        const float w = gpu::vxgiDiffuseCone(k, c.ringCones, c.footprintCones, n, t, b, dir, tanHalf);
+        e += w * traceConeOnCpu(grid, c, origin, plane, dir, tanHalf, sky);
+    }
     return e * 3.14159265358979f;
 }
 
@@ -140,6 +143,7 @@ gpu::ConeTracePush conePush(const frame::VxgiFeature& vxgi, const frame::VxgiSet
     c.maxLod = float(vxgi.directions()[0].levels() - 1);
     c.stepFactor = settings.stepFactor;
     c.ringCones = settings.ringCones;
+    c.footprintCones = settings.footprintCones;
     return c;
 }
 

@@ -9,6 +9,7 @@
 //  * Closed room lit by an emissive ceiling panel with a box on the floor, environment off (occlusion, emission
 //    and the mips' compositing; the sky term is 0).
 //  * A floor and a box under a uniform sky of 0.5 (the sky through partly occluded cones).
+//  * The closed room again with each diffuse cone traced as 7 footprint cones (--gi-footprint 7).
 // Asserted on both: the mean relative difference below 0.3% and 99% of pixel channels within 1% (+1e-4 absolute)
 // of the CPU (measured: room 0.059% mean, worst 1.35%; sky 0.076%, worst 1.93%; 99.8% within 1%). What remains is the sampler's
 // fixed-point texel weights (subTexelPrecisionBits; a real GPU may have fewer bits than lavapipe, hence the
@@ -78,7 +79,7 @@ Case skyFloor() {
 
 class VxgiConeTraceTest : public GpuTest {
 protected:
-    void compare(const Case& k, const char* name) {
+    void compare(const Case& k, const char* name, uint32_t footprintCones = 1) {
         scene::Scene s = makePlacedQuadScene(k.quads);
         for (scene::Material& m : s.materials) {
             m.metallic = 0.0f;
@@ -94,6 +95,7 @@ protected:
         settings.vxgi.resolution = frame::GiResolution::Full;  // every pixel traced: the CPU's per-pixel oracle
         settings.vxgi.ringCones = 8;
         settings.vxgi.stepFactor = 0.5f;
+        settings.vxgi.footprintCones = footprintCones;
         render::Renderer renderer(ctx(), shaders(), settings);
         renderer.setScene(s);
         const core::ImageRgba32f img = renderer.renderOffscreen(k.camera, kSize, kSize).image;
@@ -131,6 +133,10 @@ protected:
 TEST_F(VxgiConeTraceTest, ClosedRoomMatchesCpuConeTracer) { compare(closedRoom(), "closed room"); }
 
 TEST_F(VxgiConeTraceTest, OpenFloorUnderSkyMatchesCpuConeTracer) { compare(skyFloor(), "floor under sky"); }
+
+TEST_F(VxgiConeTraceTest, ClosedRoomFootprintConesMatchCpuConeTracer) {
+    compare(closedRoom(), "closed room, 7 footprint cones", 7);
+}
 
 }  // namespace
 }  // namespace idk::test

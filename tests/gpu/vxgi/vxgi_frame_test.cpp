@@ -8,13 +8,16 @@
 //    cones. The reference is the GPU path tracer with maxDepth 2 (camera segment + one bounce: exactly the light
 //    VXGI carries, emission seen by the diffuse and specular cones; 256 spp). Every wall pixel's light is indirect,
 //    so the wall radiance is the indirect term. Asserted over the pixels that do not see the panel: mean radiance
-//    within 9% of the path tracer's (measured 5.4%, VXGI brighter: the conservative voxelization dilates the panel
-//    by up to a voxel into its coplanar ceiling), and RMSE relative to the reference mean below 3.3 (measured
-//    3.06: dominated by the ceiling around the panel; 7.0% and 3.12 before the voxels kept only their front-most
-//    surface per facing, shared/vxgi_depth_key.h). History: 30.3% darker before the receiver-plane clamp and
-//    the cell-based step opacity of shared/vxgi_cone.h, then 32.0% brighter while level 0 was isotropic (the
-//    panel, one voxel thick and radiating equally in all directions, glowed edge-on in the directional mips);
-//    the directional level 0 by the surfaces' facing (vxgiVoxelTowards) brought it to 7.0%.
+//    within 11% of the path tracer's (measured 10.1% darker), and RMSE relative to the reference mean below 3.0
+//    (measured 2.80: dominated by the ceiling around the panel). History: 30.3% darker before the receiver-plane
+//    clamp and the cell-based step opacity of shared/vxgi_cone.h, then 32.0% brighter while level 0 was isotropic
+//    (the panel, one voxel thick and radiating equally in all directions, glowed edge-on in the directional mips);
+//    the directional level 0 by the surfaces' facing (vxgiVoxelTowards) brought it to 7.0% brighter (rms 3.12),
+//    two errors cancelling: each cone's tube (0.2..0.3 of its width) hit the panel with the cone's whole weight,
+//    while the level cap (cells of at most N / 8, 25 cm here) kept far cones from reaching it. The default 4
+//    footprint cones (--gi-footprint) gather the panel by its solid angle (rms 3.12 -> 2.80) and leave the cap's
+//    share: a narrow cone from the floor, 2 m below, samples 25 cm cells where its footprint is 1.1 m wide. A cap
+//    one level higher (N / 4) measured brighter here but lets the thin wall below leak 0.175 of the lit side.
 //  The images are written to <build>/vxgi_frame_test/room_{vxgi,pt_one_bounce,pt_full}.exr.
 //  * The full path-traced image (maxDepth 8, all bounces) is also measured and printed: the gap is the light of
 //    further bounces, which single-bounce VXGI leaves out by design.
@@ -131,8 +134,8 @@ TEST_F(VxgiFrameTest, ClosedRoomLitByPanelMatchesOneBouncePathTracer) {
                 e.mean, e.reference, 100.0 * e.meanRelative, e.rmsRelative, eFull.reference,
                 100.0 * eFull.meanRelative);
     EXPECT_GT(e.mean, 0.0) << "the closed room is still black with VXGI";
-    EXPECT_LT(e.meanRelative, 0.09);
-    EXPECT_LT(e.rmsRelative, 3.3);
+    EXPECT_LT(e.meanRelative, 0.11);
+    EXPECT_LT(e.rmsRelative, 3.0);
 }
 
 // Furnace-like check: a white floor (albedo 1, rough dielectric) under a uniform sky of radiance 0.5. With VXGI
@@ -191,10 +194,10 @@ TEST_F(VxgiFrameTest, WhiteFloorUnderUniformSkyReflectsTheSky) {
 // per direction for a cell as wide as the cone, so a 30-degree cone that crosses the wall's plane obliquely sees
 // the wall as partial coverage in each of the several cells its axis crosses (|dir.x| of a cell's silhouette in
 // each), composited as a Beer-Lambert medium, where the true wall blocks every ray that crosses it. The CPU cone
-// tracer on the same grid gives this inherent leak: measured dark / lit 0.0629 (the GPU frame 0.0629; 0.0505 while
-// level 0 was isotropic, fully opaque from every side; 0.4853 before the receiver-plane clamp and the cell-based step
-// opacity of shared/vxgi_cone.h). Asserted: the GPU's dark / lit ratio within 5% of the CPU cone tracer's over the
-// same pixels, and below 0.07.
+// tracer on the same grid gives this inherent leak: measured dark / lit 0.0541 (the GPU frame 0.0541; 0.0629 with
+// one cone per direction instead of the default 4 footprint cones; 0.0505 while level 0 was isotropic, fully opaque
+// from every side; 0.4853 before the receiver-plane clamp and the cell-based step opacity of shared/vxgi_cone.h).
+// Asserted: the GPU's dark / lit ratio within 5% of the CPU cone tracer's over the same pixels, and below 0.06.
 TEST_F(VxgiFrameTest, ThinWallLeaksNoMoreThanTheConeTracerInherently) {
     std::vector<PlacedQuad> q;
     q.push_back(wall({0, -1, 0}, {0, 1, 0}, {1, 1}));
@@ -250,7 +253,7 @@ TEST_F(VxgiFrameTest, ThinWallLeaksNoMoreThanTheConeTracerInherently) {
     std::printf("thin wall: dark / lit mean radiance, GPU %.4f, CPU cone tracer %.4f\n", gpuRatio, cpuRatio);
     EXPECT_GT(gpu[1], 0.0) << "the lit half is lit";
     EXPECT_NEAR(gpuRatio, cpuRatio, 0.05 * cpuRatio);
-    EXPECT_LT(gpuRatio, 0.07);
+    EXPECT_LT(gpuRatio, 0.06);
 }
 
 }  // namespace

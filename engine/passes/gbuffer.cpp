@@ -79,7 +79,6 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
         [&](graph::PassBuilder& b) {
             // The geometry stages: vertex, or task + mesh on the mesh rung.
             const VkPipelineStageFlags2 kVs = c.meshTasks ? kTaskMeshStages : VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT;
-            constexpr VkPipelineStageFlags2 kFs = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
             if (load) {
                 out->albedo = b.write(over.albedo, graph::Access::ColorReadWrite);
                 out->normal = b.write(over.normal, graph::Access::ColorReadWrite);
@@ -104,11 +103,7 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
             }
             b.read(frame, graph::Access::StorageRead, kVs);
             if (s.drawCount == 0) return;
-            b.read(s.vertices, graph::Access::StorageRead, kVs);
-            b.read(s.indices, graph::Access::VertexRead);
-            b.read(s.instances, graph::Access::StorageRead, kVs | kFs);
-            b.read(s.meshes, graph::Access::StorageRead, kFs);
-            b.read(s.materials, graph::Access::StorageRead, kFs);
+            readSceneMeshes(b, s, kVs);
             if (c.commands.valid()) {
                 b.read(c.commands, graph::Access::IndirectRead);
                 b.read(c.counters, graph::Access::IndirectRead);
@@ -116,8 +111,6 @@ GBufferOutputs addGBufferPass(graph::RenderGraph& graph, vk::Context& ctx, vk::S
             } else {
                 b.read(s.drawCommands, graph::Access::IndirectRead);
             }
-            if (s.colors.valid()) b.read(s.colors, graph::Access::StorageRead, kVs);
-            if (s.uv1.valid()) b.read(s.uv1, graph::Access::StorageRead, kVs);
         },
         [&ctx, &shaders, s, c, load, frame, out, log](graph::PassContext& pc) {
             VkCommandBuffer cmd = pc.commandBuffer();

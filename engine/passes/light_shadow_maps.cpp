@@ -69,12 +69,7 @@ std::vector<graph::TextureHandle> addLightShadowMapPass(graph::RenderGraph& grap
             const vk::Pipeline& pipeline = shaders.graphics(desc);
 
             gpu::ShadowMapPush push{};
-            push.vertices = pc.buffer(s.vertices).address;
-            push.instances = pc.buffer(s.instances).address;
-            push.meshes = mask ? pc.buffer(s.meshes).address : 0;
-            push.materials = mask ? pc.buffer(s.materials).address : 0;
-            push.colors = s.colors.valid() ? pc.buffer(s.colors).address : 0;
-            push.uv1 = s.uv1.valid() ? pc.buffer(s.uv1).address : 0;
+            setSceneAddresses(push, pc, s, mask);
             vk::bindPipeline(cmd, pipeline);
             ctx.bindless().bind(cmd);
             vkCmdBindIndexBuffer(cmd, pc.vkBuffer(s.indices), 0, VK_INDEX_TYPE_UINT32);

@@ -68,6 +68,25 @@ struct SceneBuffers {
     bool layerSpill = false;
 };
 
+// scene_reads.cpp: what a draw over the scene's meshes reads (G-buffer, transparency, transmission, voxelization):
+// the vertices and the optional colour and second-UV streams in the geometry stages (the vertex shader, or the task
+// and mesh shaders of a mesh-shader draw), the indices, the instances there and in the fragment shader, the meshes
+// and materials in the fragment shader (material textures, alpha test).
+void readSceneMeshes(graph::PassBuilder& b, const SceneBuffers& s,
+                     VkPipelineStageFlags2 geometryStages = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT);
+
+// The same buffers' device addresses in a draw's push block (0 for an absent optional stream). `materials` false
+// leaves the meshes and materials at 0: depth-only shadow draws of scenes without alpha-tested materials.
+template <class Push>
+void setSceneAddresses(Push& push, graph::PassContext& pc, const SceneBuffers& s, bool materials = true) {
+    push.vertices = pc.buffer(s.vertices).address;
+    push.instances = pc.buffer(s.instances).address;
+    push.meshes = materials ? pc.buffer(s.meshes).address : 0;
+    push.materials = materials ? pc.buffer(s.materials).address : 0;
+    push.colors = s.colors.valid() ? pc.buffer(s.colors).address : 0;
+    push.uv1 = s.uv1.valid() ? pc.buffer(s.uv1).address : 0;
+}
+
 // scene_update.cpp: copies patched materials (GpuScene::setTexture) into the material buffer; returns the
 // buffer's new version. Added only on frames where something changed.
 graph::BufferHandle addSceneUpdatePass(graph::RenderGraph& graph, graph::BufferHandle materials,

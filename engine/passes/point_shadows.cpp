@@ -79,12 +79,7 @@ std::vector<graph::TextureHandle> addPointShadowPass(graph::RenderGraph& graph, 
             const vk::Pipeline& pipeline = shaders.graphics(desc);
 
             gpu::PointShadowPush push{};
-            push.vertices = pc.buffer(s.vertices).address;
-            push.instances = pc.buffer(s.instances).address;
-            push.meshes = mask ? pc.buffer(s.meshes).address : 0;
-            push.materials = mask ? pc.buffer(s.materials).address : 0;
-            push.colors = s.colors.valid() ? pc.buffer(s.colors).address : 0;
-            push.uv1 = s.uv1.valid() ? pc.buffer(s.uv1).address : 0;
+            setSceneAddresses(push, pc, s, mask);
             const uint32_t size = maps.resolution();
             vk::bindPipeline(cmd, pipeline);  // pipeline, set and index buffer outlive the rendering scopes below
             ctx.bindless().bind(cmd);

@@ -18,14 +18,8 @@ inline void readTransparencyInputs(graph::PassBuilder& b, const TransparencyInpu
     b.read(t.depth, graph::Access::StorageRead, kFs);
     b.read(t.environment, graph::Access::SampledRead, kFs);
     b.read(t.frame, graph::Access::StorageRead, kVs | kFs);
-    b.read(s.vertices, graph::Access::StorageRead, kVs);
-    b.read(s.indices, graph::Access::VertexRead);
-    b.read(s.instances, graph::Access::StorageRead, kVs | kFs);
-    b.read(s.meshes, graph::Access::StorageRead, kFs);
-    b.read(s.materials, graph::Access::StorageRead, kFs);
+    readSceneMeshes(b, s);
     if (s.lights.valid()) b.read(s.lights, graph::Access::StorageRead, kFs);
-    if (s.colors.valid()) b.read(s.colors, graph::Access::StorageRead, kVs);
-    if (s.uv1.valid()) b.read(s.uv1, graph::Access::StorageRead, kVs);
     if (t.shadows.table.valid()) {
         b.read(t.shadows.table, graph::Access::StorageRead, kFs);
         for (graph::TextureHandle cube : t.shadows.cubes) b.read(cube, graph::Access::SampledRead, kFs);
@@ -42,12 +36,7 @@ inline gpu::TransparencyPush transparencyPush(graph::PassContext& pc, const Tran
     const SceneBuffers& s = t.scene;
     gpu::TransparencyPush push{};
     push.frame = pc.buffer(t.frame).address;
-    push.vertices = pc.buffer(s.vertices).address;
-    push.instances = pc.buffer(s.instances).address;
-    push.meshes = pc.buffer(s.meshes).address;
-    push.materials = pc.buffer(s.materials).address;
-    push.colors = s.colors.valid() ? pc.buffer(s.colors).address : 0;
-    push.uv1 = s.uv1.valid() ? pc.buffer(s.uv1).address : 0;
+    setSceneAddresses(push, pc, s);
     push.pointShadows = t.shadows.table.valid() ? pc.buffer(t.shadows.table).address : 0;
     push.depth = pc.texture(t.depth).storageIndex;
     push.vxgiCones = t.vxgi.params.valid() ? t.vxgi.paramsIndex : gpu::kNoVxgi;

@@ -107,12 +107,7 @@ void recordVoxelDraws(graph::PassContext& pc, vk::Context& ctx, vk::ShaderLibrar
     }
     ctx.bindless().bind(cmd);
     push.frame = pc.buffer(d.frame).address;
-    push.vertices = pc.buffer(s.vertices).address;
-    push.instances = pc.buffer(s.instances).address;
-    push.meshes = pc.buffer(s.meshes).address;
-    push.materials = pc.buffer(s.materials).address;
-    push.colors = s.colors.valid() ? pc.buffer(s.colors).address : 0;
-    push.uv1 = s.uv1.valid() ? pc.buffer(s.uv1).address : 0;
+    setSceneAddresses(push, pc, s);
     push.pointShadows = lit && d.table.valid() ? pc.buffer(d.table).address : 0;
     if (lit && d.rays && d.rays->casters > 0) {  // the BVH and its scene are static buffers, read by address
         push.pointShadows = d.rays->sceneDesc;
@@ -148,14 +143,8 @@ void readScene(graph::PassBuilder& b, const VoxelDraws& d, bool lights, const Po
         for (graph::TextureHandle cube : shadows.cubes) b.read(cube, graph::Access::SampledRead, kFs);
     }
     if (s.drawCount == 0) return;
-    b.read(s.vertices, graph::Access::StorageRead, kVs);
-    b.read(s.indices, graph::Access::VertexRead);
-    b.read(s.instances, graph::Access::StorageRead, kVs | kFs);
-    b.read(s.meshes, graph::Access::StorageRead, kFs);
-    b.read(s.materials, graph::Access::StorageRead, kFs);
+    readSceneMeshes(b, s);
     b.read(s.drawCommands, graph::Access::IndirectRead);
-    if (s.colors.valid()) b.read(s.colors, graph::Access::StorageRead, kVs);
-    if (s.uv1.valid()) b.read(s.uv1, graph::Access::StorageRead, kVs);
 }
 
 }  // namespace

@@ -103,22 +103,14 @@ TEST_F(PtDispersionTest, ChannelsSeparateAsSnellSaysAndGpuEqualsCpu) {
     EXPECT_LT(rendered[1], rendered[2]);
     EXPECT_GT(rendered[2] - rendered[0], 2.0);
 
-    render::PathTracerOptions options;
-    options.traversal = render::PtTraversal::Bvh;
-    render::PathTracer tracer(ctx(), shaders(), sc, pts, options);
-    const core::ImageRgba32f gpu = tracer.render(camera(), kSize, kSize, settings()).image;
-    EXPECT_EQ(nonFiniteCount(gpu), 0u);
-    const double same = samePixelFraction(gpu, cpu);
-    const double meanCpu = meanRadiance(cpu), meanGpu = meanRadiance(gpu);
-    std::printf("dispersive prism: %.2f%% of the pixels equal to the CPU's at the same seed; mean GPU %.6f CPU %.6f\n",
-                100.0 * same, meanGpu, meanCpu);
-    EXPECT_GT(same, 0.9);
-    EXPECT_NEAR(meanGpu, meanCpu, 0.01 * meanCpu);
+    expectGpuDrawsTheCpuSamples(ctx(), shaders(), sc, pts, camera(), kSize, settings(), cpu, "dispersive prism");
 
     // Dispersion 0: one IOR, every channel sees the emitter at the same place, GPU = CPU. (The tracers skip the
     // channel pick and the IOR change entirely then: no sample drawn, the same code path as before the extension.)
     const scene::Scene off = prismScene(0.0f);
     const pathtrace::PathTraceScene offPts = pathtrace::buildPathTraceScene(off, nullptr, 1.0f, glm::vec3(0.0f));
+    render::PathTracerOptions options;
+    options.traversal = render::PtTraversal::Bvh;
     render::PathTracer offTracer(ctx(), shaders(), off, offPts, options);
     const core::ImageRgba32f a = offTracer.render(camera(), kSize, kSize, settings()).image;
     const core::ImageRgba32f cpuOff = pathtrace::renderReference(offPts, camera(), kSize, kSize, settings());

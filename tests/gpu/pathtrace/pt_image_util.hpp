@@ -1,14 +1,17 @@
 // pt_image_util.hpp: what the GPU path-tracer tests share: image error metrics (RMSE over RGB, mean radiance),
-// the finiteness check, and a GPU render of N spp assembled from independent 4-spp batches with distinct seeds, so
-// one run yields the 4, 16, 64 ... spp estimates of a convergence curve.
+// the finiteness check, the same-seed check of the GPU tracer against its CPU reference, and a GPU render of N spp
+// assembled from independent 4-spp batches with distinct seeds, so one run yields the 4, 16, 64 ... spp estimates
+// of a convergence curve.
 #pragma once
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "core/image_file.hpp"
 #include "render/path_tracer.hpp"
+#include "support/same_pixels.hpp"
 
 namespace idk::test {
 
@@ -36,6 +39,29 @@ inline size_t nonFiniteCount(const core::ImageRgba32f& a) {
     size_t bad = 0;
     for (float v : a.pixels) bad += !std::isfinite(v);
     return bad;
+}
+
+// The GPU path tracer (BVH traversal) renders `sc` with the settings the CPU reference `cpu` was rendered with, and
+// must draw the same samples: no non-finite pixel, at least 90% of the pixels equal to the CPU's (samePixelFraction;
+// a discrete choice may flip on rounding) and the means within 1%. `what` names the scene in the printed line.
+// Returns the GPU image.
+inline core::ImageRgba32f expectGpuDrawsTheCpuSamples(vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                                       const scene::Scene& sc, const pathtrace::PathTraceScene& pts,
+                                                       const scene::CameraView& camera, uint32_t size,
+                                                       const render::PathTraceSettings& settings,
+                                                       const core::ImageRgba32f& cpu, const char* what) {
+    render::PathTracerOptions options;
+    options.traversal = render::PtTraversal::Bvh;
+    render::PathTracer tracer(ctx, shaders, sc, pts, options);
+    core::ImageRgba32f gpu = tracer.render(camera, size, size, settings).image;
+    EXPECT_EQ(nonFiniteCount(gpu), 0u) << what;
+    const double same = samePixelFraction(gpu, cpu);
+    const double meanCpu = meanRadiance(cpu), meanGpu = meanRadiance(gpu);
+    std::printf("%s: %.2f%% of the pixels equal to the CPU's at the same seed; mean GPU %.6f CPU %.6f\n", what,
+                100.0 * same, meanGpu, meanCpu);
+    EXPECT_GT(same, 0.9) << what;
+    EXPECT_NEAR(meanGpu, meanCpu, 0.01 * meanCpu) << what;
+    return gpu;
 }
 
 // Running mean of batches: image k of `levels` is the mean of the first 4 * 4^k spp.

@@ -58,17 +58,8 @@ TEST_F(PtMaterialExtTest, GpuGivesTheCpuSamples) {
     const scene::CameraView camera = scene::defaultCamera(sc);
     const core::ImageRgba32f cpu = pathtrace::renderReference(pts, camera, kSize, kSize, settings());
 
-    render::PathTracerOptions options;
-    options.traversal = render::PtTraversal::Bvh;
-    render::PathTracer tracer(ctx(), shaders(), sc, pts, options);
-    const core::ImageRgba32f gpu = tracer.render(camera, kSize, kSize, settings()).image;
-    EXPECT_EQ(nonFiniteCount(gpu), 0u);
-    const double same = samePixelFraction(gpu, cpu);
-    const double meanCpu = meanRadiance(cpu), meanGpu = meanRadiance(gpu);
-    std::printf("material spheres: %.2f%% of the pixels equal to the CPU's at the same seed; mean GPU %.5f CPU %.5f\n",
-                100.0 * same, meanGpu, meanCpu);
-    EXPECT_GT(same, 0.9);
-    EXPECT_NEAR(meanGpu, meanCpu, 0.01 * meanCpu);
+    expectGpuDrawsTheCpuSamples(ctx(), shaders(), sc, pts, camera, kSize, settings(), cpu, "material spheres");
+    const double meanCpu = meanRadiance(cpu);
 
     // Without the extensions (core glTF materials) the image is measurably different.
     scene::Scene plain = sc;
@@ -111,17 +102,8 @@ TEST_F(PtMaterialExtTest, AnisotropyGpuGivesTheCpuSamples) {
     const pathtrace::PathTraceScene pts = pathtrace::buildPathTraceScene(sc, nullptr, 1.0f, environment);
     const scene::CameraView camera = scene::defaultCamera(sc);
     const core::ImageRgba32f cpu = pathtrace::renderReference(pts, camera, kSize, kSize, settings());
-    render::PathTracerOptions options;
-    options.traversal = render::PtTraversal::Bvh;
-    render::PathTracer tracer(ctx(), shaders(), sc, pts, options);
-    const core::ImageRgba32f gpu = tracer.render(camera, kSize, kSize, settings()).image;
-    EXPECT_EQ(nonFiniteCount(gpu), 0u);
-    const double same = samePixelFraction(gpu, cpu);
-    const double meanCpu = meanRadiance(cpu), meanGpu = meanRadiance(gpu);
-    std::printf("anisotropic spheres: %.1f%% of the pixels equal to the CPU's at the same seed; mean GPU %.5f CPU "
-                "%.5f\n", 100.0 * same, meanGpu, meanCpu);
-    EXPECT_GT(same, 0.9);
-    EXPECT_NEAR(meanGpu, meanCpu, 0.01 * meanCpu);
+    expectGpuDrawsTheCpuSamples(ctx(), shaders(), sc, pts, camera, kSize, settings(), cpu, "anisotropic spheres");
+    const double meanCpu = meanRadiance(cpu);
 
     scene::Scene isotropic = sc;
     for (scene::Material& m : isotropic.materials) m.anisotropyStrength = 0.0f;
@@ -157,17 +139,8 @@ TEST_F(PtMaterialExtTest, IridescenceGpuGivesTheCpuSamples) {
     const pathtrace::PathTraceScene pts = pathtrace::buildPathTraceScene(sc, nullptr, 1.0f, environment);
     const scene::CameraView camera = scene::defaultCamera(sc);
     const core::ImageRgba32f cpu = pathtrace::renderReference(pts, camera, kSize, kSize, settings());
-    render::PathTracerOptions options;
-    options.traversal = render::PtTraversal::Bvh;
-    render::PathTracer tracer(ctx(), shaders(), sc, pts, options);
-    const core::ImageRgba32f gpu = tracer.render(camera, kSize, kSize, settings()).image;
-    EXPECT_EQ(nonFiniteCount(gpu), 0u);
-    const double same = samePixelFraction(gpu, cpu);
-    const double meanCpu = meanRadiance(cpu), meanGpu = meanRadiance(gpu);
-    std::printf("iridescent spheres: %.1f%% of the pixels equal to the CPU's at the same seed; mean GPU %.5f CPU "
-                "%.5f\n", 100.0 * same, meanGpu, meanCpu);
-    EXPECT_GT(same, 0.9);
-    EXPECT_NEAR(meanGpu, meanCpu, 0.01 * meanCpu);
+    expectGpuDrawsTheCpuSamples(ctx(), shaders(), sc, pts, camera, kSize, settings(), cpu, "iridescent spheres");
+    const double meanCpu = meanRadiance(cpu);
 
     scene::Scene bare = sc;
     for (scene::Material& m : bare.materials) m.iridescence = 0.0f;
@@ -223,17 +196,7 @@ TEST_F(PtMaterialExtTest, CoatNormalGpuGivesTheCpuSamples) {
     const pathtrace::PathTraceScene pts = pathtrace::buildPathTraceScene(sc, nullptr, 1.0f, environment);
     const scene::CameraView camera = scene::defaultCamera(sc);
     const core::ImageRgba32f cpu = pathtrace::renderReference(pts, camera, kSize, kSize, settings());
-    render::PathTracerOptions options;
-    options.traversal = render::PtTraversal::Bvh;
-    render::PathTracer tracer(ctx(), shaders(), sc, pts, options);
-    const core::ImageRgba32f gpu = tracer.render(camera, kSize, kSize, settings()).image;
-    EXPECT_EQ(nonFiniteCount(gpu), 0u);
-    const double same = samePixelFraction(gpu, cpu);
-    const double meanCpu = meanRadiance(cpu), meanGpu = meanRadiance(gpu);
-    std::printf("coat normal: %.1f%% of the pixels equal to the CPU's at the same seed; mean GPU %.5f CPU %.5f\n",
-                100.0 * same, meanGpu, meanCpu);
-    EXPECT_GT(same, 0.9);
-    EXPECT_NEAR(meanGpu, meanCpu, 0.01 * meanCpu);
+    expectGpuDrawsTheCpuSamples(ctx(), shaders(), sc, pts, camera, kSize, settings(), cpu, "coat normal");
 
     auto cpuImage = [&](const scene::Scene& s) {
         return pathtrace::renderReference(pathtrace::buildPathTraceScene(s, nullptr, 1.0f, environment), camera,
@@ -284,17 +247,8 @@ TEST_F(PtMaterialExtTest, AnisotropyTextureGpuGivesTheCpuSamples) {
     const pathtrace::PathTraceScene pts = pathtrace::buildPathTraceScene(sc, nullptr, 1.0f, environment);
     const scene::CameraView camera = scene::defaultCamera(sc);
     const core::ImageRgba32f cpu = pathtrace::renderReference(pts, camera, kSize, kSize, settings());
-    render::PathTracerOptions options;
-    options.traversal = render::PtTraversal::Bvh;
-    render::PathTracer tracer(ctx(), shaders(), sc, pts, options);
-    const core::ImageRgba32f gpu = tracer.render(camera, kSize, kSize, settings()).image;
-    EXPECT_EQ(nonFiniteCount(gpu), 0u);
-    const double same = samePixelFraction(gpu, cpu);
-    const double meanCpu = meanRadiance(cpu), meanGpu = meanRadiance(gpu);
-    std::printf("anisotropy texture: %.1f%% of the pixels equal to the CPU's at the same seed; mean GPU %.5f CPU "
-                "%.5f\n", 100.0 * same, meanGpu, meanCpu);
-    EXPECT_GT(same, 0.9);
-    EXPECT_NEAR(meanGpu, meanCpu, 0.01 * meanCpu);
+    expectGpuDrawsTheCpuSamples(ctx(), shaders(), sc, pts, camera, kSize, settings(), cpu, "anisotropy texture");
+    const double meanCpu = meanRadiance(cpu);
 
     auto cpuImage = [&](const scene::Scene& s) {
         return pathtrace::renderReference(pathtrace::buildPathTraceScene(s, nullptr, 1.0f, environment), camera,

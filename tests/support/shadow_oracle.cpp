@@ -173,4 +173,29 @@ PlacedQuad floorQuad(float halfSize) {
     return q;
 }
 
+AcneCounts checkNoAcne(const ShadowFrames& f, const PrimaryHits& hits,
+                       const std::function<double(const glm::dvec3&)>& band) {
+    constexpr uint32_t n = kShadowFrameSize;
+    AcneCounts c;
+    for (uint32_t py = 0; py < n; ++py) {
+        for (uint32_t px = 0; px < n; ++px) {
+            const size_t i = size_t(py) * n + px;
+            if (hits.quad[i] < 0 || !interiorPixel(hits, px, py)) continue;
+            const glm::dvec3 p = hits.point[i];
+            double planes[3] = {p.y, p.x + 2.0, p.z + 2.0};  // one is 0: the point's own surface
+            std::sort(planes, planes + 3);
+            if (planes[1] < band(p)) continue;  // near a junction with another surface
+            const double direct = rgbSum(f.unshadowed, i) - rgbSum(f.ambient, i);
+            if (direct < 1e-3) continue;
+            const double s = (rgbSum(f.full, i) - rgbSum(f.ambient, i)) / direct;
+            ++c.tested;
+            c.worst = std::min(c.worst, s);
+            if (s < 0.99 && c.failures++ == 0)
+                c.first = "pixel " + std::to_string(px) + "," + std::to_string(py) + " quad " +
+                          std::to_string(hits.quad[i]) + " s=" + std::to_string(s);
+        }
+    }
+    return c;
+}
+
 }  // namespace idk::test

@@ -72,4 +72,14 @@ FloorCounts checkShadowFloor(const ShadowFrames& f, const std::vector<PlacedQuad
 
 PlacedQuad floorQuad(float halfSize);
 
+struct AcneCounts {
+    uint32_t tested = 0, failures = 0;
+    double worst = 1.0;  // lowest visibility seen
+    std::string first;   // the first failing pixel
+};
+// Self-shadowing on the corner scene (floor y = 0, walls x = -2 and z = -2), where nothing casts a shadow: every
+// interior pixel the light reaches, farther than band(p) from the corner's other surfaces, must keep s >= 0.99.
+AcneCounts checkNoAcne(const ShadowFrames& f, const PrimaryHits& hits,
+                       const std::function<double(const glm::dvec3&)>& band);
+
 }  // namespace idk::test

@@ -53,6 +53,9 @@ void main() {
     uint axis = dominantAxis(plane);
     uint drawAxis = p.axis & kVoxelAxisMask;
     if (drawAxis != kVoxelAxisDominant && axis != drawAxis) return;
+    // The triangles of other z-slabs (vxgi_memory.hpp) emit nothing.
+    vec3 z = (vec3(inWorldPosition[0].z, inWorldPosition[1].z, inWorldPosition[2].z) - p.gridMin.z) / p.voxelSize;
+    if (!voxelTriangleInSlab(min(z.x, min(z.y, z.z)), max(z.x, max(z.y, z.z)), p.axis)) return;
     vec4 clip[3];
     for (int i = 0; i < 3; ++i) clip[i] = voxelProjection(inWorldPosition[i], p.gridMin, p.voxelSize, p.gridSize, axis);
 #ifndef IDK_VOXELIZE_DILATE

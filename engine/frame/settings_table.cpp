@@ -3,6 +3,7 @@
 #include "frame/settings_table.hpp"
 
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -119,6 +120,14 @@ std::vector<SettingOption> buildTable() {
                  OptionKind::Choice, 0.0, 0.0, {"64", "128", "256", "384", "512"},
                  [](const RenderSettings& s) { return voxelSizeIndex(s.vxgi.voxels); },
                  [](RenderSettings& s, double v) { s.vxgi.voxels = kVoxelGridSizes[size_t(v)]; }});
+    t.push_back({"--gi-slabs", "Global illumination", "voxelization slabs",
+                 "VXGI voxelization in z-slabs (accumulators of 1/S of the grid, passes repeated per slab): auto "
+                 "(the fewest that fit the memory budget) or 1, 2, 4, 8",
+                 OptionKind::Choice, 0.0, 0.0, {"auto", "1", "2", "4", "8"},
+                 [](const RenderSettings& s) {
+                     return s.vxgi.slabs == 0 ? 0.0 : double(std::countr_zero(s.vxgi.slabs) + 1);
+                 },
+                 [](RenderSettings& s, double v) { s.vxgi.slabs = v < 1.0 ? 0u : 1u << (uint32_t(v) - 1u); }});
     t.push_back({"--gi-cones", "Global illumination", "ring cones",
                  "VXGI diffuse cones around the normal's cone (cosine-weighted set of 1 + N)", OptionKind::Integer,
                  3.0, 16.0, {}, [](const RenderSettings& s) { return double(s.vxgi.ringCones); },

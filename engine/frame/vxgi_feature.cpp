@@ -71,8 +71,12 @@ void VxgiFeature::addPasses(FrameContext& f, const std::optional<passes::VoxelSh
     const VoxelDirectionFormat format = voxelDirectionFormat(f.ctx.ladder("vxgi-volume-format").chosen);
     if (!grid_.image.image || grid_.image.extent.width != s.voxels) {
         // Refused before the old grid is released: the frame fails with the message, nothing is lost.
-        checkVxgiMemory(ctx_, s.voxels, atomics, heldBytes());
+        slabs_ = checkVxgiMemory(ctx_, s.voxels, atomics, heldBytes(), s.slabs);
+        slabsAsked_ = s.slabs;
         release();
+    } else if (s.slabs != slabsAsked_) {  // the grid stays: only the transient accumulators change size
+        slabs_ = checkVxgiMemory(ctx_, s.voxels, atomics, heldBytes(), s.slabs);
+        slabsAsked_ = s.slabs;
     }
     if (!grid_.image.image) {
         grid_.create(ctx_, "vxgi voxel grid", s.voxels, 1);
@@ -130,6 +134,7 @@ void VxgiFeature::addPasses(FrameContext& f, const std::optional<passes::VoxelSh
         in.directionLevel0[6 + d] = directions_[d].opacityStorage(0);
     }
     in.fullMerge = fullMerge;
+    in.slabs = slabs_;
     in.shadowRays = rays;
     // The single draw's projection follows "voxel-single-draw", except under the dilation fallback, whose geometry
     // shader projects each triangle itself (a passthrough shader could not dilate): the ladder is then not consulted.

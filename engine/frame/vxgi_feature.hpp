@@ -51,6 +51,8 @@ public:
     // The grid of the last frame (RGBA16F, size^3; left in GENERAL layout) or nullptr: tests read it back.
     const vk::Image* grid() const noexcept { return grid_.image.image ? &grid_.image : nullptr; }
     const passes::VoxelGridBox& box() const noexcept { return box_; }
+    // The z-slabs the voxelization runs in (frame/vxgi_memory.hpp), chosen with the grid; 0 before the first frame.
+    uint32_t slabs() const noexcept { return slabs_; }
     // Device bytes the grid and its directional volumes hold now (0 when none): what a resize frees first.
     VkDeviceSize heldBytes() const noexcept;
     // The gl-interop rung's state (record capacity, last frame's overflow) or nullptr on the other rungs.
@@ -65,6 +67,7 @@ private:
     vk::Context& ctx_;
     scene::Aabb bounds_;
     passes::VoxelGridBox box_;
+    uint32_t slabs_ = 0, slabsAsked_ = 0;  // the chosen count, and VxgiSettings::slabs it was chosen for
     VoxelVolume grid_;                      // level 0: the voxelized radiance and coverage
     std::array<DirectionVolume, 6> directions_;  // anisotropic volumes (+x -x +y -y +z -z), levels 0 .. log2(size)
     vk::SamplerIndex sampler_;

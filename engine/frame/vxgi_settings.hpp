@@ -53,6 +53,9 @@ struct VxgiSettings {
     VoxelDraws draws = VoxelDraws::Three;
     GiDebug debug = GiDebug::Off;  // Off: nothing allocated or dispatched
     uint32_t debugLevel = 0;       // 0: the grid; L >= 1: the directional volumes' level L (up to log2 voxels)
+    // Voxelization in z-slabs (frame/vxgi_memory.hpp): 0 the smallest count of 1, 2, 4, 8 that fits the memory
+    // budget, else that count (--gi-slabs; tests compare the counts' grids).
+    uint32_t slabs = 0;
 };
 
 }  // namespace idk::frame

@@ -58,9 +58,12 @@ struct VoxelizeInputs {
     // a passthrough geometry shader picking a swizzled viewport (vxgi_axis_swizzle.hpp), Fallback a geometry
     // shader re-emitting it (the dilation fallback of "conservative-raster" projects by itself). Unset: three draws.
     std::optional<vk::Rung> singleDraw;
+    // The accumulators and keys cover one z-slab of size / slabs voxels; the passes from the clear to the merge run
+    // once per slab (frame/vxgi_memory.hpp chooses the count from the memory budget). 1 on the gl-interop rung.
+    uint32_t slabs = 1;
 };
-// The write-conflict accumulators "vxgi_clear" creates for a rung of "vxgi-atomics" (transient 3D images of the
-// grid's size, all live at once): Native 8 x R32F (r g b, facing xyzw, count), Fallback 7 x R32UI, GlInterop none
+// The write-conflict accumulators "vxgi_clear" creates for a rung of "vxgi-atomics" (transient 3D images of one
+// slab of the grid, size x size x size / slabs, all live at once): Native 8 x R32F (r g b, facing xyzw, count), Fallback 7 x R32UI, GlInterop none
 // (its shared buffers instead). The memory check (frame/vxgi_memory.hpp) sizes them from this too.
 struct VoxelAccumulatorImages {
     VkFormat format = VK_FORMAT_UNDEFINED;
@@ -71,10 +74,12 @@ VoxelAccumulatorImages voxelAccumulatorImages(vk::Rung atomics);
 // (R32UI rather than R8UI: storage images of 8-bit formats need shaderStorageImageExtendedFormats.)
 inline constexpr VkFormat kVoxelCellMaskFormat = VK_FORMAT_R32_UINT;
 inline uint32_t voxelCellMaskSize(uint32_t n) { return n > 1 ? n / 2 : 1; }
-// The front-most rule's depth keys of a grid of n^3 voxels (shared/vxgi_depth_key.h, include/voxelize_key.glsl):
-// R32UI, (2 n) x n x n (two words per voxel: facing sign + and -), transient, on every rung; 8 bytes per voxel.
+// The front-most rule's depth keys of a slab of n x n x depth voxels (shared/vxgi_depth_key.h,
+// include/voxelize_key.glsl): R32UI, n x n x (2 depth) (two words per voxel: facing sign + and -), transient, on
+// every rung; 8 bytes per voxel. Its z extent is the only one above n: the slab count keeps it within the device's
+// maxImageDimension3D (frame/vxgi_memory.hpp).
 inline constexpr VkFormat kVoxelDepthKeyFormat = VK_FORMAT_R32_UINT;
-VkExtent3D voxelDepthKeyExtent(uint32_t n);
+VkExtent3D voxelDepthKeyExtent(uint32_t n, uint32_t depth);
 
 graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
                                        const VoxelizeInputs& inputs, graph::TextureHandle grid,

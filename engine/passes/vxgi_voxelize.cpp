@@ -10,6 +10,8 @@
 // (overestimate) where the device has it, else voxelize.geom's triangle dilation, so thin walls never leak.
 // --gi-voxel-draws single follows "voxel-single-draw": VK_NV_geometry_shader_passthrough + VK_NV_viewport_swizzle
 // (voxelize_passthrough.geom, vxgi_axis_swizzle.hpp) where the device has them, else voxelize_axis.geom.
+// With S z-slabs (frame/vxgi_memory.hpp: a grid whose accumulators do not fit the memory budget) the accumulators
+// and keys cover N x N x N/S voxels and clear, keys, voxelize and merge run once per slab.
 // The draws go through passes/indirect_draw.hpp: lavapipe applied the point-shadow faces' culled count to plain
 // indirect draws, and the voxelization then drew only the first (last face's count) scene draws.
 #include "passes/vxgi_passes.hpp"
@@ -17,6 +19,7 @@
 #include <algorithm>
 #include <memory>
 #include <stdexcept>
+#include <string>
 
 #include "passes/indirect_draw.hpp"
 #include "passes/rendering.hpp"
@@ -65,7 +68,7 @@ struct VoxelDraws {
 // alike, so a fragment of the key pass is the same fragment in the accumulating pass.
 void recordVoxelDraws(graph::PassContext& pc, vk::Context& ctx, vk::ShaderLibrary& shaders, const VoxelDraws& d,
                       vk::ShaderId plain, vk::ShaderId dilated, gpu::VoxelizePush push, bool lit,
-                      IndirectDrawLog* log) {
+                      IndirectDrawLog* log, uint32_t slabBits) {
     const SceneBuffers& s = d.scene;
     const uint32_t n = d.box.size;
     VkCommandBuffer cmd = pc.commandBuffer();
@@ -122,8 +125,22 @@ void recordVoxelDraws(graph::PassContext& pc, vk::Context& ctx, vk::ShaderLibrar
     // through to the viewport whose swizzle projects it.
     const uint32_t draws = d.singleDraw ? 1 : 3;
     for (uint32_t axis = 0; axis < draws; ++axis) {
-        push.axis = swizzled ? gpu::kVoxelAxisSwizzled : (d.singleDraw ? gpu::kVoxelAxisDominant : axis);
+        push.axis = (swizzled ? gpu::kVoxelAxisSwizzled : (d.singleDraw ? gpu::kVoxelAxisDominant : axis)) | slabBits;
         vk::pushConstants(cmd, ctx, push);
+        // A slab's draws along x and y see it as a band of rows (x: v = z) or columns (y: u = z): the scissor keeps
+        // the band and a pixel either side (a cull only, the fragment shader's slab test decides; a scissor changes
+        // no fragment's interpolants). The geometry shaders (dilation, single draw) also drop whole triangles
+        // outside the slab (voxelize_projection.glsl voxelTriangleInSlab); the vertex-only path (native
+        // conservative raster, centre raster) rasterises the z-projected triangles of every slab in each.
+        if (!d.singleDraw) {
+            const uint32_t depth = (slabBits >> gpu::kVoxelSlabDepthShift) & gpu::kVoxelSlabMask;
+            const uint32_t first = (slabBits >> gpu::kVoxelSlabZShift) & gpu::kVoxelSlabMask;
+            const uint32_t lo = first > 0 ? first - 1 : 0, hi = std::min(first + depth + 1, n);
+            VkRect2D band{{0, 0}, {n, n}};  // the z draw: the whole square
+            if (axis == 0) band = {{0, int32_t(lo)}, {n, hi - lo}};
+            else if (axis == 1) band = {{int32_t(lo), 0}, {hi - lo, n}};
+            vkCmdSetScissor(cmd, 0, 1, &band);
+        }
         drawAllIndexedIndirect(cmd, pc.vkBuffer(s.drawCommands), s.drawCount);  // see indirect_draw.hpp
         if (log) log->record(pc.passName(), s.drawCount);
     }
@@ -149,7 +166,7 @@ void readScene(graph::PassBuilder& b, const VoxelDraws& d, bool lights, const Po
 
 }  // namespace
 
-VkExtent3D voxelDepthKeyExtent(uint32_t n) { return {2 * n, n, n}; }
+VkExtent3D voxelDepthKeyExtent(uint32_t n, uint32_t depth) { return {n, n, 2 * depth}; }
 
 VoxelAccumulatorImages voxelAccumulatorImages(vk::Rung atomics) {
     const uint32_t mode = modeOf(atomics);
@@ -165,150 +182,196 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
                                        IndirectDrawLog* log) {
     const uint32_t mode = modeOf(in.atomics);
     const uint32_t n = in.box.size;
+    const uint32_t slabs = std::max(in.slabs, 1u);
     VxgiGlAccumulator* gl = in.gl;
     if (mode == gpu::kVoxelAtomicsGlRecords && !gl)
         throw std::logic_error("addVoxelizePasses: the gl-interop rung needs VoxelizeInputs::gl");
+    if (n % slabs != 0 || (gl && slabs != 1))
+        throw std::logic_error("addVoxelizePasses: " + std::to_string(slabs) + " slabs for a grid of " +
+                               std::to_string(n) + (gl ? " on the gl-interop rung" : ""));
+    const uint32_t depth = n / slabs;
+    // The slabs repeat clear, keys, voxelize and merge as graph passes of their own (a suffix " slab k" when
+    // there are several), each slab's reusing the first's transient images: the graph sees each rewrite as a new
+    // version and plans the barriers between one slab's merge reading them and the next slab's clear (write after
+    // read), as it does for any resource written twice in a frame; the merges write the grid, the directions and
+    // the cell mask in turn, so they run in slab order. One pass looping over the slabs would have to record the
+    // barriers between them itself, which passes never do.
     auto acc = std::make_shared<Accumulators>();
     if (gl) {
         acc->records = gl->importRecords(graph);
         acc->sums = gl->importSums(graph);
     }
-    graph.addPass(
-        "vxgi_clear",
-        [&](graph::PassBuilder& b) {
-            graph::TextureDesc cellDesc;
-            cellDesc.format = kVoxelCellMaskFormat;
-            cellDesc.sizeMode = graph::SizeMode::Absolute;
-            const uint32_t c = voxelCellMaskSize(n);
-            cellDesc.extent = {c, c, c};
-            acc->cells = b.write(b.create("vxgi cell mask", cellDesc), graph::Access::TransferDst);
-            graph::TextureDesc keyDesc;
-            keyDesc.format = kVoxelDepthKeyFormat;
-            keyDesc.sizeMode = graph::SizeMode::Absolute;
-            keyDesc.extent = voxelDepthKeyExtent(n);
-            acc->keys = b.write(b.create("vxgi depth keys", keyDesc), graph::Access::TransferDst);
-            if (gl) {  // the record counter (the header) and the sums start at zero
-                acc->records = b.write(acc->records, graph::Access::TransferDst);
-                acc->sums = b.write(acc->sums, graph::Access::TransferDst);
-                return;
-            }
-            const VoxelAccumulatorImages images = voxelAccumulatorImages(in.atomics);
-            graph::TextureDesc desc;
-            desc.format = images.format;
-            desc.sizeMode = graph::SizeMode::Absolute;
-            desc.extent = {n, n, n};
-            acc->count = images.count;
-            const char* names[8] = {"vxgi accum r",        "vxgi accum g",        "vxgi accum b",
-                                    "vxgi accum facing x", "vxgi accum facing y", "vxgi accum facing z",
-                                    "vxgi accum facing w", "vxgi accum count"};
-            for (uint32_t i = 0; i < acc->count; ++i)
-                acc->images[i] = b.write(b.create(names[i], desc), graph::Access::TransferDst);
-        },
-        [acc](graph::PassContext& pc) {
-            VkClearColorValue zero{};
-            VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-            vkCmdClearColorImage(pc.commandBuffer(), pc.image(acc->cells), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero,
-                                 1, &range);
-            vkCmdClearColorImage(pc.commandBuffer(), pc.image(acc->keys), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero,
-                                 1, &range);
-            if (acc->records.valid()) {
-                vkCmdFillBuffer(pc.commandBuffer(), pc.vkBuffer(acc->records), 0, gpu::kVoxelRecordHeaderWords * 4, 0);
-                vkCmdFillBuffer(pc.commandBuffer(), pc.vkBuffer(acc->sums), 0, VK_WHOLE_SIZE, 0);
-                return;
-            }
-            for (uint32_t i = 0; i < acc->count; ++i)
-                vkCmdClearColorImage(pc.commandBuffer(), pc.image(acc->images[i]),
-                                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
-        });
-
     const VoxelDraws draws{in.scene, in.frame, in.shadows.table, in.box, in.conservative, in.singleDraw, in.shadowRays};
     const PointShadowOutputs shadows = in.shadows;
-    constexpr VkPipelineStageFlags2 kFs = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
-    // The key pass rasterises the scene a second time, with a fragment shader that evaluates no light (the alpha
-    // test only) and does one compare-and-swap. On a GPU that is a depth-prepass-like cost (vertex and raster work
-    // again, cheap fragments, atomics in L2), and the accumulating draw then skips the shadow lookups of hidden
-    // fragments; lavapipe runs vertex, geometry and fragment work on the same CPU cores, so the second raster costs
-    // it about as much as the scene's vertex and setup work (measured in pass_ms.vxgi_voxel_keys).
-    graph.addPass(
-        "vxgi_voxel_keys",
-        [&](graph::PassBuilder& b) {
-            acc->keys = b.write(acc->keys, graph::Access::StorageReadWrite, kFs);
-            readScene(b, draws, false, shadows);
-        },
-        [&ctx, &shaders, draws, acc, log](graph::PassContext& pc) {
-            if (draws.scene.drawCount == 0) return;
-            gpu::VoxelizePush push{};
-            push.depthKeys = pc.texture(acc->keys).storageIndex;
-            recordVoxelDraws(pc, ctx, shaders, draws, vk::ShaderId::vxgi_voxelize_key_frag,
-                             vk::ShaderId::vxgi_voxelize_key_dilated_frag, push, false, log);
-        });
-    graph.addPass(
-        "vxgi_voxelize",
-        [&](graph::PassBuilder& b) {
-            for (uint32_t i = 0; i < acc->count; ++i)
-                acc->images[i] = b.write(acc->images[i], graph::Access::StorageReadWrite, kFs);
-            if (acc->records.valid()) acc->records = b.write(acc->records, graph::Access::StorageReadWrite, kFs);
-            b.read(acc->keys, graph::Access::StorageRead, kFs);
-            readScene(b, draws, true, shadows);
-        },
-        [&ctx, &shaders, draws, acc, mode, log, gl](graph::PassContext& pc) {
-            if (draws.scene.drawCount == 0) return;
-            gpu::VoxelizePush push{};
-            for (uint32_t i = 0; i < acc->count; ++i) push.accum[i] = pc.texture(acc->images[i]).storageIndex;
-            if (gl) {
-                push.accum[0] = gl->recordsIndex();
-                push.accum[1] = gl->capacity();
-            }
-            push.depthKeys = pc.texture(acc->keys).storageIndex;
-            recordVoxelDraws(pc, ctx, shaders, draws, fragmentShader(mode, false), fragmentShader(mode, true), push,
-                             true, log);
-        });
-
-    if (gl) acc->sums = gl->addPass(graph, acc->records, acc->sums);
-
-    auto written = std::make_shared<graph::TextureHandle>();
     const VxgiDirectionIndices level0 = in.directionLevel0;
-    const bool full = in.fullMerge;
-    graph.addPass(
-        "vxgi_merge",
-        [&](graph::PassBuilder& b) {
-            constexpr VkPipelineStageFlags2 kCs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-            for (uint32_t i = 0; i < acc->count; ++i) b.read(acc->images[i], graph::Access::StorageRead, kCs);
-            if (acc->sums.valid()) b.read(acc->sums, graph::Access::StorageRead, kCs);
-            // Read too: a voxel empty now and all zero in the grid already is not stored again (merge.comp.glsl).
-            *written = b.write(grid, full ? graph::Access::StorageWrite : graph::Access::StorageReadWrite, kCs);
-            acc->cells = b.write(acc->cells, graph::Access::StorageWrite, kCs);
-            // Level 0 through its own view; the graph tracks each volume whole (the mips read it next).
-            for (graph::TextureHandle& d : directions)
-                if (d.valid()) d = b.write(d, graph::Access::StorageReadWrite, kCs);
-            b.sideEffect();  // the grid is persistent state: later frames and readers outside the graph use it
-        },
-        [&ctx, &shaders, acc, written, n, mode, gl, level0, full](graph::PassContext& pc) {
-            VkCommandBuffer cmd = pc.commandBuffer();
-            vk::ComputePipelineDesc desc;
-            desc.shader = vk::ShaderId::vxgi_merge_comp;
-            desc.pushBytes = sizeof(gpu::VoxelMergePush);
-            desc.localSize = {gpu::kVoxelGroupSize, gpu::kVoxelGroupSize, gpu::kVoxelGroupSize};
-            vk::bindPipeline(cmd, shaders.compute(desc));
-            ctx.bindless().bind(cmd);
-            gpu::VoxelMergePush push{};
-            for (uint32_t i = 0; i < acc->count; ++i) push.accum[i] = pc.texture(acc->images[i]).storageIndex;
-            if (gl) push.accum[0] = gl->sumsIndex();
-            push.grid = pc.texture(*written).storageIndex;
-            for (uint32_t d = 0; d < 6; ++d) {
-                push.directions[d] = level0[d];
-                push.opacity[d] = level0[6 + d];
-            }
-            push.gridSize = n;
-            push.mode = mode;
-            push.full = full ? 1u : 0u;
-            push.cells = pc.texture(acc->cells).storageIndex;
-            vk::pushConstants(cmd, ctx, push);
-            const uint32_t groups = vk::groupCount(n, gpu::kVoxelGroupSize);
-            vkCmdDispatch(cmd, groups, groups, groups);
-        });
+    graph::TextureHandle written = grid;
+    for (uint32_t slab = 0; slab < slabs; ++slab) {
+        const std::string suffix = slabs > 1 ? " slab " + std::to_string(slab) : std::string();
+        const bool first = slab == 0;
+        // The slab's z range in the push blocks (kVoxelSlab*: the fragments outside it are dropped).
+        const uint32_t slabZ = slab * depth;
+        const uint32_t slabBits = (slabZ << gpu::kVoxelSlabZShift) | (depth << gpu::kVoxelSlabDepthShift);
+        auto mine = std::make_shared<Accumulators>();  // this slab's versions, for its passes' execute callbacks
+        graph.addPass(
+            "vxgi_clear" + suffix,
+            [&](graph::PassBuilder& b) {
+                if (first) {
+                    graph::TextureDesc cellDesc;
+                    cellDesc.format = kVoxelCellMaskFormat;
+                    cellDesc.sizeMode = graph::SizeMode::Absolute;
+                    const uint32_t c = voxelCellMaskSize(n);
+                    cellDesc.extent = {c, c, c};
+                    acc->cells = b.write(b.create("vxgi cell mask", cellDesc), graph::Access::TransferDst);
+                    graph::TextureDesc keyDesc;
+                    keyDesc.format = kVoxelDepthKeyFormat;
+                    keyDesc.sizeMode = graph::SizeMode::Absolute;
+                    keyDesc.extent = voxelDepthKeyExtent(n, depth);
+                    acc->keys = b.create("vxgi depth keys", keyDesc);
+                }
+                acc->keys = b.write(acc->keys, graph::Access::TransferDst);
+                if (gl) {  // the record counter (the header) and the sums start at zero
+                    acc->records = b.write(acc->records, graph::Access::TransferDst);
+                    acc->sums = b.write(acc->sums, graph::Access::TransferDst);
+                } else {
+                    const VoxelAccumulatorImages images = voxelAccumulatorImages(in.atomics);
+                    graph::TextureDesc desc;
+                    desc.format = images.format;
+                    desc.sizeMode = graph::SizeMode::Absolute;
+                    desc.extent = {n, n, depth};
+                    acc->count = images.count;
+                    const char* names[8] = {"vxgi accum r",        "vxgi accum g",        "vxgi accum b",
+                                            "vxgi accum facing x", "vxgi accum facing y", "vxgi accum facing z",
+                                            "vxgi accum facing w", "vxgi accum count"};
+                    for (uint32_t i = 0; i < acc->count; ++i)
+                        acc->images[i] = b.write(first ? b.create(names[i], desc) : acc->images[i],
+                                                 graph::Access::TransferDst);
+                }
+                *mine = *acc;
+            },
+            [mine, first](graph::PassContext& pc) {
+                VkClearColorValue zero{};
+                VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+                VkCommandBuffer cmd = pc.commandBuffer();
+                if (first)  // one mask for the whole grid: each slab's merge marks its cells
+                    vkCmdClearColorImage(cmd, pc.image(mine->cells), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1,
+                                         &range);
+                vkCmdClearColorImage(cmd, pc.image(mine->keys), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1,
+                                     &range);
+                if (mine->records.valid()) {
+                    vkCmdFillBuffer(cmd, pc.vkBuffer(mine->records), 0, gpu::kVoxelRecordHeaderWords * 4, 0);
+                    vkCmdFillBuffer(cmd, pc.vkBuffer(mine->sums), 0, VK_WHOLE_SIZE, 0);
+                    return;
+                }
+                for (uint32_t i = 0; i < mine->count; ++i)
+                    vkCmdClearColorImage(cmd, pc.image(mine->images[i]), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero,
+                                         1, &range);
+            });
+
+        constexpr VkPipelineStageFlags2 kFs = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+        // The key pass rasterises the scene a second time, with a fragment shader that evaluates no light (the
+        // alpha test only) and does one compare-and-swap. On a GPU that is a depth-prepass-like cost (vertex and
+        // raster work again, cheap fragments, atomics in L2), and the accumulating draw then skips the shadow
+        // lookups of hidden fragments; lavapipe runs vertex, geometry and fragment work on the same CPU cores, so
+        // the second raster costs it about as much as the scene's vertex and setup work (pass_ms.vxgi_voxel_keys).
+        // With several slabs every slab draws the whole scene and keeps the fragments of its z range; the scissor
+        // and the geometry shaders' cull (recordVoxelDraws) spare most of the other slabs' raster work, so on
+        // lavapipe the Cornell box's clear + keys + voxelize + merge took about the same time in 2 slabs as in 1
+        // (64^3: 33-36 against 41-45 ms; 128^3: 176-209 against 203-235 ms; 256^3: 917-1017 against 909-974 ms).
+        auto keyed = std::make_shared<Accumulators>();
+        graph.addPass(
+            "vxgi_voxel_keys" + suffix,
+            [&](graph::PassBuilder& b) {
+                acc->keys = b.write(acc->keys, graph::Access::StorageReadWrite, kFs);
+                readScene(b, draws, false, shadows);
+                *keyed = *acc;
+            },
+            [&ctx, &shaders, draws, keyed, log, slabBits](graph::PassContext& pc) {
+                if (draws.scene.drawCount == 0) return;
+                gpu::VoxelizePush push{};
+                push.depthKeys = pc.texture(keyed->keys).storageIndex;
+                recordVoxelDraws(pc, ctx, shaders, draws, vk::ShaderId::vxgi_voxelize_key_frag,
+                                 vk::ShaderId::vxgi_voxelize_key_dilated_frag, push, false, log, slabBits);
+            });
+        auto voxelized = std::make_shared<Accumulators>();
+        graph.addPass(
+            "vxgi_voxelize" + suffix,
+            [&](graph::PassBuilder& b) {
+                for (uint32_t i = 0; i < acc->count; ++i)
+                    acc->images[i] = b.write(acc->images[i], graph::Access::StorageReadWrite, kFs);
+                if (acc->records.valid()) acc->records = b.write(acc->records, graph::Access::StorageReadWrite, kFs);
+                b.read(acc->keys, graph::Access::StorageRead, kFs);
+                readScene(b, draws, true, shadows);
+                *voxelized = *acc;
+            },
+            [&ctx, &shaders, draws, voxelized, mode, log, gl, slabBits](graph::PassContext& pc) {
+                if (draws.scene.drawCount == 0) return;
+                gpu::VoxelizePush push{};
+                for (uint32_t i = 0; i < voxelized->count; ++i)
+                    push.accum[i] = pc.texture(voxelized->images[i]).storageIndex;
+                if (gl) {
+                    push.accum[0] = gl->recordsIndex();
+                    push.accum[1] = gl->capacity();
+                }
+                push.depthKeys = pc.texture(voxelized->keys).storageIndex;
+                recordVoxelDraws(pc, ctx, shaders, draws, fragmentShader(mode, false), fragmentShader(mode, true),
+                                 push, true, log, slabBits);
+            });
+
+        if (gl) acc->sums = gl->addPass(graph, acc->records, acc->sums);
+
+        const bool full = in.fullMerge;
+        auto merged = std::make_shared<Accumulators>();
+        auto target = std::make_shared<graph::TextureHandle>();
+        graph.addPass(
+            "vxgi_merge" + suffix,
+            [&](graph::PassBuilder& b) {
+                constexpr VkPipelineStageFlags2 kCs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+                for (uint32_t i = 0; i < acc->count; ++i) b.read(acc->images[i], graph::Access::StorageRead, kCs);
+                if (acc->sums.valid()) b.read(acc->sums, graph::Access::StorageRead, kCs);
+                // Read too: a voxel empty now and all zero in the grid already is not stored again
+                // (merge.comp.glsl); and a later slab's merge keeps what the earlier slabs' stored.
+                const bool writeOnly = full && first;
+                written = b.write(written, writeOnly ? graph::Access::StorageWrite : graph::Access::StorageReadWrite,
+                                  kCs);
+                acc->cells = b.write(acc->cells, first ? graph::Access::StorageWrite : graph::Access::StorageReadWrite,
+                                     kCs);
+                // Level 0 through its own view; the graph tracks each volume whole (the mips read it next).
+                for (graph::TextureHandle& d : directions)
+                    if (d.valid()) d = b.write(d, graph::Access::StorageReadWrite, kCs);
+                b.sideEffect();  // the grid is persistent state: later frames and readers outside the graph use it
+                *merged = *acc;
+                *target = written;
+            },
+            [&ctx, &shaders, merged, target, n, mode, gl, level0, full, slabZ, depth](graph::PassContext& pc) {
+                VkCommandBuffer cmd = pc.commandBuffer();
+                vk::ComputePipelineDesc desc;
+                desc.shader = vk::ShaderId::vxgi_merge_comp;
+                desc.pushBytes = sizeof(gpu::VoxelMergePush);
+                desc.localSize = {gpu::kVoxelGroupSize, gpu::kVoxelGroupSize, gpu::kVoxelGroupSize};
+                vk::bindPipeline(cmd, shaders.compute(desc));
+                ctx.bindless().bind(cmd);
+                gpu::VoxelMergePush push{};
+                for (uint32_t i = 0; i < merged->count; ++i)
+                    push.accum[i] = pc.texture(merged->images[i]).storageIndex;
+                if (gl) push.accum[0] = gl->sumsIndex();
+                push.grid = pc.texture(*target).storageIndex;
+                for (uint32_t d = 0; d < 6; ++d) {
+                    push.directions[d] = level0[d];
+                    push.opacity[d] = level0[6 + d];
+                }
+                push.gridSize = n;
+                push.mode = mode;
+                push.full = full ? 1u : 0u;
+                push.cells = pc.texture(merged->cells).storageIndex;
+                push.slabZ = slabZ;
+                push.slabDepth = depth;
+                vk::pushConstants(cmd, ctx, push);
+                const uint32_t groups = vk::groupCount(n, gpu::kVoxelGroupSize);
+                vkCmdDispatch(cmd, groups, groups, vk::groupCount(depth, gpu::kVoxelGroupSize));
+            });
+    }
     cells = acc->cells;
-    return *written;
+    return written;
 }
 
 }  // namespace idk::passes

@@ -57,7 +57,8 @@ bool voxelFragment(out ivec3 voxel, out vec3 radiance, out vec4 facing) {
     voxel = ivec3(0);
     radiance = vec3(0.0);
     facing = vec4(0.0);
-    if (p.axis <= 2u && dominantAxis(geometric) != p.axis) return false;  // single draws: every fragment is its axis's
+    uint drawAxis = p.axis & kVoxelAxisMask;
+    if (drawAxis <= 2u && dominantAxis(geometric) != drawAxis) return false;  // single draws: every fragment is its axis's
 #ifdef IDK_VOXELIZE_DILATED
     // Keep a pixel only where its square overlaps the triangle's bounds: cuts the dilation's overshoot at sharp
     // corners. The viewport is the plain N x N one (no y flip), so NDC = pixel / N * 2 - 1.
@@ -76,6 +77,13 @@ bool voxelFragment(out ivec3 voxel, out vec3 radiance, out vec4 facing) {
     // any lighting (a double-sided surface's radiating side is known only after it).
     uint facingClass = voxelFacingClass(g);
     uint key = voxelDepthKey(t[facingClass >> 1u], voxel[facingClass >> 1u], facingClass);
+    // This draw's z-slab: the fragment belongs to the one slab holding its integer voxel z (the key above is taken
+    // in grid coordinates, so it is the same whatever the slab); from here on `voxel` addresses the slab's
+    // accumulators and keys.
+    int slabZ = int((p.axis >> kVoxelSlabZShift) & kVoxelSlabMask);
+    int slabDepth = int((p.axis >> kVoxelSlabDepthShift) & kVoxelSlabMask);
+    if (voxel.z < slabZ || voxel.z >= slabZ + slabDepth) return false;
+    voxel.z -= slabZ;
 #ifdef IDK_VOXELIZE_KEY_PASS
     raiseVoxelKey(p.depthKeys, voxel, facingClass, key);
     return false;  // the key pass only raises keys

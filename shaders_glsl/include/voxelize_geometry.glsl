@@ -51,7 +51,11 @@ void emitCorner(vec3 w, vec4 position) {
 void main() {
     vec3 plane = cross(inWorldPosition[1] - inWorldPosition[0], inWorldPosition[2] - inWorldPosition[0]);
     uint axis = dominantAxis(plane);
-    if (p.axis != kVoxelAxisDominant && axis != p.axis) return;
+    uint drawAxis = p.axis & kVoxelAxisMask;
+    if (drawAxis != kVoxelAxisDominant && axis != drawAxis) return;
+    // The triangles of other z-slabs (vxgi_memory.hpp) emit nothing.
+    vec3 z = (vec3(inWorldPosition[0].z, inWorldPosition[1].z, inWorldPosition[2].z) - p.gridMin.z) / p.voxelSize;
+    if (!voxelTriangleInSlab(min(z.x, min(z.y, z.z)), max(z.x, max(z.y, z.z)), p.axis)) return;
     vec4 clip[3];
     for (int i = 0; i < 3; ++i) clip[i] = voxelProjection(inWorldPosition[i], p.gridMin, p.voxelSize, p.gridSize, axis);
 #ifndef IDK_VOXELIZE_DILATE

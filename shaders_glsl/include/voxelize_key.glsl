@@ -1,13 +1,13 @@
 // voxelize_key.glsl: the voxels' depth keys of the front-most rule (shared/vxgi_depth_key.h): an R32UI image of
-// (2 N) x N x N texels, texel (2 x + s, y, z) holding voxel (x, y, z)'s keys of facing sign s (0: +, 1: -), one
-// 10-bit field per axis. The key pass raises a field to a fragment's key; the accumulating passes read it back.
+// N x N x 2D texels for a slab of D voxels in z (passes/vxgi_passes.hpp voxelDepthKeyExtent), texel (x, y, 2 z + s)
+// holding the slab's voxel (x, y, z)'s keys of facing sign s (0: +, 1: -), one 10-bit field per axis. The key pass raises a field to a fragment's key; the accumulating passes read it back.
 #ifndef IDK_VOXELIZE_KEY_GLSL
 #define IDK_VOXELIZE_KEY_GLSL
 #include "vxgi_depth_key.h"
 #include "voxel_images.glsl"
 
 ivec3 voxelKeyTexel(ivec3 voxel, uint facingClass) {
-    return ivec3(2 * voxel.x + int(facingClass & 1u), voxel.y, voxel.z);
+    return ivec3(voxel.x, voxel.y, 2 * voxel.z + int(facingClass & 1u));
 }
 
 uint voxelKeyShift(uint facingClass) { return kVoxelKeyBits * (facingClass >> 1u); }

@@ -42,6 +42,14 @@ IDK_CONST(uint, kVoxelAxisDominant, 3u);
 // The single draw's native rung (voxelize_passthrough.geom, passes/vxgi_axis_swizzle.hpp): voxelize.vert emits the
 // unswizzled grid coordinates, the passthrough geometry shader picks a viewport per triangle, whose swizzle projects.
 IDK_CONST(uint, kVoxelAxisSwizzled, 4u);
+// VoxelizePush::axis packs the draw's slab too: bits 0..7 the axis above, bits 8..19 the slab's first voxel z,
+// bits 20..31 its depth in voxels (frame/vxgi_memory.hpp: the accumulators and keys cover one z-slab of the grid,
+// the draws repeat per slab). A fragment is kept in the slab holding floor(its grid z), the same integer voxel it
+// writes with one slab, so each fragment lands in exactly one slab whatever its position on a slab boundary.
+IDK_CONST(uint, kVoxelAxisMask, 0xFFu);
+IDK_CONST(uint, kVoxelSlabZShift, 8u);
+IDK_CONST(uint, kVoxelSlabDepthShift, 20u);
+IDK_CONST(uint, kVoxelSlabMask, 0xFFFu);
 struct VoxelizePush {
     DeviceAddress frame;         // GpuFrame (lights)
     DeviceAddress vertices;      // GpuVertex[]
@@ -55,7 +63,8 @@ struct VoxelizePush {
     vec3 gridMin;                // world position of the grid's corner
     float voxelSize;             // world size of one voxel (the grid is a cube of gridSize voxels per side)
     uint gridSize;
-    uint axis;                   // this draw's projection axis, or kVoxelAxisDominant / kVoxelAxisSwizzled
+    uint axis;                   // this draw's projection axis, or kVoxelAxisDominant / kVoxelAxisSwizzled, and
+                                 // its slab (kVoxelSlab*)
     uint accum[8];               // bindless storage indices: r, g, b, the facing's 4 (kVoxelAccumFacing) and the
                                  // count for kVoxelAtomicsFloatAdd (kVoxelAccumCount); kVoxelAtomicsGlRecords:
                                  // [0] the record buffer's storage-buffer index, [1] its capacity in records
@@ -79,8 +88,10 @@ struct VoxelMergePush {
                          // sets 1 in the level-1 cell of every occupied voxel, the level-1 mip skips the others
     uint opacity[6];     // storage indices of the directions' opacity images' level 0 (R8), or directions[k] where
                          // one RGBA16F image holds both (ladder "vxgi-volume-format": include/voxel_images.glsl)
+    uint slabZ;          // the slab this merge resolves: voxels z in [slabZ, slabZ + slabDepth) of the grid, at
+    uint slabDepth;      // z - slabZ in the accumulators (which cover one slab)
 };
-IDK_GPU_SIZE(VoxelMergePush, 100);
+IDK_GPU_SIZE(VoxelMergePush, 108);
 
 // mip.comp: one level of the anisotropic mip chain (Crassin et al. 2011): for each direction d of +x -x +y -y +z
 // -z, a voxel of level L >= 1 is its 2x2x2 children of level L - 1 of direction d (level 0: the merge's)

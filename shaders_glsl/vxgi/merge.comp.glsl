@@ -25,21 +25,23 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(push_constant, scalar) uniform Push { VoxelMergePush p; };
 
 void main() {
-    ivec3 voxel = ivec3(gl_GlobalInvocationID);
-    if (any(greaterThanEqual(voxel, ivec3(p.gridSize)))) return;
+    // The slab's voxel: `local` in the accumulators (one z-slab), `voxel` in the grid, the volumes and the mask.
+    ivec3 local = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(local, ivec3(p.gridSize, p.gridSize, p.slabDepth)))) return;
+    ivec3 voxel = local + ivec3(0, 0, int(p.slabZ));
     vec4 value = vec4(0.0), facing = vec4(0.0);
     bool occupied = false;
     if (p.mode == kVoxelAtomicsFloatAdd) {
-        float count = imageLoad(gVoxelsR32f[p.accum[kVoxelAccumCount]], voxel).r;
+        float count = imageLoad(gVoxelsR32f[p.accum[kVoxelAccumCount]], local).r;
         occupied = count > 0.0;
         if (occupied) {
-            value = vec4(imageLoad(gVoxelsR32f[p.accum[0]], voxel).r, imageLoad(gVoxelsR32f[p.accum[1]], voxel).r,
-                         imageLoad(gVoxelsR32f[p.accum[2]], voxel).r, count) / count;
+            value = vec4(imageLoad(gVoxelsR32f[p.accum[0]], local).r, imageLoad(gVoxelsR32f[p.accum[1]], local).r,
+                         imageLoad(gVoxelsR32f[p.accum[2]], local).r, count) / count;
             for (uint c = 0u; c < 4u; ++c)
-                facing[c] = imageLoad(gVoxelsR32f[p.accum[kVoxelAccumFacing + c]], voxel).r / count;
+                facing[c] = imageLoad(gVoxelsR32f[p.accum[kVoxelAccumFacing + c]], local).r / count;
         }
     } else if (p.mode == kVoxelAtomicsGlRecords) {
-        uint base = (uint(voxel.x) + p.gridSize * (uint(voxel.y) + p.gridSize * uint(voxel.z))) * kVoxelSumWords;
+        uint base = (uint(local.x) + p.gridSize * (uint(local.y) + p.gridSize * uint(local.z))) * kVoxelSumWords;
         float count = gVoxelSums[p.accum[0]].data[base + kVoxelSumCount];
         float coverage = gVoxelSums[p.accum[0]].data[base + 3u];
         occupied = count > 0.0 && coverage > 0.0;
@@ -51,14 +53,14 @@ void main() {
             for (uint c = 0u; c < 4u; ++c) facing[c] = gVoxelSums[p.accum[0]].data[base + 4u + c] / count;
         }
     } else {
-        uint red = imageLoad(gVoxelsR32ui[p.accum[0]], voxel).r;
+        uint red = imageLoad(gVoxelsR32ui[p.accum[0]], local).r;
         occupied = red != 0u;
         if (occupied) {
-            uvec3 bits = uvec3(red, imageLoad(gVoxelsR32ui[p.accum[1]], voxel).r,
-                               imageLoad(gVoxelsR32ui[p.accum[2]], voxel).r);
+            uvec3 bits = uvec3(red, imageLoad(gVoxelsR32ui[p.accum[1]], local).r,
+                               imageLoad(gVoxelsR32ui[p.accum[2]], local).r);
             value = vec4(uintBitsToFloat(bits - 1u), 1.0);
             for (uint c = 0u; c < 4u; ++c)
-                facing[c] = uintBitsToFloat(imageLoad(gVoxelsR32ui[p.accum[kVoxelAccumFacing + c]], voxel).r) -
+                facing[c] = uintBitsToFloat(imageLoad(gVoxelsR32ui[p.accum[kVoxelAccumFacing + c]], local).r) -
                             kVoxelFacingBias;
         }
     }

@@ -15,8 +15,9 @@ void main() {
     // kVoxelAxisDominant: the geometry shader projects again per triangle; this one is then unused.
     // kVoxelAxisSwizzled: the grid coordinates (0..1 on all three axes, w = 1) that the passthrough geometry shader
     // forwards untouched; the viewport it picks swizzles them into its axis's projection (vxgi_axis_swizzle.hpp).
-    if (p.axis == kVoxelAxisSwizzled)
+    uint axis = p.axis & kVoxelAxisMask;
+    if (axis == kVoxelAxisSwizzled)
         gl_Position = vec4(voxelGridCoords(outWorldPosition, p.gridMin, p.voxelSize, p.gridSize), 1.0);
     else
-        gl_Position = voxelProjection(outWorldPosition, p.gridMin, p.voxelSize, p.gridSize, min(p.axis, 2u));
+        gl_Position = voxelProjection(outWorldPosition, p.gridMin, p.voxelSize, p.gridSize, min(axis, 2u));
 }

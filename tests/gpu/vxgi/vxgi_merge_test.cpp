@@ -9,9 +9,14 @@
 // in every direction. And the mip chain, skips included, is checked against a CPU mip of the read-back levels
 // (mip.comp.glsl's composite: each level from the GPU's level below; zero exactly where the CPU's is zero, else within
 // one storage step of the directions' format: fp16, or 10/11-bit floats and 1/255 for packed volumes).
+// Voxelization in z-slabs (frame/vxgi_memory.hpp, --gi-slabs): the same room voxelized in 2 and 4 slabs gives the
+// grid and every level of the six directional volumes of 1 slab, bit for bit, on the float-add and the r32ui rungs
+// (the gl-interop rung voxelizes in one slab only: VxgiMemoryTest). The room's walls cross every slab boundary.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
+#include <string>
 #include <memory>
 
 #include "conformance/voxel_oracle.hpp"
@@ -183,6 +188,46 @@ void expectIncrementalEqualsFull(vk::Context& ctx, vk::ShaderLibrary& shaders, c
 
 class VxgiMergeTest : public GpuTest {};
 
+// The room in 1, 2 and 4 slabs: each fragment lands in the slab of its integer voxel z (voxelize_fragment.glsl), so
+// every voxel sees the same fragments in the same draw order as with one slab; the r32ui rung's max is
+// order-free anyway, and the float-add rung's sums were bit-identical run to run on lavapipe (the test above).
+void expectSlabsGiveOneSlabsGrid(vk::Context& ctx, vk::ShaderLibrary& shaders, const char* rung) {
+    const scene::Scene scene = mergeScene();
+    const glm::vec3 camera(0.05f, -0.1f, 0.3f);
+    auto voxelize = [&](uint32_t slabs) {
+        render::RenderSettings settings = mergeSettings();
+        settings.vxgi.slabs = slabs;
+        render::Renderer r(ctx, shaders, settings);
+        r.setScene(scene);
+        const render::FrameResult frame = r.renderOffscreen(closedRoomCamera(camera), 16, 16);
+        EXPECT_EQ(r.vxgi().slabs(), slabs) << rung;
+        // Each slab's passes ran: the last slab's merge is there ("vxgi_merge" alone with one slab).
+        const std::string lastMerge = slabs == 1 ? "vxgi_merge" : "vxgi_merge slab " + std::to_string(slabs - 1);
+        EXPECT_NE(std::find(frame.passesRun.begin(), frame.passesRun.end(), lastMerge), frame.passesRun.end())
+            << rung << ": " << lastMerge;
+        return readConeGrid(ctx, r.vxgi());
+    };
+    const ConeGridData one = voxelize(1);
+    const std::vector<glm::vec4>& grid = one.grid.levels[0];
+    ASSERT_GT(occupied(grid), 5000u) << rung << ": the grid should hold the room";
+    // Occupied voxels on both sides of every slab boundary of 4 slabs (z = 15|16, 31|32, 47|48).
+    for (uint32_t z : {15u, 16u, 31u, 32u, 47u, 48u}) {
+        size_t inSlice = 0;
+        const size_t slice = size_t(kVoxels) * kVoxels;
+        for (size_t i = z * slice; i < (z + 1) * slice; ++i) inSlice += grid[i].a > 0.0f;
+        EXPECT_GT(inSlice, 50u) << rung << ": z " << z;
+    }
+    for (uint32_t slabs : {2u, 4u}) {
+        const ConeGridData sliced = voxelize(slabs);
+        EXPECT_EQ(differingWords(sliced.grid, one.grid), 0u) << rung << ": grid, " << slabs << " slabs";
+        for (uint32_t d = 0; d < 6; ++d) {
+            ASSERT_EQ(sliced.directions[d].levels.size(), one.directions[d].levels.size());
+            EXPECT_EQ(differingWords(sliced.directions[d], one.directions[d]), 0u)
+                << rung << ": directional volume " << d << " (all levels), " << slabs << " slabs";
+        }
+    }
+}
+
 TEST_F(VxgiMergeTest, SkippingEmptyVoxelsGivesTheFullMergeBitForBit) {
     ASSERT_EQ(ctx().ladder("vxgi-atomics").chosen, vk::Rung::Native) << "lavapipe has float image atomic add";
     ASSERT_EQ(ctx().ladder("vxgi-volume-format").chosen, vk::Rung::Native) << "lavapipe stores B10G11R11 and R8";
@@ -217,6 +262,26 @@ TEST_F(VxgiMergeTest, SkippingEmptyVoxelsGivesTheFullMergeBitForBitWithRgba16fDi
 
 TEST_F(VxgiMergeTest, SkippingEmptyVoxelsGivesTheFullMergeBitForBitOnTheGlRung) {
     expectIncrementalEqualsFullOn(vk::Rung::GlInterop, "gl-interop rung");
+}
+
+TEST_F(VxgiMergeTest, SlabsGiveTheOneSlabGridBitForBit) {
+    ASSERT_EQ(ctx().ladder("vxgi-atomics").chosen, vk::Rung::Native) << "lavapipe has float image atomic add";
+    expectSlabsGiveOneSlabsGrid(ctx(), shaders(), "float-add rung");
+}
+
+TEST_F(VxgiMergeTest, SlabsGiveTheOneSlabGridBitForBitOnTheUintRung) {
+    vk::ContextDesc desc = sharedContext().desc();
+    desc.validation = true;
+    desc.forcedRungs = {vk::RungForce{"vxgi-atomics", vk::Rung::Fallback}};
+    auto ctx = std::make_unique<vk::Context>(desc);
+    ASSERT_EQ(ctx->ladder("vxgi-atomics").chosen, vk::Rung::Fallback);
+    {
+        vk::ShaderLibrary shaders(*ctx);
+        expectSlabsGiveOneSlabsGrid(*ctx, shaders, "r32ui rung");
+    }
+    ctx->waitIdle();
+    EXPECT_EQ(ctx->validationErrors(), 0u);
+    for (const std::string& m : ctx->validationMessages()) ADD_FAILURE() << m;
 }
 
 }  // namespace

@@ -19,7 +19,9 @@
 //    path tracer; the panel's and the point light's parts in brackets): cap N / 8 (kept) 0.296 (0.251 / 0.461) at
 //    64^3; N / 4: 0.283 (0.282 / 0.392) at 64^3, 0.285 (0.288 / 0.388) at 128^3 (N / 8: 0.295); N / 2 and no cap at
 //    all (the receiver-plane clamp alone): 0.284 (0.287 / 0.391) at 64^3. So at most 0.013 of it is the cap's, and
-//    wider cells trade the panel's part for the point light's. N / 4 makes the closed room
+//    wider cells trade the panel's part for the point light's (and both parts are too dark as a whole, which wider
+//    cells do not mend: the summed indirect light over the reference's, indirect_ratio, is 0.834 / 0.758 with the
+//    cap N / 8, 0.774 / 0.782 with N / 4, 0.768 / 0.797 without a cap). N / 4 makes the closed room
 //    (tests/gpu/vxgi/vxgi_frame_test.cpp) 8.1% darker instead of 10.6%, but its thin wall leaks 0.175 (bound 0.06).
 //    An occupancy gate, tried and not kept: a sample widens past the cap by the weight 1 - S / tau, S the coverages
 //    at the wider level seen along each axis times 1 - dir_a^2 (the share of a surface beside the travel, which a

@@ -20,7 +20,8 @@
 //    emission zeroed, environment off) minus its own direct frame, against that part of the reference (its two
 //    path traces, kept apart). Each is the part's relative L1 against its own reference; indirect_error_share.*
 //    is the part's absolute L1 over the whole reference indirect sum (the shares add up to at least
-//    rel_error_indirect: the parts' errors may cancel in the sum).
+//    rel_error_indirect: the parts' errors may cancel in the sum); indirect_ratio.* is the part's summed indirect
+//    light over its reference's (signed sums over RGB: below 1 the part is too dark as a whole, above 1 too bright).
 //  * pt_ms_same_error (VXGI rows): the (two-part) path tracer's time to reach the frame's indirect error, interpolated
 //    log-log between runs at 1, 2, 4, ... 64 spp (beyond 64: extrapolated as error ~ 1/sqrt(spp),
 //    pt_extrapolated = 1); pt_time_ratio = that time / the frame's time.
@@ -230,7 +231,14 @@ void sourceSplitCounters(benchmark::State& state, const scene::Scene& scene, con
         double partRef = 0.0;
         for (size_t i = 0; i < part.full.pixels.size(); ++i)
             if (i % 4 != 3) partRef += std::abs(double(part.full.pixels[i]) - part.direct.pixels[i]);
+        double partIndirect = 0.0;
+        for (size_t i = 0; i < frame.pixels.size(); ++i)
+            if (i % 4 != 3) partIndirect += double(frame.pixels[i]) - direct.pixels[i];
+        double partSigned = 0.0;
+        for (size_t i = 0; i < part.full.pixels.size(); ++i)
+            if (i % 4 != 3) partSigned += double(part.full.pixels[i]) - part.direct.pixels[i];
         state.counters[std::string("indirect_error.") + part.name] = relative;
+        state.counters[std::string("indirect_ratio.") + part.name] = partIndirect / partSigned;
         state.counters[std::string("indirect_error_share.") + part.name] = relative * partRef / totalRef;
     }
 }

@@ -13,8 +13,28 @@
 //    cell, twice as big, counts: lod <= log2(h / 3v); level 0 alone down to h = 1.5 v, where the march starts).
 //    Without it the ring cones at 52 degrees, whose width grows faster than their height, see the surface they
 //    start from (a white floor under a uniform sky rendered 0.28 instead of 0.5);
-//  * the level is also capped at kVxgiMaxLodBelowRoot under the root (coarser cells blur a room into one cell
-//    and carry light through walls); past the cap the cone keeps its cell and marches on;
+//  * the level is also capped at kVxgiMaxLodBelowRoot under the root (coarser cells blur a room into one cell and
+//    carry light through walls); past the cap the cone keeps its cell and marches on. The cap is not what keeps the
+//    Cornell box's indirect error at 0.296 (measured with BM_VxgiCornell/N, relative L1 against the depth-matched
+//    path tracer; the panel's and the point light's parts in brackets): cap N / 8 (kept) 0.296 (0.251 / 0.461) at
+//    64^3; N / 4: 0.283 (0.282 / 0.392) at 64^3, 0.285 (0.288 / 0.388) at 128^3 (N / 8: 0.295); N / 2 and no cap at
+//    all (the receiver-plane clamp alone): 0.284 (0.287 / 0.391) at 64^3. So at most 0.013 of it is the cap's, and
+//    wider cells trade the panel's part for the point light's (and both parts are too dark as a whole, which wider
+//    cells do not mend: the summed indirect light over the reference's, indirect_ratio, is 0.834 / 0.758 with the
+//    cap N / 8, 0.774 / 0.782 with N / 4, 0.768 / 0.797 without a cap). N / 4 makes the closed room
+//    (tests/gpu/vxgi/vxgi_frame_test.cpp) 8.1% darker instead of 10.6%, but its thin wall leaks 0.175 (bound 0.06).
+//    An occupancy gate, tried and not kept: a sample widens past the cap by the weight 1 - S / tau, S the coverages
+//    at the wider level seen along each axis times 1 - dir_a^2 (the share of a surface beside the travel, which a
+//    wide cell averages across; at tau 0.3 all or nothing): tau 0.3: room 9.2% darker, thin wall 0.0555, but the
+//    one-voxel wall of tests/conformance/vxgi/footprint_cone_test.cpp leaks 0.094 / 0.076 / 0.144 of the mirror
+//    point (1 / 4 / 7 footprint cones; same grid with the cap: 0.064 / 0.047 / 0.115, bound 0.13): a wide cell's
+//    trilinear fetch reads the panel's cell across a wall met head on before the wall's coverage is composited; tau
+//    0.2: room 10.4%, 7 cones leak 0.136; tau 0.1: room 10.6%, Cornell 0.296. Widening only in empty space (the
+//    three coverages below 0.02 together): the same error, and no faster (cone trace 412 ms against 398 ms at
+//    64^3). The receiver-plane clamp's h >= 1.5 c is near its best: 1.0 c gives 0.312, 2.25 c 0.300. Nor is it the
+//    march's sampling: step 0.25 instead of 0.5 gives 0.2955 (ratios 0.836 / 0.759). The edge opacity
+//    (vxgiVoxelTowards) moves it: 0.25 instead of 0.5 gives 0.281 (0.860 / 0.792), the closed room 7.3% darker, but
+//    the thin wall 0.0791 (bound 0.06) and the one-voxel wall 0.154 / 0.130 / 0.173 (bound 0.13);
 //  * a sample's alpha is the coverage of one cell of size c along the march, so a step of length s takes
 //    1 - (1 - alpha)^(s / c) (Beer-Lambert over the cell), with s = c * stepFactor;
 //  * the march ends when opacity reaches 0.99 or the sample's cell leaves the grid; the sky fills the rest.

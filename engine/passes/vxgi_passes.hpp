@@ -4,6 +4,7 @@
 #include <glm/glm.hpp>
 
 #include <array>
+#include <string>
 #include <vector>
 
 #include "passes/passes.hpp"
@@ -29,7 +30,7 @@ struct VoxelShadowRays {
     bool hasAlpha = false;                   // alpha-tested or blended materials: opacity tested along the ray
 };
 
-// vxgi_voxelize.cpp: "vxgi_clear" zeroes the write-conflict accumulators (transient 3D images of the atomic rung's
+// vxgi_voxelize.cpp (vxgi_merge.cpp the clear and the merge): "vxgi_clear" zeroes the write-conflict accumulators (transient 3D images of the atomic rung's
 // formats) and the depth keys, "vxgi_voxel_keys" rasterizes the scene three times (one orthographic projection per
 // axis; each triangle keeps the fragments of its dominant axis) and raises each voxel's depth key per facing class
 // (its front-most surface: shared/vxgi_depth_key.h), "vxgi_voxelize" rasterizes it again and adds the outgoing
@@ -85,6 +86,31 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
                                        const VoxelizeInputs& inputs, graph::TextureHandle grid,
                                        VxgiDirectionHandles& directions, graph::TextureHandle& cells,
                                        IndirectDrawLog* log);
+
+// addVoxelizePasses' parts. The rung's kVoxelAtomics* mode (push `mode` of the voxelize and merge shaders).
+uint32_t voxelAtomicsMode(vk::Rung atomics);
+// One z-slab: voxels [z, z + depth) of the grid; `suffix` names its passes (" slab k" when there are several).
+struct VoxelSlab {
+    uint32_t index = 0, z = 0, depth = 0;
+    std::string suffix;
+};
+// The transient resources the passes of a slab hand on (their current graph versions): the accumulators
+// (`count` images of voxelAccumulatorImages), the depth keys, the cell mask, and on the gl-interop rung the shared
+// record and sums buffers instead of images. The first slab's clear creates them, the later slabs' reuse them.
+struct VoxelSlabImages {
+    graph::TextureHandle images[8];
+    graph::TextureHandle cells;
+    graph::TextureHandle keys;
+    uint32_t count = 0;
+    graph::BufferHandle records, sums;
+};
+// vxgi_merge.cpp: "vxgi_clear" of `slab` (zeroes `acc`; the first slab creates its images and the cell mask), and
+// "vxgi_merge" of `slab` (reads `acc`, writes `grid`, `directions` and acc.cells; returns the grid's new version).
+void addVoxelClearPass(graph::RenderGraph& graph, const VoxelizeInputs& inputs, const VoxelSlab& slab,
+                       VoxelSlabImages& acc);
+graph::TextureHandle addVoxelMergePass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                       const VoxelizeInputs& inputs, const VoxelSlab& slab, VoxelSlabImages& acc,
+                                       graph::TextureHandle grid, VxgiDirectionHandles& directions);
 
 // vxgi_cone_trace.cpp: "vxgi_mip L" (one pass per level L >= 1 of the six directional volumes, each from the
 // level below; the voxelization's merge wrote level 0), then "vxgi_cone_trace": per G-buffer pixel inside the grid,

@@ -62,7 +62,20 @@ struct VoxelizeInputs {
     // The accumulators and keys cover one z-slab of size / slabs voxels; the passes from the clear to the merge run
     // once per slab (frame/vxgi_memory.hpp chooses the count from the memory budget). 1 on the gl-interop rung.
     uint32_t slabs = 1;
+    // The merge's touched-voxel lists (persistent buffers of voxelListBytes, vxgi_merge.cpp): `current`, which the
+    // accumulating draws fill this frame, and the previous frame's (invalid where there is none: the grid is new).
+    // Unset: the merge visits every voxel (the gl-interop rung: its GL side keeps no first-touch mark).
+    struct Lists {
+        graph::BufferHandle current, previous;
+        uint32_t currentIndex = 0, previousIndex = 0;  // their bindless storage-buffer indices
+    };
+    std::optional<Lists> lists;
 };
+// The bytes of one touched-voxel list of an n^3 grid: a 16-byte header and 16 n^2 - 4 entries of 4 bytes, 64 n^2
+// bytes in all (a multiple of 64 KiB from n = 32: its allocation is its size). The bound holds the voxels of
+// surfaces the size of 16 of the grid's cross-sections (a closed room at 64^3, its six walls 2-3 voxels thick, fills
+// about 40%): 4 MiB at 256^3, 16 MiB at 512^3. A frame touching more visits every voxel in its merge.
+VkDeviceSize voxelListBytes(uint32_t n);
 // The write-conflict accumulators "vxgi_clear" creates for a rung of "vxgi-atomics" (transient 3D images of one
 // slab of the grid, size x size x size / slabs, all live at once): Native 8 x R32F (r g b, facing xyzw, count), Fallback 7 x R32UI, GlInterop none
 // (its shared buffers instead). The memory check (frame/vxgi_memory.hpp) sizes them from this too.
@@ -103,9 +116,11 @@ struct VoxelSlabImages {
     graph::TextureHandle keys;
     uint32_t count = 0;
     graph::BufferHandle records, sums;
+    graph::BufferHandle list;  // this frame's touched-voxel list (VoxelizeInputs::lists)
 };
-// vxgi_merge.cpp: "vxgi_clear" of `slab` (zeroes `acc`; the first slab creates its images and the cell mask), and
-// "vxgi_merge" of `slab` (reads `acc`, writes `grid`, `directions` and acc.cells; returns the grid's new version).
+// vxgi_merge.cpp: "vxgi_clear" of `slab` (zeroes `acc`; the first slab creates its images and the cell mask, and
+// empties inputs.lists->current), and "vxgi_merge" of `slab` (with lists after "vxgi_merge_args", its indirect
+// dispatch; reads `acc`, writes `grid`, `directions` and acc.cells; returns the grid's new version).
 void addVoxelClearPass(graph::RenderGraph& graph, const VoxelizeInputs& inputs, const VoxelSlab& slab,
                        VoxelSlabImages& acc);
 graph::TextureHandle addVoxelMergePass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,

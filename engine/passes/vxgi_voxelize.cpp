@@ -189,6 +189,11 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
     // the cell mask in turn, so they run in slab order. One pass looping over the slabs would have to record the
     // barriers between them itself, which passes never do.
     VoxelSlabImages acc;
+    if (in.lists) {
+        if (n > 1024) throw std::logic_error("addVoxelizePasses: the touched-voxel lists pack 10 bits per axis");
+        acc.list = in.lists->current;
+    }
+    const uint32_t listBits = in.lists ? (in.lists->currentIndex + 1) << gpu::kVoxelListShift : 0;
     if (gl) {
         acc.records = gl->importRecords(graph);
         acc.sums = gl->importSums(graph);
@@ -236,11 +241,12 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
                 for (uint32_t i = 0; i < acc.count; ++i)
                     acc.images[i] = b.write(acc.images[i], graph::Access::StorageReadWrite, kFs);
                 if (acc.records.valid()) acc.records = b.write(acc.records, graph::Access::StorageReadWrite, kFs);
+                if (acc.list.valid()) acc.list = b.write(acc.list, graph::Access::StorageReadWrite, kFs);
                 b.read(acc.keys, graph::Access::StorageRead, kFs);
                 readScene(b, draws, true, shadows);
                 *voxelized = acc;
             },
-            [&ctx, &shaders, draws, voxelized, mode, log, gl, slabBits](graph::PassContext& pc) {
+            [&ctx, &shaders, draws, voxelized, mode, log, gl, slabBits, listBits](graph::PassContext& pc) {
                 if (draws.scene.drawCount == 0) return;
                 gpu::VoxelizePush push{};
                 for (uint32_t i = 0; i < voxelized->count; ++i)
@@ -249,7 +255,7 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
                     push.accum[0] = gl->recordsIndex();
                     push.accum[1] = gl->capacity();
                 }
-                push.depthKeys = pc.texture(voxelized->keys).storageIndex;
+                push.depthKeys = pc.texture(voxelized->keys).storageIndex | listBits;  // both below 2^16
                 recordVoxelDraws(pc, ctx, shaders, draws, fragmentShader(mode, false), fragmentShader(mode, true),
                                  push, true, log, slabBits);
             });

@@ -45,15 +45,32 @@ void VxgiFeature::release() {
     for (vk::Buffer& b : coneParams_) ctx_.destroy(b);
     coneParamsIndex_.clear();
     coneParams_.clear();
+    releaseLists();
     if (!grid_.image.image) return;
     grid_.release(ctx_);
     for (DirectionVolume& d : directions_) d.release(ctx_);
     ctx_.bindless().release(sampler_);
 }
 
+void VxgiFeature::releaseLists() {
+    for (uint32_t i = 0; i < 2; ++i) {
+        if (!lists_[i]) continue;
+        ctx_.bindless().release(listIndex_[i]);
+        ctx_.destroy(lists_[i]);
+    }
+    listed_ = false;
+}
+
+void VxgiFeature::setVoxelListCapacity(uint32_t entries) {
+    listCapacity_ = entries;
+    releaseLists();
+}
+
 VkDeviceSize VxgiFeature::heldBytes() const noexcept {
     VkDeviceSize bytes = grid_.image.allocation.size;
     for (const DirectionVolume& d : directions_) bytes += d.bytes();
+    for (const vk::Buffer& b : lists_)
+        if (b) bytes += b.allocation.size;
     return bytes;
 }
 
@@ -135,6 +152,39 @@ void VxgiFeature::addPasses(FrameContext& f, const std::optional<passes::VoxelSh
     }
     in.fullMerge = fullMerge;
     in.slabs = slabs_;
+    if (atomics != vk::Rung::GlInterop) {
+        if (!lists_[0]) {
+            for (uint32_t i = 0; i < 2; ++i) {
+                vk::BufferDesc desc;
+                desc.size = listCapacity_ ? (gpu::kVoxelListHeaderWords + VkDeviceSize(listCapacity_)) * 4
+                                          : passes::voxelListBytes(s.voxels);
+                desc.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+                desc.name = "vxgi voxel list " + std::to_string(i);
+                desc.category = "vxgi";
+                lists_[i] = ctx_.createBuffer(desc);
+                listIndex_[i] = ctx_.bindless().addBuffer(lists_[i].buffer);
+            }
+        }
+        // Last written two frames ago (appends, the args pass) and read by the last frame's merge as the previous
+        // list; the previous one written and read in the last frame: each waits on all of that.
+        graph::ResourceState state;
+        state.writeStages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+        state.unflushedWrites = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        state.lastWriteAccess = state.unflushedWrites;
+        state.readStages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+        list_ ^= 1u;
+        passes::VoxelizeInputs::Lists lists;
+        lists.current = importBuffer(f.graph, "vxgi voxel list", lists_[list_], state);
+        lists.currentIndex = listIndex_[list_].value;
+        if (listed_ && !fullMerge) {
+            lists.previous = importBuffer(f.graph, "vxgi voxel list previous", lists_[list_ ^ 1u], state);
+            lists.previousIndex = listIndex_[list_ ^ 1u].value;
+        }
+        in.lists = lists;
+        listed_ = true;
+    } else {
+        releaseLists();
+    }
     in.shadowRays = rays;
     // The single draw's projection follows "voxel-single-draw", except under the dilation fallback, whose geometry
     // shader projects each triangle itself (a passthrough shader could not dilate): the ladder is then not consulted.

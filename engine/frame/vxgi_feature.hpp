@@ -61,6 +61,15 @@ public:
     // formats of ladder "vxgi-volume-format"; left where the cone tracer sampled them): tests read them back for the
     // CPU cone tracer.
     const std::array<DirectionVolume, 6>& directions() const noexcept { return directions_; }
+    // Tests: the touched-voxel lists' capacity in entries (0: passes::voxelListBytes's), from the next frame on, so
+    // that a list overflows and the merge's fallback to every voxel runs.
+    void setVoxelListCapacity(uint32_t entries);
+    // The touched-voxel list the last frame filled (`previous`: the one before it), or nullptr (gl-interop rung, or
+    // none yet): tests read its append count (word 0).
+    const vk::Buffer* voxelList(bool previous = false) const noexcept {
+        const vk::Buffer& b = lists_[previous ? list_ ^ 1u : list_];
+        return b ? &b : nullptr;
+    }
 
 private:
     void release();
@@ -75,6 +84,14 @@ private:
     graph::TextureHandle cells_;                // this frame's cell mask (the merge's, for the level-1 mip)
     passes::VxgiDirectionHandles mipped_;  // this frame's directional volumes after the mip passes
     std::unique_ptr<passes::VxgiGlAccumulator> gl_;  // "vxgi-atomics" gl-interop rung only
+    // The merge's touched-voxel lists (passes::VoxelizeInputs::lists; not on the gl-interop rung): this frame's is
+    // lists_[list_], the previous frame's the other; `listed_`: the other holds the previous frame's list (it ran with
+    // lists on this grid).
+    std::array<vk::Buffer, 2> lists_;
+    std::array<vk::StorageBufferIndex, 2> listIndex_;
+    uint32_t list_ = 0, listCapacity_ = 0;
+    bool listed_ = false;
+    void releaseLists();
     // The cone parameters for forward passes (gpu::VxgiConeParams), one host-visible buffer per frame in flight.
     std::vector<vk::Buffer> coneParams_;
     std::vector<vk::StorageBufferIndex> coneParamsIndex_;

@@ -23,6 +23,8 @@ VxgiMemory vxgiMemory(vk::Context& ctx, uint32_t voxels, vk::Rung atomics, uint3
     if (format.opacity != VK_FORMAT_UNDEFINED)
         direction += vk::imageBytes(ctx, voxelVolumeDesc("vxgi mips opacity", voxels, levels, format.opacity));
     m.volumes = vk::imageBytes(ctx, voxelVolumeDesc("vxgi voxel grid", voxels, 1)) + 6 * direction;
+    // The merge's two touched-voxel lists (persistent buffers; not on the gl-interop rung).
+    if (atomics != vk::Rung::GlInterop) m.volumes += 2 * passes::voxelListBytes(voxels);
     // The merge's cell mask (transient, every rung).
     vk::ImageDesc cells;
     cells.type = VK_IMAGE_TYPE_3D;

@@ -7,8 +7,8 @@
 // Voxelization in z-slabs: the write-conflict accumulators and the depth keys cover n x n x n/S voxels and the
 // passes from the clear to the merge repeat per slab (passes/vxgi_voxelize.cpp), so the merge's peak shrinks by S
 // for them; the check takes the smallest S of kVoxelSlabCounts that fits the budget (1 whenever it does: small grids
-// pay nothing), or the one --gi-slabs forces. 512^3 (packed directions, float-add rung): 10.35 GiB at S = 1,
-// 5.97 GiB at S = 8 (the volumes alone 5.29 GiB).
+// pay nothing), or the one --gi-slabs forces. 512^3 (packed directions, float-add rung): 10.38 GiB at S = 1,
+// 6.00 GiB at S = 8 (the volumes and the touched-voxel lists alone 5.32 GiB).
 #pragma once
 #include <array>
 #include <functional>
@@ -22,7 +22,8 @@
 namespace idk::frame {
 
 struct VxgiMemory {
-    VkDeviceSize volumes = 0;       // the grid and the six directional mip chains (persistent; "vxgi" in --stats)
+    VkDeviceSize volumes = 0;       // the grid, the six directional mip chains and the merge's two touched-voxel
+                                    // lists (persistent; "vxgi" in --stats)
     VkDeviceSize accumulators = 0;  // the rung's write-conflict accumulators (transient images of one slab, or
                                     // GL's buffers), the merge's cell mask (transient, (n / 2)^3 x 4 bytes) and
                                     // the front-most rule's depth keys (transient, 2 n^3 / S x 4 bytes)

@@ -4,6 +4,7 @@
 #include <glm/glm.hpp>
 
 #include <array>
+#include <string>
 #include <vector>
 
 #include "passes/passes.hpp"
@@ -29,7 +30,7 @@ struct VoxelShadowRays {
     bool hasAlpha = false;                   // alpha-tested or blended materials: opacity tested along the ray
 };
 
-// vxgi_voxelize.cpp: "vxgi_clear" zeroes the write-conflict accumulators (transient 3D images of the atomic rung's
+// vxgi_voxelize.cpp (vxgi_merge.cpp the clear and the merge): "vxgi_clear" zeroes the write-conflict accumulators (transient 3D images of the atomic rung's
 // formats) and the depth keys, "vxgi_voxel_keys" rasterizes the scene three times (one orthographic projection per
 // axis; each triangle keeps the fragments of its dominant axis) and raises each voxel's depth key per facing class
 // (its front-most surface: shared/vxgi_depth_key.h), "vxgi_voxelize" rasterizes it again and adds the outgoing
@@ -61,7 +62,20 @@ struct VoxelizeInputs {
     // The accumulators and keys cover one z-slab of size / slabs voxels; the passes from the clear to the merge run
     // once per slab (frame/vxgi_memory.hpp chooses the count from the memory budget). 1 on the gl-interop rung.
     uint32_t slabs = 1;
+    // The merge's touched-voxel lists (persistent buffers of voxelListBytes, vxgi_merge.cpp): `current`, which the
+    // accumulating draws fill this frame, and the previous frame's (invalid where there is none: the grid is new).
+    // Unset: the merge visits every voxel (the gl-interop rung: its GL side keeps no first-touch mark).
+    struct Lists {
+        graph::BufferHandle current, previous;
+        uint32_t currentIndex = 0, previousIndex = 0;  // their bindless storage-buffer indices
+    };
+    std::optional<Lists> lists;
 };
+// The bytes of one touched-voxel list of an n^3 grid: a 16-byte header and 16 n^2 - 4 entries of 4 bytes, 64 n^2
+// bytes in all (a multiple of 64 KiB from n = 32: its allocation is its size). The bound holds the voxels of
+// surfaces the size of 16 of the grid's cross-sections (a closed room at 64^3, its six walls 2-3 voxels thick, fills
+// about 40%): 4 MiB at 256^3, 16 MiB at 512^3. A frame touching more visits every voxel in its merge.
+VkDeviceSize voxelListBytes(uint32_t n);
 // The write-conflict accumulators "vxgi_clear" creates for a rung of "vxgi-atomics" (transient 3D images of one
 // slab of the grid, size x size x size / slabs, all live at once): Native 8 x R32F (r g b, facing xyzw, count), Fallback 7 x R32UI, GlInterop none
 // (its shared buffers instead). The memory check (frame/vxgi_memory.hpp) sizes them from this too.
@@ -85,6 +99,33 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
                                        const VoxelizeInputs& inputs, graph::TextureHandle grid,
                                        VxgiDirectionHandles& directions, graph::TextureHandle& cells,
                                        IndirectDrawLog* log);
+
+// addVoxelizePasses' parts. The rung's kVoxelAtomics* mode (push `mode` of the voxelize and merge shaders).
+uint32_t voxelAtomicsMode(vk::Rung atomics);
+// One z-slab: voxels [z, z + depth) of the grid; `suffix` names its passes (" slab k" when there are several).
+struct VoxelSlab {
+    uint32_t index = 0, z = 0, depth = 0;
+    std::string suffix;
+};
+// The transient resources the passes of a slab hand on (their current graph versions): the accumulators
+// (`count` images of voxelAccumulatorImages), the depth keys, the cell mask, and on the gl-interop rung the shared
+// record and sums buffers instead of images. The first slab's clear creates them, the later slabs' reuse them.
+struct VoxelSlabImages {
+    graph::TextureHandle images[8];
+    graph::TextureHandle cells;
+    graph::TextureHandle keys;
+    uint32_t count = 0;
+    graph::BufferHandle records, sums;
+    graph::BufferHandle list;  // this frame's touched-voxel list (VoxelizeInputs::lists)
+};
+// vxgi_merge.cpp: "vxgi_clear" of `slab` (zeroes `acc`; the first slab creates its images and the cell mask, and
+// empties inputs.lists->current), and "vxgi_merge" of `slab` (with lists after "vxgi_merge_args", its indirect
+// dispatch; reads `acc`, writes `grid`, `directions` and acc.cells; returns the grid's new version).
+void addVoxelClearPass(graph::RenderGraph& graph, const VoxelizeInputs& inputs, const VoxelSlab& slab,
+                       VoxelSlabImages& acc);
+graph::TextureHandle addVoxelMergePass(graph::RenderGraph& graph, vk::Context& ctx, vk::ShaderLibrary& shaders,
+                                       const VoxelizeInputs& inputs, const VoxelSlab& slab, VoxelSlabImages& acc,
+                                       graph::TextureHandle grid, VxgiDirectionHandles& directions);
 
 // vxgi_cone_trace.cpp: "vxgi_mip L" (one pass per level L >= 1 of the six directional volumes, each from the
 // level below; the voxelization's merge wrote level 0), then "vxgi_cone_trace": per G-buffer pixel inside the grid,

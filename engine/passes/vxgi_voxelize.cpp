@@ -2,10 +2,10 @@
 // the scene once per projection axis into an attachment-less N x N render pass whose fragments raise their voxel's
 // depth key ("vxgi_voxel_keys": the front-most rule, shared/vxgi_depth_key.h), draw it again so that the fragments
 // in front write their voxel with image atomics (radiance and facing), and merge the accumulators into the RGBA16F
-// grid and the directional volumes' level 0. Ports IDKEngine's Voxelizer.cs (its
-// 3-draw fallback; the rung of write conflicts follows the "vxgi-atomics" ladder). On its gl-interop rung the
-// fragments append records instead, "vxgi_gl_accumulate" (vxgi_gl_accumulate.cpp) adds them with GL float atomics
-// into a shared sums buffer, and the merge averages those.
+// grid and the directional volumes' level 0 (the clear and the merge are in vxgi_merge.cpp). Ports IDKEngine's
+// Voxelizer.cs (its 3-draw fallback; the rung of write conflicts follows the "vxgi-atomics" ladder). On its
+// gl-interop rung the fragments append records instead, "vxgi_gl_accumulate" (vxgi_gl_accumulate.cpp) adds them
+// with GL float atomics into a shared sums buffer, and the merge averages those.
 // Rasterisation follows the "conservative-raster" ladder unless --gi-raster centre: VK_EXT_conservative_rasterization
 // (overestimate) where the device has it, else voxelize.geom's triangle dilation, so thin walls never leak.
 // --gi-voxel-draws single follows "voxel-single-draw": VK_NV_geometry_shader_passthrough + VK_NV_viewport_swizzle
@@ -30,20 +30,6 @@
 
 namespace idk::passes {
 namespace {
-
-struct Accumulators {
-    graph::TextureHandle images[8];
-    graph::TextureHandle cells;  // the merge's cell mask (kVoxelCellMaskFormat), cleared here
-    graph::TextureHandle keys;   // the front-most rule's depth keys (voxelDepthKeyExtent), cleared here
-    uint32_t count = 0;
-    graph::BufferHandle records, sums;  // gl-interop rung: the shared buffers instead of images
-};
-
-uint32_t modeOf(vk::Rung rung) {
-    if (rung == vk::Rung::Native) return gpu::kVoxelAtomicsFloatAdd;
-    if (rung == vk::Rung::Fallback) return gpu::kVoxelAtomicsUintMax;
-    return gpu::kVoxelAtomicsGlRecords;
-}
 
 vk::ShaderId fragmentShader(uint32_t mode, bool dilated) {
     if (mode == gpu::kVoxelAtomicsFloatAdd)
@@ -166,10 +152,16 @@ void readScene(graph::PassBuilder& b, const VoxelDraws& d, bool lights, const Po
 
 }  // namespace
 
+uint32_t voxelAtomicsMode(vk::Rung rung) {
+    if (rung == vk::Rung::Native) return gpu::kVoxelAtomicsFloatAdd;
+    if (rung == vk::Rung::Fallback) return gpu::kVoxelAtomicsUintMax;
+    return gpu::kVoxelAtomicsGlRecords;
+}
+
 VkExtent3D voxelDepthKeyExtent(uint32_t n, uint32_t depth) { return {n, n, 2 * depth}; }
 
 VoxelAccumulatorImages voxelAccumulatorImages(vk::Rung atomics) {
-    const uint32_t mode = modeOf(atomics);
+    const uint32_t mode = voxelAtomicsMode(atomics);
     if (mode == gpu::kVoxelAtomicsGlRecords) return {};
     // r, g, b, the facing's x, y, z, w, and the float-add rung's count (kVoxelAccum*)
     if (mode == gpu::kVoxelAtomicsFloatAdd) return {VK_FORMAT_R32_SFLOAT, 8};
@@ -180,7 +172,7 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
                                        const VoxelizeInputs& in, graph::TextureHandle grid,
                                        VxgiDirectionHandles& directions, graph::TextureHandle& cells,
                                        IndirectDrawLog* log) {
-    const uint32_t mode = modeOf(in.atomics);
+    const uint32_t mode = voxelAtomicsMode(in.atomics);
     const uint32_t n = in.box.size;
     const uint32_t slabs = std::max(in.slabs, 1u);
     VxgiGlAccumulator* gl = in.gl;
@@ -196,76 +188,26 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
     // read), as it does for any resource written twice in a frame; the merges write the grid, the directions and
     // the cell mask in turn, so they run in slab order. One pass looping over the slabs would have to record the
     // barriers between them itself, which passes never do.
-    auto acc = std::make_shared<Accumulators>();
+    VoxelSlabImages acc;
+    if (in.lists) {
+        if (n > 1024) throw std::logic_error("addVoxelizePasses: the touched-voxel lists pack 10 bits per axis");
+        acc.list = in.lists->current;
+    }
+    const uint32_t listBits = in.lists ? (in.lists->currentIndex + 1) << gpu::kVoxelListShift : 0;
     if (gl) {
-        acc->records = gl->importRecords(graph);
-        acc->sums = gl->importSums(graph);
+        acc.records = gl->importRecords(graph);
+        acc.sums = gl->importSums(graph);
     }
     const VoxelDraws draws{in.scene, in.frame, in.shadows.table, in.box, in.conservative, in.singleDraw, in.shadowRays};
     const PointShadowOutputs shadows = in.shadows;
-    const VxgiDirectionIndices level0 = in.directionLevel0;
     graph::TextureHandle written = grid;
     for (uint32_t slab = 0; slab < slabs; ++slab) {
         const std::string suffix = slabs > 1 ? " slab " + std::to_string(slab) : std::string();
-        const bool first = slab == 0;
         // The slab's z range in the push blocks (kVoxelSlab*: the fragments outside it are dropped).
         const uint32_t slabZ = slab * depth;
         const uint32_t slabBits = (slabZ << gpu::kVoxelSlabZShift) | (depth << gpu::kVoxelSlabDepthShift);
-        auto mine = std::make_shared<Accumulators>();  // this slab's versions, for its passes' execute callbacks
-        graph.addPass(
-            "vxgi_clear" + suffix,
-            [&](graph::PassBuilder& b) {
-                if (first) {
-                    graph::TextureDesc cellDesc;
-                    cellDesc.format = kVoxelCellMaskFormat;
-                    cellDesc.sizeMode = graph::SizeMode::Absolute;
-                    const uint32_t c = voxelCellMaskSize(n);
-                    cellDesc.extent = {c, c, c};
-                    acc->cells = b.write(b.create("vxgi cell mask", cellDesc), graph::Access::TransferDst);
-                    graph::TextureDesc keyDesc;
-                    keyDesc.format = kVoxelDepthKeyFormat;
-                    keyDesc.sizeMode = graph::SizeMode::Absolute;
-                    keyDesc.extent = voxelDepthKeyExtent(n, depth);
-                    acc->keys = b.create("vxgi depth keys", keyDesc);
-                }
-                acc->keys = b.write(acc->keys, graph::Access::TransferDst);
-                if (gl) {  // the record counter (the header) and the sums start at zero
-                    acc->records = b.write(acc->records, graph::Access::TransferDst);
-                    acc->sums = b.write(acc->sums, graph::Access::TransferDst);
-                } else {
-                    const VoxelAccumulatorImages images = voxelAccumulatorImages(in.atomics);
-                    graph::TextureDesc desc;
-                    desc.format = images.format;
-                    desc.sizeMode = graph::SizeMode::Absolute;
-                    desc.extent = {n, n, depth};
-                    acc->count = images.count;
-                    const char* names[8] = {"vxgi accum r",        "vxgi accum g",        "vxgi accum b",
-                                            "vxgi accum facing x", "vxgi accum facing y", "vxgi accum facing z",
-                                            "vxgi accum facing w", "vxgi accum count"};
-                    for (uint32_t i = 0; i < acc->count; ++i)
-                        acc->images[i] = b.write(first ? b.create(names[i], desc) : acc->images[i],
-                                                 graph::Access::TransferDst);
-                }
-                *mine = *acc;
-            },
-            [mine, first](graph::PassContext& pc) {
-                VkClearColorValue zero{};
-                VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-                VkCommandBuffer cmd = pc.commandBuffer();
-                if (first)  // one mask for the whole grid: each slab's merge marks its cells
-                    vkCmdClearColorImage(cmd, pc.image(mine->cells), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1,
-                                         &range);
-                vkCmdClearColorImage(cmd, pc.image(mine->keys), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1,
-                                     &range);
-                if (mine->records.valid()) {
-                    vkCmdFillBuffer(cmd, pc.vkBuffer(mine->records), 0, gpu::kVoxelRecordHeaderWords * 4, 0);
-                    vkCmdFillBuffer(cmd, pc.vkBuffer(mine->sums), 0, VK_WHOLE_SIZE, 0);
-                    return;
-                }
-                for (uint32_t i = 0; i < mine->count; ++i)
-                    vkCmdClearColorImage(cmd, pc.image(mine->images[i]), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero,
-                                         1, &range);
-            });
+        const VoxelSlab slabInfo{slab, slabZ, depth, suffix};
+        addVoxelClearPass(graph, in, slabInfo, acc);
 
         constexpr VkPipelineStageFlags2 kFs = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
         // The key pass rasterises the scene a second time, with a fragment shader that evaluates no light (the
@@ -277,13 +219,13 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
         // and the geometry shaders' cull (recordVoxelDraws) spare most of the other slabs' raster work, so on
         // lavapipe the Cornell box's clear + keys + voxelize + merge took about the same time in 2 slabs as in 1
         // (64^3: 33-36 against 41-45 ms; 128^3: 176-209 against 203-235 ms; 256^3: 917-1017 against 909-974 ms).
-        auto keyed = std::make_shared<Accumulators>();
+        auto keyed = std::make_shared<VoxelSlabImages>();
         graph.addPass(
             "vxgi_voxel_keys" + suffix,
             [&](graph::PassBuilder& b) {
-                acc->keys = b.write(acc->keys, graph::Access::StorageReadWrite, kFs);
+                acc.keys = b.write(acc.keys, graph::Access::StorageReadWrite, kFs);
                 readScene(b, draws, false, shadows);
-                *keyed = *acc;
+                *keyed = acc;
             },
             [&ctx, &shaders, draws, keyed, log, slabBits](graph::PassContext& pc) {
                 if (draws.scene.drawCount == 0) return;
@@ -292,18 +234,19 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
                 recordVoxelDraws(pc, ctx, shaders, draws, vk::ShaderId::vxgi_voxelize_key_frag,
                                  vk::ShaderId::vxgi_voxelize_key_dilated_frag, push, false, log, slabBits);
             });
-        auto voxelized = std::make_shared<Accumulators>();
+        auto voxelized = std::make_shared<VoxelSlabImages>();
         graph.addPass(
             "vxgi_voxelize" + suffix,
             [&](graph::PassBuilder& b) {
-                for (uint32_t i = 0; i < acc->count; ++i)
-                    acc->images[i] = b.write(acc->images[i], graph::Access::StorageReadWrite, kFs);
-                if (acc->records.valid()) acc->records = b.write(acc->records, graph::Access::StorageReadWrite, kFs);
-                b.read(acc->keys, graph::Access::StorageRead, kFs);
+                for (uint32_t i = 0; i < acc.count; ++i)
+                    acc.images[i] = b.write(acc.images[i], graph::Access::StorageReadWrite, kFs);
+                if (acc.records.valid()) acc.records = b.write(acc.records, graph::Access::StorageReadWrite, kFs);
+                if (acc.list.valid()) acc.list = b.write(acc.list, graph::Access::StorageReadWrite, kFs);
+                b.read(acc.keys, graph::Access::StorageRead, kFs);
                 readScene(b, draws, true, shadows);
-                *voxelized = *acc;
+                *voxelized = acc;
             },
-            [&ctx, &shaders, draws, voxelized, mode, log, gl, slabBits](graph::PassContext& pc) {
+            [&ctx, &shaders, draws, voxelized, mode, log, gl, slabBits, listBits](graph::PassContext& pc) {
                 if (draws.scene.drawCount == 0) return;
                 gpu::VoxelizePush push{};
                 for (uint32_t i = 0; i < voxelized->count; ++i)
@@ -312,65 +255,16 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
                     push.accum[0] = gl->recordsIndex();
                     push.accum[1] = gl->capacity();
                 }
-                push.depthKeys = pc.texture(voxelized->keys).storageIndex;
+                push.depthKeys = pc.texture(voxelized->keys).storageIndex | listBits;  // both below 2^16
                 recordVoxelDraws(pc, ctx, shaders, draws, fragmentShader(mode, false), fragmentShader(mode, true),
                                  push, true, log, slabBits);
             });
 
-        if (gl) acc->sums = gl->addPass(graph, acc->records, acc->sums);
+        if (gl) acc.sums = gl->addPass(graph, acc.records, acc.sums);
 
-        const bool full = in.fullMerge;
-        auto merged = std::make_shared<Accumulators>();
-        auto target = std::make_shared<graph::TextureHandle>();
-        graph.addPass(
-            "vxgi_merge" + suffix,
-            [&](graph::PassBuilder& b) {
-                constexpr VkPipelineStageFlags2 kCs = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-                for (uint32_t i = 0; i < acc->count; ++i) b.read(acc->images[i], graph::Access::StorageRead, kCs);
-                if (acc->sums.valid()) b.read(acc->sums, graph::Access::StorageRead, kCs);
-                // Read too: a voxel empty now and all zero in the grid already is not stored again
-                // (merge.comp.glsl); and a later slab's merge keeps what the earlier slabs' stored.
-                const bool writeOnly = full && first;
-                written = b.write(written, writeOnly ? graph::Access::StorageWrite : graph::Access::StorageReadWrite,
-                                  kCs);
-                acc->cells = b.write(acc->cells, first ? graph::Access::StorageWrite : graph::Access::StorageReadWrite,
-                                     kCs);
-                // Level 0 through its own view; the graph tracks each volume whole (the mips read it next).
-                for (graph::TextureHandle& d : directions)
-                    if (d.valid()) d = b.write(d, graph::Access::StorageReadWrite, kCs);
-                b.sideEffect();  // the grid is persistent state: later frames and readers outside the graph use it
-                *merged = *acc;
-                *target = written;
-            },
-            [&ctx, &shaders, merged, target, n, mode, gl, level0, full, slabZ, depth](graph::PassContext& pc) {
-                VkCommandBuffer cmd = pc.commandBuffer();
-                vk::ComputePipelineDesc desc;
-                desc.shader = vk::ShaderId::vxgi_merge_comp;
-                desc.pushBytes = sizeof(gpu::VoxelMergePush);
-                desc.localSize = {gpu::kVoxelGroupSize, gpu::kVoxelGroupSize, gpu::kVoxelGroupSize};
-                vk::bindPipeline(cmd, shaders.compute(desc));
-                ctx.bindless().bind(cmd);
-                gpu::VoxelMergePush push{};
-                for (uint32_t i = 0; i < merged->count; ++i)
-                    push.accum[i] = pc.texture(merged->images[i]).storageIndex;
-                if (gl) push.accum[0] = gl->sumsIndex();
-                push.grid = pc.texture(*target).storageIndex;
-                for (uint32_t d = 0; d < 6; ++d) {
-                    push.directions[d] = level0[d];
-                    push.opacity[d] = level0[6 + d];
-                }
-                push.gridSize = n;
-                push.mode = mode;
-                push.full = full ? 1u : 0u;
-                push.cells = pc.texture(merged->cells).storageIndex;
-                push.slabZ = slabZ;
-                push.slabDepth = depth;
-                vk::pushConstants(cmd, ctx, push);
-                const uint32_t groups = vk::groupCount(n, gpu::kVoxelGroupSize);
-                vkCmdDispatch(cmd, groups, groups, vk::groupCount(depth, gpu::kVoxelGroupSize));
-            });
+        written = addVoxelMergePass(graph, ctx, shaders, in, slabInfo, acc, written, directions);
     }
-    cells = acc->cells;
+    cells = acc.cells;
     return written;
 }
 

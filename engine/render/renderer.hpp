@@ -129,6 +129,7 @@ public:
     frame::SsaoFeature& ssao() noexcept { return features_.ssao; }  // tests capture its inputs and output
     // The VXGI voxel grid of the last frame and its features (nullptr with --gi none): tests read it back.
     const frame::VxgiFeature& vxgi() const noexcept { return features_.vxgi; }
+    frame::VxgiFeature& vxgi() noexcept { return features_.vxgi; }  // tests: setVoxelListCapacity
     // The frame's environment map (tests count the atmosphere's sky bakes: once per sun move).
     const frame::EnvironmentFeature& environment() const noexcept { return features_.environment; }
     // The directional cascades and spot maps of the last frame (nullptr when no light rendered one).

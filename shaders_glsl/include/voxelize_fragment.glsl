@@ -29,6 +29,21 @@
 
 layout(push_constant, scalar) uniform Push { VoxelizePush p; };
 
+#ifndef IDK_VOXELIZE_KEY_PASS
+#include "voxel_list.glsl"
+// Appends the slab's voxel `local` (the accumulators' coordinates) to the draw's touched-voxel list, if it has one;
+// called once per voxel and frame, by the fragment whose atomic found the voxel empty.
+void appendTouchedVoxel(ivec3 local) {
+    uint list = p.depthKeys >> kVoxelListShift;
+    if (list == 0u) return;
+    list -= 1u;
+    uint slot = atomicAdd(gVoxelList[list].data[0], 1u);
+    if (slot >= voxelListCapacity(list)) return;  // counted: the merge sees the overflow and visits every voxel
+    uint z = uint(local.z) + ((p.axis >> kVoxelSlabZShift) & kVoxelSlabMask);
+    gVoxelList[list].data[kVoxelListHeaderWords + slot] = packVoxelListEntry(uvec3(local.xy, z));
+}
+#endif
+
 layout(location = 0) in vec3 inWorldPosition;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec4 inTangent;
@@ -85,12 +100,12 @@ bool voxelFragment(out ivec3 voxel, out vec3 radiance, out vec4 facing) {
     if (voxel.z < slabZ || voxel.z >= slabZ + slabDepth) return false;
     voxel.z -= slabZ;
 #ifdef IDK_VOXELIZE_KEY_PASS
-    raiseVoxelKey(p.depthKeys, voxel, facingClass, key);
+    raiseVoxelKey(p.depthKeys & kVoxelListKeyMask, voxel, facingClass, key);
     return false;  // the key pass only raises keys
 #else
     // Hidden behind a surface of its class in its voxel: dropped before its lights are evaluated (on a GPU this saves
     // the shadow lookups of hidden layers; lavapipe pays the same per fragment either way).
-    if (!voxelFrontMost(p.depthKeys, voxel, facingClass, key)) return false;
+    if (!voxelFrontMost(p.depthKeys & kVoxelListKeyMask, voxel, facingClass, key)) return false;
     bool doubleSided = (m.flags & kMaterialDoubleSided) != 0u;
     vec3 diffuseAlbedo = baseColor.rgb * (1.0 - clamp(m.metallicFactor * mr.b, 0.0, 1.0)) / kPi;
     // The radiance leaving the front (normal n) and, for a double-sided surface, the back.

@@ -70,7 +70,10 @@ struct VoxelizePush {
                                  // [0] the record buffer's storage-buffer index, [1] its capacity in records
     uint rayShadows;             // --shadows raytraced: the first rayShadows lights of nonzero intensity (the
                                  // mask pass's casters) are shadowed by a ray through the BVH; 0: by the table
-    uint depthKeys;              // bindless storage index of the front-most rule's key image (voxelize_key.glsl)
+    uint depthKeys;              // bits 0..15: bindless storage index of the front-most rule's key image
+                                 // (voxelize_key.glsl); bits 16..31 (kVoxelListShift): the accumulating draw's
+                                 // touched-voxel list, its storage-buffer index + 1, 0 for none (no push word is
+                                 // left on the float-add rung; both bindless tables hold at most 4096 entries)
 };
 IDK_GPU_SIZE(VoxelizePush, 128);  // Vulkan's guaranteed push-constant size: nothing more fits
 
@@ -90,8 +93,32 @@ struct VoxelMergePush {
                          // one RGBA16F image holds both (ladder "vxgi-volume-format": include/voxel_images.glsl)
     uint slabZ;          // the slab this merge resolves: voxels z in [slabZ, slabZ + slabDepth) of the grid, at
     uint slabDepth;      // z - slabZ in the accumulators (which cover one slab)
+    uint list;           // storage-buffer indices of this frame's touched-voxel list and the previous frame's
+    uint prevList;       // (kVoxelNoList: none; the merge then visits the slab's every voxel)
 };
-IDK_GPU_SIZE(VoxelMergePush, 108);
+IDK_GPU_SIZE(VoxelMergePush, 116);
+
+// The touched-voxel list (engine/passes/vxgi_merge.cpp, include/voxel_list.glsl): the accumulating draw appends a
+// voxel at its first fragment of the frame (the float-add count's add that returns 0, the r32ui red's max that
+// returns 0), packed x | y << 10 | z << 20 in grid coordinates (grids of at most 1024^3). Word 0 counts the appends,
+// also those past the capacity (the list is then incomplete: the merge visits every voxel); the entries follow from
+// word kVoxelListHeaderWords, as many as the buffer holds.
+IDK_CONST(uint, kVoxelListHeaderWords, 4u);
+IDK_CONST(uint, kVoxelListShift, 16u);
+IDK_CONST(uint, kVoxelListKeyMask, 0xFFFFu);
+IDK_CONST(uint, kVoxelNoList, 0xFFFFFFFFu);
+IDK_CONST(uint, kVoxelListGroup, 64u);  // merge invocations per workgroup in either dispatch (4x4x4)
+
+// merge_args.comp: a slab's merge dispatch (VkDispatchIndirectCommand at `args`): over the two lists' entries, or,
+// where they are incomplete (include/voxel_list.glsl voxelListsComplete), over the slab's every voxel.
+struct VoxelMergeArgsPush {
+    DeviceAddress args;
+    uint list;       // as VoxelMergePush
+    uint prevList;
+    uint gridSize;
+    uint slabDepth;
+};
+IDK_GPU_SIZE(VoxelMergeArgsPush, 24);
 
 // mip.comp: one level of the anisotropic mip chain (Crassin et al. 2011): for each direction d of +x -x +y -y +z
 // -z, a voxel of level L >= 1 is its 2x2x2 children of level L - 1 of direction d (level 0: the merge's)

@@ -14,20 +14,47 @@
 // On a GPU the saving is bandwidth: an empty voxel reads 12 bytes (its count, its grid texel) where it read 4 and
 // wrote 56; whole 4x4x4 groups of air take the same path, so divergence stays at surfaces. Lavapipe, which runs the
 // invocations on CPU cores and prices loads and stores alike, measured 3-5x less merge time (128^3, 256^3).
+// With the touched-voxel lists (engine/passes/vxgi_merge.cpp) the dispatch visits only the voxels occupied this
+// frame or the last one (slabVoxel) instead of the slab's every voxel.
 #extension GL_GOOGLE_include_directive : require
 #include "vxgi_types.h"
 #include "vxgi_cone.h"
 #include "voxel_images.glsl"
+#include "voxel_list.glsl"
 
 IDK_BINDLESS_BUFFER_READONLY(gVoxelSums, float);  // kVoxelAtomicsGlRecords: the GL pass's sums (kVoxelSumWords each)
 
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(push_constant, scalar) uniform Push { VoxelMergePush p; };
 
+// This invocation's voxel of the slab, in the accumulators' coordinates (one z-slab); false: none. `previous`: it
+// comes from the previous frame's list.
+// List dispatch (merge_args.comp chose it alike): entry i of the previous frame's list then of this frame's, each a
+// grid voxel some fragment touched, kept where it lies in this slab: the voxels occupied now, and those occupied
+// last frame (which the merge empties where no fragment touched them now; main leaves those occupied now to their
+// entry in this frame's list, so no voxel is stored twice). Every other voxel was empty last frame and is still:
+// its zero bits are already in the grid and the volumes. Else the dispatch covers the slab's every voxel.
+bool slabVoxel(out ivec3 local, out bool previous) {
+    previous = false;
+    if (voxelListsComplete(p.list, p.prevList)) {
+        uint i = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * kVoxelListGroup +
+                 gl_LocalInvocationIndex;
+        uint before = voxelListCount(p.prevList);
+        if (i >= before && i - before >= voxelListCount(p.list)) return false;
+        previous = i < before;
+        local = (previous ? voxelListEntry(p.prevList, i) : voxelListEntry(p.list, i - before)) -
+                ivec3(0, 0, int(p.slabZ));
+        return local.z >= 0 && local.z < int(p.slabDepth);
+    }
+    local = ivec3(gl_GlobalInvocationID);
+    return all(lessThan(local, ivec3(p.gridSize, p.gridSize, p.slabDepth)));
+}
+
 void main() {
     // The slab's voxel: `local` in the accumulators (one z-slab), `voxel` in the grid, the volumes and the mask.
-    ivec3 local = ivec3(gl_GlobalInvocationID);
-    if (any(greaterThanEqual(local, ivec3(p.gridSize, p.gridSize, p.slabDepth)))) return;
+    ivec3 local;
+    bool previous;
+    if (!slabVoxel(local, previous)) return;
     ivec3 voxel = local + ivec3(0, 0, int(p.slabZ));
     vec4 value = vec4(0.0), facing = vec4(0.0);
     bool occupied = false;
@@ -64,6 +91,7 @@ void main() {
                             kVoxelFacingBias;
         }
     }
+    if (occupied && previous) return;  // its entry in this frame's list stores it
     if (occupied) imageStore(gVoxelsR32ui[p.cells], voxel >> 1, uvec4(1u));  // every writer stores the same 1
     if (!occupied && p.full == 0u && all(equal(floatBitsToUint(imageLoad(gVoxelsRgba16f[p.grid], voxel)), uvec4(0u))))
         return;

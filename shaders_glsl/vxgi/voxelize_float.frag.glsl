@@ -14,5 +14,6 @@ void main() {
     imageAtomicAdd(gVoxelsR32f[p.accum[1]], voxel, radiance.g);
     imageAtomicAdd(gVoxelsR32f[p.accum[2]], voxel, radiance.b);
     for (uint c = 0u; c < 4u; ++c) imageAtomicAdd(gVoxelsR32f[p.accum[kVoxelAccumFacing + c]], voxel, facing[c]);
-    imageAtomicAdd(gVoxelsR32f[p.accum[kVoxelAccumCount]], voxel, 1.0);
+    // The count is exact (whole numbers): the one add that returns 0 is the voxel's first fragment this frame.
+    if (imageAtomicAdd(gVoxelsR32f[p.accum[kVoxelAccumCount]], voxel, 1.0) == 0.0) appendTouchedVoxel(voxel);
 }

@@ -10,7 +10,9 @@ void main() {
     vec3 radiance;
     vec4 facing;
     if (!voxelFragment(voxel, radiance, facing)) discard;
-    imageAtomicMax(gVoxelsR32ui[p.accum[0]], voxel, floatBitsToUint(radiance.r) + 1u);
+    // Stored values are never 0: the one max that returns 0 is the voxel's first fragment this frame.
+    if (imageAtomicMax(gVoxelsR32ui[p.accum[0]], voxel, floatBitsToUint(radiance.r) + 1u) == 0u)
+        appendTouchedVoxel(voxel);
     imageAtomicMax(gVoxelsR32ui[p.accum[1]], voxel, floatBitsToUint(radiance.g) + 1u);
     imageAtomicMax(gVoxelsR32ui[p.accum[2]], voxel, floatBitsToUint(radiance.b) + 1u);
     for (uint c = 0u; c < 4u; ++c)  // biased positive: the bits order like the floats and are never 0

@@ -67,8 +67,8 @@ core::ImageRgba32f raster(vk::Context& ctx, vk::ShaderLibrary& shaders, const sc
     // --gi none: no VXGI pass ran and nothing is held; vxgi: the voxelization, mip and cone passes all ran.
     size_t vxgiPasses = 0;
     for (const std::string& pass : frame.passesRun) vxgiPasses += pass.rfind("vxgi_", 0) == 0;
-    EXPECT_EQ(vxgiPasses, on ? 4u + 6u + 3u : 0u)
-        << "clear, depth keys, voxelize, merge, 6 mip levels (64^3), half-resolution cone trace, upsample, fix-up trace";
+    EXPECT_EQ(vxgiPasses, on ? 5u + 6u + 3u : 0u) << "clear, depth keys, voxelize, merge args, merge, 6 mip levels "
+                                                     "(64^3), half-resolution cone trace, upsample, fix-up trace";
     EXPECT_EQ(renderer.vxgi().grid() != nullptr, on);
     return frame.image;
 }

@@ -2,7 +2,7 @@
 // mip's skip of the cells the merge's mask marks empty (mip.comp.glsl) change no bit. The closed room with its standing
 // quad at 64^3 voxels, the grid following the camera (--gi-grid camera): one renderer draws a frame, then moves the
 // camera by one grid step along x and y, so the scene shifts by 8 voxels in the grid (voxels turn empty, others turn
-// occupied, most stay empty); its second frame's grid and all levels of the six directional volumes must equal, bit for
+// occupied, most stay empty); that frame's grid and all levels of the six directional volumes must equal, bit for
 // bit, those of a fresh renderer's first frame at the second position (whose merge stores every voxel). On the
 // float-add rung (lavapipe's native one), the r32ui fallback rung and the gl-interop rung (llvmpipe's GL). The merge's
 // skip rests on an invariant, checked on the read-back volumes: a voxel whose grid bits are all zero has all-zero bits
@@ -12,6 +12,11 @@
 // Voxelization in z-slabs (frame/vxgi_memory.hpp, --gi-slabs): the same room voxelized in 2 and 4 slabs gives the
 // grid and every level of the six directional volumes of 1 slab, bit for bit, on the float-add and the r32ui rungs
 // (the gl-interop rung voxelizes in one slab only: VxgiMemoryTest). The room's walls cross every slab boundary.
+// Touched-voxel lists (engine/passes/vxgi_merge.cpp): the moving renderer draws four frames (there, moved, back,
+// moved again), so the second to the fourth merge only the voxels of the last frame's list and their own; the fourth
+// is the one compared with the fresh renderer's. Each list holds exactly its frame's occupied voxels (its append
+// count equals the read-back grid's occupied voxels). On the float-add rung also in 4 slabs, and with lists of
+// 2000 entries, which every frame overflows (each merge then visits every voxel); on the r32ui rung also in 2 slabs.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -24,6 +29,7 @@
 #include "render/renderer.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/vxgi_cone_oracle.hpp"
+#include "vk/transfer.hpp"
 #include "vxgi_room.hpp"
 
 namespace idk::test {
@@ -131,26 +137,61 @@ size_t zeroGridNonzeroDirections(const ConeGridData& g) {
     return n;
 }
 
-void expectIncrementalEqualsFull(vk::Context& ctx, vk::ShaderLibrary& shaders, const char* rung) {
+// The list's append count (passes::voxelListBytes; word 0).
+uint32_t listCount(vk::Context& ctx, const vk::Buffer* list) {
+    return list ? vk::downloadBuffer<uint32_t>(ctx, *list, 1)[0] : 0u;
+}
+
+// `slabs`: --gi-slabs; `capacity`: the touched-voxel lists' (0: the default, which the room fits).
+void expectIncrementalEqualsFull(vk::Context& ctx, vk::ShaderLibrary& shaders, const char* rung, uint32_t slabs = 1,
+                                 uint32_t capacity = 0) {
     const scene::Scene scene = mergeScene();
     const glm::vec3 start(0.05f, -0.1f, 0.3f);
     ConeGridData first, moved, fresh;
     passes::VoxelGridBox boxFirst, boxMoved, boxFresh;
     glm::vec3 end{};
+    render::RenderSettings settings = mergeSettings();
+    settings.vxgi.slabs = slabs;
+    const bool lists = std::string(rung) != "gl-interop rung";
     {
-        render::Renderer r(ctx, shaders, mergeSettings());
+        render::Renderer r(ctx, shaders, settings);
         r.setScene(scene);
-        r.renderOffscreen(closedRoomCamera(start), 16, 16);
+        r.vxgi().setVoxelListCapacity(capacity);
+        // Four frames, the camera moving there and back: the second merges from the first's list, the third and the
+        // fourth from lists of a list-merged frame. The third's and the fourth's grids are compared.
+        for (int frameIndex = 0; frameIndex < 3; ++frameIndex) {
+            glm::vec3 at = start;
+            if (frameIndex == 1) {
+                const float step = frame::voxelGridStep(r.vxgi().box());
+                end = start + glm::vec3(step, -step, 0.0f);
+                at = end;
+            }
+            r.renderOffscreen(closedRoomCamera(at), 16, 16);
+        }
         first = readConeGrid(ctx, r.vxgi());
         boxFirst = r.vxgi().box();
-        const float step = frame::voxelGridStep(boxFirst);
-        end = start + glm::vec3(step, -step, 0.0f);
+        const uint32_t firstCount = listCount(ctx, r.vxgi().voxelList());
         r.renderOffscreen(closedRoomCamera(end), 16, 16);
         moved = readConeGrid(ctx, r.vxgi());
         boxMoved = r.vxgi().box();
+        // The lists hold each frame's occupied voxels exactly (one append per voxel, in whichever slab), or count
+        // past the capacity (then every voxel was merged).
+        if (lists) {
+            EXPECT_EQ(listCount(ctx, r.vxgi().voxelList(true)), firstCount) << rung;
+            const uint32_t count = listCount(ctx, r.vxgi().voxelList());
+            if (capacity == 0) {
+                EXPECT_EQ(firstCount, occupied(first.grid.levels[0])) << rung;
+                EXPECT_EQ(count, occupied(moved.grid.levels[0])) << rung;
+            } else {
+                EXPECT_GT(firstCount, capacity) << rung << ": the lists should overflow";
+                EXPECT_GT(count, capacity) << rung << ": the lists should overflow";
+            }
+        } else {
+            EXPECT_EQ(r.vxgi().voxelList(), nullptr) << rung;
+        }
     }
     {
-        render::Renderer r(ctx, shaders, mergeSettings());
+        render::Renderer r(ctx, shaders, settings);
         r.setScene(scene);
         r.renderOffscreen(closedRoomCamera(end), 16, 16);
         fresh = readConeGrid(ctx, r.vxgi());
@@ -232,6 +273,9 @@ TEST_F(VxgiMergeTest, SkippingEmptyVoxelsGivesTheFullMergeBitForBit) {
     ASSERT_EQ(ctx().ladder("vxgi-atomics").chosen, vk::Rung::Native) << "lavapipe has float image atomic add";
     ASSERT_EQ(ctx().ladder("vxgi-volume-format").chosen, vk::Rung::Native) << "lavapipe stores B10G11R11 and R8";
     expectIncrementalEqualsFull(ctx(), shaders(), "float-add rung");
+    expectIncrementalEqualsFull(ctx(), shaders(), "float-add rung", 4);
+    // Lists of 2000 entries: each frame's overflows, its merge and the next frame's visit every voxel.
+    expectIncrementalEqualsFull(ctx(), shaders(), "float-add rung", 2, 2000);
 }
 
 // A context of its own with `ladder` ("vxgi-atomics" unless named) forced to `rung`.
@@ -245,6 +289,8 @@ void expectIncrementalEqualsFullOn(vk::Rung rung, const char* what, const char* 
     {
         vk::ShaderLibrary shaders(*ctx);
         expectIncrementalEqualsFull(*ctx, shaders, what);
+        if (rung == vk::Rung::Fallback && std::string(ladder) == "vxgi-atomics")
+            expectIncrementalEqualsFull(*ctx, shaders, what, 2);
     }
     ctx->waitIdle();
     EXPECT_EQ(ctx->validationErrors(), 0u);

@@ -30,8 +30,8 @@ struct VoxelShadowRays {
     bool hasAlpha = false;                   // alpha-tested or blended materials: opacity tested along the ray
 };
 
-// vxgi_voxelize.cpp (vxgi_merge.cpp the clear and the merge): "vxgi_clear" zeroes the write-conflict accumulators (transient 3D images of the atomic rung's
-// formats) and the depth keys, "vxgi_voxel_keys" rasterizes the scene three times (one orthographic projection per
+// vxgi_voxelize.cpp (vxgi_merge.cpp the clear and the merge): "vxgi_clear" zeroes the write-conflict accumulators
+// (transient 3D images of the atomic rung's formats) and the depth keys, "vxgi_voxel_keys" rasterizes the scene three times (one orthographic projection per
 // axis; each triangle keeps the fragments of its dominant axis) and raises each voxel's depth key per facing class
 // (its front-most surface: shared/vxgi_depth_key.h), "vxgi_voxelize" rasterizes it again and adds the outgoing
 // diffuse radiance of every fragment within tolerance of its key to its voxel,
@@ -77,8 +77,8 @@ struct VoxelizeInputs {
 // about 40%): 4 MiB at 256^3, 16 MiB at 512^3. A frame touching more visits every voxel in its merge.
 VkDeviceSize voxelListBytes(uint32_t n);
 // The write-conflict accumulators "vxgi_clear" creates for a rung of "vxgi-atomics" (transient 3D images of one
-// slab of the grid, size x size x size / slabs, all live at once): Native 8 x R32F (r g b, facing xyzw, count), Fallback 7 x R32UI, GlInterop none
-// (its shared buffers instead). The memory check (frame/vxgi_memory.hpp) sizes them from this too.
+// slab of the grid, size x size x size / slabs, all live at once): Native 8 x R32F (r g b, facing xyzw, count),
+// Fallback 7 x R32UI, GlInterop none (its shared buffers instead). The memory check (frame/vxgi_memory.hpp) sizes them from this too.
 struct VoxelAccumulatorImages {
     VkFormat format = VK_FORMAT_UNDEFINED;
     uint32_t count = 0;

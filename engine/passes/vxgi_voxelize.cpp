@@ -50,11 +50,12 @@ struct VoxelDraws {
 
 // Records the scene's draws into the attachment-less N x N rendering (one per projection axis, or one whose
 // geometry shader picks each triangle's axis) with fragment shader `plain` (`dilated` behind the dilation
-// fallback) and `push` completed with the scene's addresses (and with `lit` the shadows'). Both passes rasterise
-// alike, so a fragment of the key pass is the same fragment in the accumulating pass.
+// fallback) and `push` completed with the scene's addresses (and with `lit` the shadows') and `slab`'s z range
+// (kVoxelSlab*: the fragments outside it are dropped). Both passes rasterise alike, so a fragment of the key pass is
+// the same fragment in the accumulating pass.
 void recordVoxelDraws(graph::PassContext& pc, vk::Context& ctx, vk::ShaderLibrary& shaders, const VoxelDraws& d,
                       vk::ShaderId plain, vk::ShaderId dilated, gpu::VoxelizePush push, bool lit,
-                      IndirectDrawLog* log, uint32_t slabBits) {
+                      IndirectDrawLog* log, const VoxelSlab& slab) {
     const SceneBuffers& s = d.scene;
     const uint32_t n = d.box.size;
     VkCommandBuffer cmd = pc.commandBuffer();
@@ -111,7 +112,8 @@ void recordVoxelDraws(graph::PassContext& pc, vk::Context& ctx, vk::ShaderLibrar
     // through to the viewport whose swizzle projects it.
     const uint32_t draws = d.singleDraw ? 1 : 3;
     for (uint32_t axis = 0; axis < draws; ++axis) {
-        push.axis = (swizzled ? gpu::kVoxelAxisSwizzled : (d.singleDraw ? gpu::kVoxelAxisDominant : axis)) | slabBits;
+        push.axis = (swizzled ? gpu::kVoxelAxisSwizzled : (d.singleDraw ? gpu::kVoxelAxisDominant : axis)) |
+                    (slab.z << gpu::kVoxelSlabZShift) | (slab.depth << gpu::kVoxelSlabDepthShift);
         vk::pushConstants(cmd, ctx, push);
         // A slab's draws along x and y see it as a band of rows (x: v = z) or columns (y: u = z): the scissor keeps
         // the band and a pixel either side (a cull only, the fragment shader's slab test decides; a scissor changes
@@ -119,9 +121,7 @@ void recordVoxelDraws(graph::PassContext& pc, vk::Context& ctx, vk::ShaderLibrar
         // outside the slab (voxelize_projection.glsl voxelTriangleInSlab); the vertex-only path (native
         // conservative raster, centre raster) rasterises the z-projected triangles of every slab in each.
         if (!d.singleDraw) {
-            const uint32_t depth = (slabBits >> gpu::kVoxelSlabDepthShift) & gpu::kVoxelSlabMask;
-            const uint32_t first = (slabBits >> gpu::kVoxelSlabZShift) & gpu::kVoxelSlabMask;
-            const uint32_t lo = first > 0 ? first - 1 : 0, hi = std::min(first + depth + 1, n);
+            const uint32_t lo = slab.z > 0 ? slab.z - 1 : 0, hi = std::min(slab.z + slab.depth + 1, n);
             VkRect2D band{{0, 0}, {n, n}};  // the z draw: the whole square
             if (axis == 0) band = {{0, int32_t(lo)}, {n, hi - lo}};
             else if (axis == 1) band = {{int32_t(lo), 0}, {hi - lo, n}};
@@ -203,10 +203,7 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
     graph::TextureHandle written = grid;
     for (uint32_t slab = 0; slab < slabs; ++slab) {
         const std::string suffix = slabs > 1 ? " slab " + std::to_string(slab) : std::string();
-        // The slab's z range in the push blocks (kVoxelSlab*: the fragments outside it are dropped).
-        const uint32_t slabZ = slab * depth;
-        const uint32_t slabBits = (slabZ << gpu::kVoxelSlabZShift) | (depth << gpu::kVoxelSlabDepthShift);
-        const VoxelSlab slabInfo{slab, slabZ, depth, suffix};
+        const VoxelSlab slabInfo{slab, slab * depth, depth, suffix};
         addVoxelClearPass(graph, in, slabInfo, acc);
 
         constexpr VkPipelineStageFlags2 kFs = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
@@ -227,12 +224,12 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
                 readScene(b, draws, false, shadows);
                 *keyed = acc;
             },
-            [&ctx, &shaders, draws, keyed, log, slabBits](graph::PassContext& pc) {
+            [&ctx, &shaders, draws, keyed, log, slabInfo](graph::PassContext& pc) {
                 if (draws.scene.drawCount == 0) return;
                 gpu::VoxelizePush push{};
                 push.depthKeys = pc.texture(keyed->keys).storageIndex;
                 recordVoxelDraws(pc, ctx, shaders, draws, vk::ShaderId::vxgi_voxelize_key_frag,
-                                 vk::ShaderId::vxgi_voxelize_key_dilated_frag, push, false, log, slabBits);
+                                 vk::ShaderId::vxgi_voxelize_key_dilated_frag, push, false, log, slabInfo);
             });
         auto voxelized = std::make_shared<VoxelSlabImages>();
         graph.addPass(
@@ -246,7 +243,7 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
                 readScene(b, draws, true, shadows);
                 *voxelized = acc;
             },
-            [&ctx, &shaders, draws, voxelized, mode, log, gl, slabBits, listBits](graph::PassContext& pc) {
+            [&ctx, &shaders, draws, voxelized, mode, log, gl, slabInfo, listBits](graph::PassContext& pc) {
                 if (draws.scene.drawCount == 0) return;
                 gpu::VoxelizePush push{};
                 for (uint32_t i = 0; i < voxelized->count; ++i)
@@ -257,7 +254,7 @@ graph::TextureHandle addVoxelizePasses(graph::RenderGraph& graph, vk::Context& c
                 }
                 push.depthKeys = pc.texture(voxelized->keys).storageIndex | listBits;  // both below 2^16
                 recordVoxelDraws(pc, ctx, shaders, draws, fragmentShader(mode, false), fragmentShader(mode, true),
-                                 push, true, log, slabBits);
+                                 push, true, log, slabInfo);
             });
 
         if (gl) acc.sums = gl->addPass(graph, acc.records, acc.sums);

@@ -55,6 +55,22 @@ VxgiMemory vxgiMemory(vk::Context& ctx, uint32_t voxels, vk::Rung atomics, uint3
 
 namespace {
 std::string slabText(uint32_t slabs) { return std::to_string(slabs) + (slabs == 1 ? " slab" : " slabs"); }
+
+// The slab counts an n^3 grid may use, fewest first: `forced` (0: every count of kVoxelSlabCounts), only one on the
+// gl-interop rung, and only those whose depth keys (z extent 2 n / S) stay within maxImageDimension3D; none for a
+// grid above the limit.
+std::vector<uint32_t> allowedSlabCounts(uint32_t voxels, vk::Rung atomics, uint32_t forced,
+                                        uint32_t maxImageDimension3D) {
+    std::vector<uint32_t> allowed;
+    if (voxels > maxImageDimension3D) return allowed;
+    for (uint32_t s : kVoxelSlabCounts) {
+        if (forced != 0 && s != forced) continue;
+        if (atomics == vk::Rung::GlInterop && s != 1) continue;
+        if (voxels % s != 0 || 2 * (voxels / s) > maxImageDimension3D) continue;
+        allowed.push_back(s);
+    }
+    return allowed;
+}
 }  // namespace
 
 uint32_t planVoxelSlabs(uint32_t voxels, vk::Rung atomics, uint32_t forced, uint32_t maxImageDimension3D,
@@ -64,14 +80,7 @@ uint32_t planVoxelSlabs(uint32_t voxels, vk::Rung atomics, uint32_t forced, uint
     const std::string grid = "--voxels " + n + ": the " + n + "^3 VXGI grid";
     const std::string limit = "the device's maxImageDimension3D (" + std::to_string(maxImageDimension3D) + ")";
     if (voxels > maxImageDimension3D) throw VxgiMemoryError(grid + " exceeds " + limit);
-    // The counts allowed: the forced one, else all; S = 1 only on the gl-interop rung; keys within the limit.
-    std::vector<uint32_t> allowed;
-    for (uint32_t s : kVoxelSlabCounts) {
-        if (forced != 0 && s != forced) continue;
-        if (atomics == vk::Rung::GlInterop && s != 1) continue;
-        if (voxels % s != 0 || 2 * (voxels / s) > maxImageDimension3D) continue;
-        allowed.push_back(s);
-    }
+    const std::vector<uint32_t> allowed = allowedSlabCounts(voxels, atomics, forced, maxImageDimension3D);
     if (allowed.empty()) {
         if (forced != 0 && atomics == vk::Rung::GlInterop)
             throw VxgiMemoryError(grid + ": --gi-slabs " + std::to_string(forced) +
@@ -100,23 +109,20 @@ uint32_t checkVxgiMemory(vk::Context& ctx, uint32_t voxels, vk::Rung atomics, Vk
     const vk::DeviceMemoryBudget budget = vk::deviceLocalBudget(ctx);
     const VkDeviceSize available = budget.available + released;
     const uint32_t maxDim = ctx.info().limits.maxImageDimension3D;
-    auto memory = [&](uint32_t n) { return [&ctx, n, atomics](uint32_t s) { return vxgiMemory(ctx, n, atomics, s); }; };
     auto smallerFits = [&]() -> uint32_t {
         uint32_t fits = 0;
         for (uint32_t n : kVoxelGridSizes) {
             if (n >= voxels) continue;
-            try {
-                planVoxelSlabs(n, atomics, 0, maxDim, available, memory(n), {}, {});
-                fits = n;
-            } catch (const VxgiMemoryError&) {
-            }
+            for (uint32_t s : allowedSlabCounts(n, atomics, 0, maxDim))
+                if (vxgiMemory(ctx, n, atomics, s).total() <= available) fits = n;
         }
         return fits;
     };
     const std::string budgetText =
         vk::bytesText(available) + " free (" + budget.source +
         (released ? ", with the " + std::to_string(released) + " bytes of the grid it replaces" : "") + ")";
-    return planVoxelSlabs(voxels, atomics, forcedSlabs, maxDim, available, memory(voxels), budgetText, smallerFits);
+    auto memory = [&](uint32_t s) { return vxgiMemory(ctx, voxels, atomics, s); };
+    return planVoxelSlabs(voxels, atomics, forcedSlabs, maxDim, available, memory, budgetText, smallerFits);
 }
 
 std::string refuseVxgiChange(vk::Context& ctx, const VxgiSettings& before, VxgiSettings& settings, VkDeviceSize held) {

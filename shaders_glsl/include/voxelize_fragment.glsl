@@ -39,7 +39,7 @@ void appendTouchedVoxel(ivec3 local) {
     list -= 1u;
     uint slot = atomicAdd(gVoxelList[list].data[0], 1u);
     if (slot >= voxelListCapacity(list)) return;  // counted: the merge sees the overflow and visits every voxel
-    uint z = uint(local.z) + ((p.axis >> kVoxelSlabZShift) & kVoxelSlabMask);
+    uint z = uint(local.z) + voxelSlabZ(p.axis);
     gVoxelList[list].data[kVoxelListHeaderWords + slot] = packVoxelListEntry(uvec3(local.xy, z));
 }
 #endif
@@ -95,8 +95,8 @@ bool voxelFragment(out ivec3 voxel, out vec3 radiance, out vec4 facing) {
     // This draw's z-slab: the fragment belongs to the one slab holding its integer voxel z (the key above is taken
     // in grid coordinates, so it is the same whatever the slab); from here on `voxel` addresses the slab's
     // accumulators and keys.
-    int slabZ = int((p.axis >> kVoxelSlabZShift) & kVoxelSlabMask);
-    int slabDepth = int((p.axis >> kVoxelSlabDepthShift) & kVoxelSlabMask);
+    int slabZ = int(voxelSlabZ(p.axis));
+    int slabDepth = int(voxelSlabDepth(p.axis));
     if (voxel.z < slabZ || voxel.z >= slabZ + slabDepth) return false;
     voxel.z -= slabZ;
 #ifdef IDK_VOXELIZE_KEY_PASS

@@ -16,14 +16,19 @@ vec4 voxelProjection(vec3 world, vec3 gridMin, float voxelSize, uint gridSize, u
     return vec4(s.xy * 2.0 - 1.0, s.z, 1.0);
 }
 
+// The z-slab a voxelization draw covers, from VoxelizePush::axis (its kVoxelSlab* bits, packed by
+// passes/vxgi_voxelize.cpp recordVoxelDraws): its first grid z and its depth, in voxels.
+uint voxelSlabZ(uint axisBits) { return (axisBits >> kVoxelSlabZShift) & kVoxelSlabMask; }
+uint voxelSlabDepth(uint axisBits) { return (axisBits >> kVoxelSlabDepthShift) & kVoxelSlabMask; }
+
 // Whether a triangle whose grid z (in voxels) spans [zMin, zMax] may have fragments in the slab of `slab`
 // (VoxelizePush::axis, its kVoxelSlab* bits): a cull of whole triangles only, the fragment shader's slab test
 // decides. (Clipping the projection to the slab instead would re-interpolate the clipped pieces' attributes and
 // change the fragments' bits.) The margin of 2 voxels covers the dilation's overshoot: at most half a pixel on each
 // screen axis, along which z changes by at most a voxel per voxel for a triangle of that projection.
 bool voxelTriangleInSlab(float zMin, float zMax, uint slab) {
-    float first = float((slab >> kVoxelSlabZShift) & kVoxelSlabMask);
-    float depth = float((slab >> kVoxelSlabDepthShift) & kVoxelSlabMask);
+    float first = float(voxelSlabZ(slab));
+    float depth = float(voxelSlabDepth(slab));
     return zMax >= first - 2.0 && zMin <= first + depth + 2.0;
 }
 

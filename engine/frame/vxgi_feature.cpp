@@ -86,14 +86,12 @@ void VxgiFeature::addPasses(FrameContext& f, const std::optional<passes::VoxelSh
     }
     const vk::Rung atomics = f.ctx.ladder("vxgi-atomics").chosen;
     const VoxelDirectionFormat format = voxelDirectionFormat(f.ctx.ladder("vxgi-volume-format").chosen);
-    if (!grid_.image.image || grid_.image.extent.width != s.voxels) {
+    const bool newGrid = !grid_.image.image || grid_.image.extent.width != s.voxels;
+    if (newGrid || s.slabs != slabsAsked_) {  // a new grid, or new slabs for this one (its accumulators' size)
         // Refused before the old grid is released: the frame fails with the message, nothing is lost.
         slabs_ = checkVxgiMemory(ctx_, s.voxels, atomics, heldBytes(), s.slabs);
         slabsAsked_ = s.slabs;
-        release();
-    } else if (s.slabs != slabsAsked_) {  // the grid stays: only the transient accumulators change size
-        slabs_ = checkVxgiMemory(ctx_, s.voxels, atomics, heldBytes(), s.slabs);
-        slabsAsked_ = s.slabs;
+        if (newGrid) release();
     }
     if (!grid_.image.image) {
         grid_.create(ctx_, "vxgi voxel grid", s.voxels, 1);
